@@ -1,0 +1,107 @@
+#include <lodestone/io/RawlogReadError.h>
+#include <lodestone/io/RawlogSource.h>
+#include <mrpt/img/CImage.h>
+#include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CActionRobotMovement2D.h>
+#include <mrpt/obs/CObservationOdometry.h>
+#include <mrpt/obs/CRawlog.h>
+#include <mrpt/obs/CSensoryFrame.h>
+
+namespace lodestone::io {
+
+using mrpt::obs::CObservation;
+
+RawlogSource::RawlogSource(const std::string& path) : RawlogSource(path, Options{}) {}
+
+RawlogSource::RawlogSource(const std::string& path, Options options)
+    : reader_(path), options_(std::move(options)) {
+    if (options_.imagesDir.empty()) {
+        options_.imagesDir = mrpt::obs::CRawlog::detectImagesDirectory(path);
+    }
+    if (options_.reorderWindow == 0) options_.reorderWindow = 1;
+    // MRPT resolves delay-loaded image paths against one process-wide base folder.
+    mrpt::img::CImage::setImagesPathBase(options_.imagesDir);
+}
+
+CObservation::Ptr RawlogSource::next() {
+    while (!input_done_ && window_.size() < options_.reorderWindow) {
+        if (!readOneEntry()) input_done_ = true;
+    }
+    if (!window_.empty()) return pop();
+    if (pending_error_) {
+        auto error = pending_error_;
+        pending_error_ = nullptr;
+        std::rethrow_exception(error);
+    }
+    return nullptr;
+}
+
+bool RawlogSource::readOneEntry() {
+    std::optional<RawlogEntry> entry;
+    try {
+        entry = reader_.next();
+    } catch (const RawlogReadError&) {
+        pending_error_ = std::current_exception();
+        return false;
+    }
+    if (!entry) return false;
+    ++entries_read_;
+    const auto& object = *entry->object;
+    format_ = updateFormat(format_, object);
+    if (auto obs = std::dynamic_pointer_cast<CObservation>(entry->object)) {
+        push(obs);
+    } else if (auto sf = std::dynamic_pointer_cast<mrpt::obs::CSensoryFrame>(entry->object)) {
+        for (const auto& o : *sf) {
+            if (o) push(o);
+        }
+    } else if (IS_CLASS(object, mrpt::obs::CActionCollection)) {
+        pushOdometryFromActions(object);
+    }
+    return true;
+}
+
+void RawlogSource::pushOdometryFromActions(const mrpt::serialization::CSerializable& object) {
+    const auto& actions = dynamic_cast<const mrpt::obs::CActionCollection&>(object);
+    for (const auto& action : actions) {
+        const auto* move = dynamic_cast<const mrpt::obs::CActionRobotMovement2D*>(action.get());
+        if (!move || !move->poseChange) {
+            ++skipped_actions_;
+            continue;
+        }
+        odometry_pose_ = odometry_pose_ + move->poseChange->getMeanVal();
+        auto odo = mrpt::obs::CObservationOdometry::Create();
+        odo->timestamp = move->timestamp;
+        odo->sensorLabel = options_.odometryLabel;
+        odo->odometry = odometry_pose_;
+        if (move->hasEncodersInfo) {
+            left_ticks_ += move->encoderLeftTicks;
+            right_ticks_ += move->encoderRightTicks;
+            odo->hasEncodersInfo = true;
+            odo->encoderLeftTicks = static_cast<int32_t>(left_ticks_);
+            odo->encoderRightTicks = static_cast<int32_t>(right_ticks_);
+        }
+        if (move->hasVelocities) {
+            odo->hasVelocities = true;
+            odo->velocityLocal = move->velocityLocal;
+        }
+        push(odo);
+    }
+}
+
+void RawlogSource::push(CObservation::Ptr obs) {
+    window_.push(Pending{obs->timestamp, sequence_++, std::move(obs)});
+}
+
+CObservation::Ptr RawlogSource::pop() {
+    Pending top = window_.top();
+    window_.pop();
+    if (released_any_ && top.stamp < last_released_) {
+        ++out_of_order_;
+    } else {
+        last_released_ = top.stamp;
+    }
+    released_any_ = true;
+    return top.obs;
+}
+
+}  // namespace lodestone::io

@@ -1,0 +1,51 @@
+#include <lodestone/io/RawlogWriter.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include "ZlibFileStream.h"
+
+namespace lodestone::io {
+
+struct RawlogWriter::Impl {
+    Impl(const std::string& path, const Options& options)
+        : stream(path,
+                 options.gzipLevel > 0 ? detail::ZlibFileStream::Mode::WriteGzip
+                                       : detail::ZlibFileStream::Mode::WritePlain,
+                 options.gzipLevel),
+          archive(mrpt::serialization::archiveFrom(stream)) {}
+    detail::ZlibFileStream stream;
+    mrpt::serialization::CArchiveStreamBase<detail::ZlibFileStream> archive;
+    bool open{true};
+};
+
+RawlogWriter::RawlogWriter(const std::string& path) : RawlogWriter(path, Options{}) {}
+
+RawlogWriter::RawlogWriter(const std::string& path, Options options)
+    : impl_(std::make_unique<Impl>(path, options)), path_(path) {}
+
+RawlogWriter::~RawlogWriter() {
+    try {
+        close();
+    } catch (...) {
+        // A destructor cannot report; call close() to see write errors.
+    }
+}
+
+void RawlogWriter::write(const mrpt::obs::CObservation& obs) {
+    if (!impl_->open) throw std::logic_error(path_ + ": write after close");
+    try {
+        impl_->archive << obs;
+        impl_->stream.flushToDisk();
+    } catch (const std::exception& e) {
+        throw std::runtime_error(path_ + ": cannot write entry " +
+                                 std::to_string(entries_written_) + ": " + e.what());
+    }
+    ++entries_written_;
+}
+
+void RawlogWriter::close() {
+    if (!impl_->open) return;
+    impl_->open = false;
+    impl_->stream.close();
+}
+
+}  // namespace lodestone::io
