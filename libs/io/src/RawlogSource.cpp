@@ -1,3 +1,4 @@
+#include <lodestone/io/EntryContents.h>
 #include <lodestone/io/RawlogReadError.h>
 #include <lodestone/io/RawlogSource.h>
 #include <mrpt/img/CImage.h>
@@ -5,7 +6,6 @@
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/obs/CRawlog.h>
-#include <mrpt/obs/CSensoryFrame.h>
 
 namespace lodestone::io {
 
@@ -48,15 +48,8 @@ bool RawlogSource::readOneEntry() {
     ++entries_read_;
     const auto& object = *entry->object;
     format_ = updateFormat(format_, object);
-    if (auto obs = std::dynamic_pointer_cast<CObservation>(entry->object)) {
-        push(obs);
-    } else if (auto sf = std::dynamic_pointer_cast<mrpt::obs::CSensoryFrame>(entry->object)) {
-        for (const auto& o : *sf) {
-            if (o) push(o);
-        }
-    } else if (IS_CLASS(object, mrpt::obs::CActionCollection)) {
-        pushOdometryFromActions(object);
-    }
+    for (auto& obs : observationsOf(entry->object)) push(std::move(obs));
+    if (IS_CLASS(object, mrpt::obs::CActionCollection)) pushOdometryFromActions(object);
     return true;
 }
 

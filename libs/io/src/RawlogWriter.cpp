@@ -30,10 +30,10 @@ RawlogWriter::~RawlogWriter() {
     }
 }
 
-void RawlogWriter::write(const mrpt::obs::CObservation& obs) {
+void RawlogWriter::write(const mrpt::serialization::CSerializable& entry) {
     if (!impl_->open) throw std::logic_error(path_ + ": write after close");
     try {
-        impl_->archive << obs;
+        impl_->archive << entry;
         impl_->stream.flushToDisk();
     } catch (const std::exception& e) {
         throw std::runtime_error(path_ + ": cannot write entry " +

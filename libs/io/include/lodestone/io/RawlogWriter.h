@@ -1,6 +1,6 @@
 #pragma once
 
-#include <mrpt/obs/CObservation.h>
+#include <mrpt/serialization/CSerializable.h>
 
 #include <cstdint>
 #include <memory>
@@ -8,8 +8,8 @@
 
 namespace lodestone::io {
 
-/** Writes an observation-only rawlog, plain or gzip-compressed, and pushes each entry to the
- * file as soon as it is written: a crash loses at most the entry being written, and the file
+/** Writes a rawlog, plain or gzip-compressed, and pushes each entry to the file as soon as it
+ * is written: a crash loses at most the entry being written, and the file
  * is a valid rawlog up to the last complete entry. */
 class RawlogWriter {
 public:
@@ -24,9 +24,11 @@ public:
     RawlogWriter(const RawlogWriter&) = delete;
     RawlogWriter& operator=(const RawlogWriter&) = delete;
 
-    /** Appends one entry and flushes it. Throws std::runtime_error (naming the file and the
-     * entry) on a write error. */
-    void write(const mrpt::obs::CObservation& obs);
+    /** Appends one entry and flushes it. Entries are observations (observation-only format,
+     * what Lodestone writes) or, to rewrite a stock rawlog keeping its layout, CSensoryFrame /
+     * CActionCollection. Throws std::runtime_error (naming the file and the entry) on a write
+     * error. */
+    void write(const mrpt::serialization::CSerializable& entry);
     /** Finishes the file; also done by the destructor (which cannot report errors). */
     void close();
 

@@ -1,0 +1,8 @@
+// lodestone-inspect: RawLogViewer-style inspection of rawlogs on the command line.
+#include <lodestone/inspect/InspectApp.h>
+
+#include <iostream>
+
+int main(int argc, char** argv) {
+    return lodestone::inspect::runInspectApp(argc, argv, std::cout, std::cerr);
+}

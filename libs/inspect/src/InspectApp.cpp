@@ -1,0 +1,228 @@
+#include <lodestone/inspect/EntryText.h>
+#include <lodestone/inspect/InspectApp.h>
+#include <lodestone/inspect/MagnetometerToImu.h>
+#include <lodestone/inspect/RawlogSummary.h>
+#include <lodestone/inspect/SensorExport.h>
+#include <lodestone/io/EntryContents.h>
+#include <lodestone/io/RawlogReadError.h>
+#include <lodestone/io/RawlogReader.h>
+#include <lodestone/obs/registerAllClasses.h>
+#include <mrpt/3rdparty/tclap/CmdLine.h>
+#include <mrpt/obs/CActionCollection.h>
+
+#include <functional>
+#include <memory>
+#include <limits>
+#include <map>
+#include <vector>
+
+namespace lodestone::inspect {
+
+namespace {
+
+using Args = std::vector<std::string>;
+
+// Thrown by a subcommand for bad input (missing file, label absent, ...): exit code 1.
+struct BadInput : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+// Thrown for a command line that cannot be parsed: exit code 2.
+struct UsageError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+// MRPT's TCLAP returns false both for --help and for a parse error; this output tells them
+// apart and lets the caller word the error.
+class RecordingOutput : public TCLAP::StdOutput {
+public:
+    void failure(TCLAP::CmdLineInterface&, TCLAP::ArgException& e) override {
+        error = e.argId() + ": " + e.error();
+    }
+    std::string error;
+};
+
+// Parses a subcommand's arguments; returns false after --help printed the usage.
+bool parse(TCLAP::CmdLine& cmd, const std::string& name, const Args& args) {
+    std::vector<std::string> words = {"lodestone-inspect " + name};
+    words.insert(words.end(), args.begin(), args.end());
+    std::vector<const char*> argv;
+    for (const auto& w : words) argv.push_back(w.c_str());
+    RecordingOutput output;
+    // setOutput() makes the caller the owner of outputs: free TCLAP's built-in one.
+    std::unique_ptr<TCLAP::CmdLineOutput> builtin(cmd.getOutput());
+    cmd.setOutput(&output);
+    const bool ok = cmd.parse(static_cast<int>(argv.size()), argv.data());
+    cmd.setOutput(nullptr);
+    if (!output.error.empty()) throw UsageError(output.error);
+    return ok;
+}
+
+int summary(const Args& args, std::ostream& out) {
+    TCLAP::CmdLine cmd("Format, time span, classes and per-sensor rates and gaps of a rawlog",
+                       ' ', "");
+    TCLAP::UnlabeledValueArg<std::string> file("FILE", "rawlog (plain or .gz)", true, "", "FILE",
+                                               cmd);
+    if (!parse(cmd, "summary", args)) return kExitOk;
+    const auto s = summarizeRawlog(file.getValue());
+    printSummary(s, out);
+    return s.error ? kExitBadInput : kExitOk;
+}
+
+int list(const Args& args, std::ostream& out) {
+    TCLAP::CmdLine cmd("One line per entry: index, time, class, label, short content", ' ', "");
+    TCLAP::UnlabeledValueArg<std::string> file("FILE", "rawlog (plain or .gz)", true, "", "FILE",
+                                               cmd);
+    TCLAP::ValueArg<std::size_t> from("", "from", "first entry index (default 0)", false, 0, "N",
+                                      cmd);
+    TCLAP::ValueArg<std::size_t> to("", "to", "last entry index (default: the end)", false,
+                                    std::numeric_limits<std::size_t>::max(), "M", cmd);
+    TCLAP::ValueArg<std::string> sensor("", "sensor", "only observations with this label", false,
+                                        "", "LABEL", cmd);
+    if (!parse(cmd, "list", args)) return kExitOk;
+    io::RawlogReader reader(file.getValue());
+    const auto wanted = [&](const mrpt::obs::CObservation& o) {
+        return !sensor.isSet() || o.sensorLabel == sensor.getValue();
+    };
+    while (auto entry = reader.next()) {
+        if (entry->index < from.getValue()) continue;
+        if (entry->index > to.getValue()) break;
+        const auto& object = entry->object;
+        if (auto obs = std::dynamic_pointer_cast<mrpt::obs::CObservation>(object)) {
+            if (wanted(*obs)) out << entry->index << "  " << observationLine(*obs) << "\n";
+            continue;
+        }
+        const auto inside = io::observationsOf(object);
+        if (auto acts = std::dynamic_pointer_cast<mrpt::obs::CActionCollection>(object)) {
+            if (sensor.isSet()) continue;
+            out << entry->index << "  " << object->GetRuntimeClass()->className << "  "
+                << acts->size() << " action(s):";
+            for (const auto& a : *acts) out << " " << a->GetRuntimeClass()->className;
+            out << "\n";
+            continue;
+        }
+        if (!sensor.isSet()) {
+            out << entry->index << "  " << object->GetRuntimeClass()->className << "  "
+                << inside.size() << " observation(s)\n";
+        }
+        for (std::size_t j = 0; j < inside.size(); ++j) {
+            if (wanted(*inside[j])) {
+                out << entry->index << "." << j << "  " << observationLine(*inside[j]) << "\n";
+            }
+        }
+    }
+    return kExitOk;
+}
+
+int show(const Args& args, std::ostream& out) {
+    TCLAP::CmdLine cmd("The full description of one entry", ' ', "");
+    TCLAP::UnlabeledValueArg<std::string> file("FILE", "rawlog (plain or .gz)", true, "", "FILE",
+                                               cmd);
+    TCLAP::UnlabeledValueArg<std::size_t> index("N", "entry index, from 0", true, 0, "N", cmd);
+    if (!parse(cmd, "show", args)) return kExitOk;
+    io::RawlogReader reader(file.getValue());
+    std::size_t seen = 0;
+    while (auto entry = reader.next()) {
+        ++seen;
+        if (entry->index == index.getValue()) {
+            out << "Entry " << entry->index << " at byte offset " << entry->byteOffset << "\n";
+            describeEntry(*entry->object, out);
+            return kExitOk;
+        }
+    }
+    throw BadInput(file.getValue() + ": no entry " + std::to_string(index.getValue()) +
+                   " (the rawlog has " + std::to_string(seen) + " entries)");
+}
+
+int exportCmd(const Args& args, std::ostream& out) {
+    TCLAP::CmdLine cmd(
+        "Export one sensor: series (magnetometer, IMU, odometry, ...) as CSV, RGB-D frames as "
+        "PNG (8-bit RGB, 16-bit depth)",
+        ' ', "");
+    TCLAP::UnlabeledValueArg<std::string> file("FILE", "rawlog (plain or .gz)", true, "", "FILE",
+                                               cmd);
+    TCLAP::ValueArg<std::string> sensor("", "sensor", "sensor label to export", true, "",
+                                        "LABEL", cmd);
+    TCLAP::ValueArg<std::string> dir("", "out", "output directory (created)", true, "", "DIR",
+                                     cmd);
+    if (!parse(cmd, "export", args)) return kExitOk;
+    const auto r = exportSensor(file.getValue(), sensor.getValue(), dir.getValue());
+    if (!r.seriesFile.empty()) out << r.seriesRows << " rows -> " << r.seriesFile << "\n";
+    if (!r.framesIndex.empty()) out << r.frames << " RGB-D frames -> " << r.framesIndex << "\n";
+    if (r.skipped) out << r.skipped << " observation(s) of a class with no export format\n";
+    return kExitOk;
+}
+
+int toImu(const Args& args, std::ostream& out) {
+    TCLAP::CmdLine cmd(
+        "Rewrite magnetometers as CObservationIMU (IMU_MAG_X/Y/Z) so stock MRPT tools can open "
+        "the rawlog",
+        ' ', "");
+    TCLAP::UnlabeledValueArg<std::string> in("FILE", "input rawlog", true, "", "FILE", cmd);
+    TCLAP::UnlabeledValueArg<std::string> outFile("OUT", "output rawlog (.gz: compressed)", true,
+                                                  "", "OUT", cmd);
+    TCLAP::ValueArg<std::string> unit("", "unit",
+                                      "IMU magnetometer unit: gauss (MRPT's documented unit), uT, "
+                                      "T or xsens:<local field uT>",
+                                      false, "gauss", "UNIT", cmd);
+    if (!parse(cmd, "to-imu", args)) return kExitOk;
+    lodestone::obs::MagneticUnit imuUnit;
+    try {
+        imuUnit = lodestone::obs::MagneticUnit::parse(unit.getValue());
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(std::string("--unit: ") + e.what());
+    }
+    const auto r = magnetometersToImu(in.getValue(), outFile.getValue(), imuUnit);
+    out << r.entries << " entries written to " << outFile.getValue() << ", " << r.converted
+        << " magnetometer observation(s) rewritten as CObservationIMU\n";
+    return kExitOk;
+}
+
+void printUsage(std::ostream& out) {
+    out << "lodestone-inspect: look inside MRPT rawlogs (stock and Lodestone's)\n\n"
+           "usage: lodestone-inspect <command> [options]   (<command> --help for its options)\n"
+           "  summary FILE                        format, time span, classes, per-sensor rates\n"
+           "  list FILE [--from N] [--to M] [--sensor LABEL]   one line per entry\n"
+           "  show FILE N                         full description of entry N\n"
+           "  export FILE --sensor LABEL --out DIR   CSV series / PNG frames of one sensor\n"
+           "  to-imu FILE OUT [--unit gauss]      magnetometers as CObservationIMU\n"
+           "exit codes: 0 ok, 1 bad input, 2 usage\n";
+}
+
+}  // namespace
+
+int runInspectApp(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
+    lodestone::registerAllClasses();
+    const std::map<std::string, std::function<int(const Args&, std::ostream&)>> commands = {
+        {"summary", summary}, {"list", list},      {"show", show},
+        {"export", exportCmd}, {"to-imu", toImu}};
+    if (argc < 2) {
+        printUsage(err);
+        return kExitUsage;
+    }
+    const std::string name = argv[1];
+    if (name == "--help" || name == "-h" || name == "help") {
+        printUsage(out);
+        return kExitOk;
+    }
+    const auto command = commands.find(name);
+    if (command == commands.end()) {
+        err << "lodestone-inspect: unknown command '" << name << "'\n";
+        printUsage(err);
+        return kExitUsage;
+    }
+    const Args args(argv + 2, argv + argc);
+    try {
+        return command->second(args, out);
+    } catch (const UsageError& e) {
+        err << "lodestone-inspect " << name << ": " << e.what() << "\n"
+            << "(see lodestone-inspect " << name << " --help)\n";
+        return kExitUsage;
+    } catch (const std::exception& e) {
+        out.flush();
+        err << "lodestone-inspect " << name << ": error: " << e.what() << "\n";
+        return kExitBadInput;
+    }
+}
+
+}  // namespace lodestone::inspect
