@@ -23,10 +23,10 @@ mrpt::obs::CObservation3DRangeScan::Ptr makeRangeScan(double t, int width, int h
                                                       double seedValue);
 
 struct SampleDriveOptions {
-    double duration{10.0};       ///< [s]
-    double t0{1.7e9};            ///< first timestamp [s since epoch]
+    double duration{10.0};  ///< [s]
+    double t0{1.7e9};       ///< first timestamp [s since epoch]
     double magnetometerRate{100.0}, imuRate{100.0}, odometryRate{50.0}, cameraRate{5.0};  ///< [Hz]
-    int cameraWidth{80}, cameraHeight{60};  ///< [px]
+    int cameraWidth{80}, cameraHeight{60};                                                ///< [px]
 };
 
 /** The whole drive, sorted by timestamp (ties broken by a fixed sensor order). */

@@ -5,15 +5,15 @@
 
 namespace lodestone::test {
 
-std::filesystem::path testDataDir();       ///< tests/data (small fixtures we wrote)
-std::filesystem::path sharedDataDir();     ///< ../shared/data (real data, may be absent)
-std::filesystem::path mrptDatasetsDir();   ///< /usr/share/mrpt/datasets
-std::filesystem::path sourceDir();         ///< the project's source tree
-std::filesystem::path binaryDir();         ///< the build tree
+std::filesystem::path testDataDir();      ///< tests/data (small fixtures we wrote)
+std::filesystem::path sharedDataDir();    ///< ../shared/data (real data, may be absent)
+std::filesystem::path mrptDatasetsDir();  ///< /usr/share/mrpt/datasets
+std::filesystem::path sourceDir();        ///< the project's source tree
+std::filesystem::path binaryDir();        ///< the build tree
 
 /** A fresh, empty directory under the system temp dir, removed when the object dies. */
 class TempDir {
-public:
+  public:
     explicit TempDir(const std::string& tag = "lodestone");
     ~TempDir();
     TempDir(const TempDir&) = delete;
@@ -21,7 +21,7 @@ public:
     const std::filesystem::path& path() const { return path_; }
     std::string file(const std::string& name) const { return (path_ / name).string(); }
 
-private:
+  private:
     std::filesystem::path path_;
 };
 

@@ -19,6 +19,17 @@ std::string format(const char* fmt, double a, double b, double c, double d = 0) 
     return buf;
 }
 
+// Loads delay-loaded images so they can be described; a missing file is reported, not fatal.
+void loadForDescription(const mrpt::obs::CObservation& obs, std::ostream& out) {
+    try {
+        obs.load();
+    } catch (const std::exception& e) {
+        const std::string what = e.what();
+        out << "(an external image could not be loaded: " << what.substr(0, what.find('\n'))
+            << ")\n";
+    }
+}
+
 std::string rangeScanContent(const mrpt::obs::CObservation3DRangeScan& s) {
     std::ostringstream o;
     if (s.hasRangeImage) {
@@ -83,7 +94,7 @@ std::string observationLine(const mrpt::obs::CObservation& obs) {
 void describeEntry(const mrpt::serialization::CSerializable& entry, std::ostream& out) {
     out << "Class: " << entry.GetRuntimeClass()->className << "\n";
     if (const auto* obs = dynamic_cast<const mrpt::obs::CObservation*>(&entry)) {
-        obs->load();  // delay-loaded images, so their sizes can be described
+        loadForDescription(*obs, out);
         obs->getDescriptionAsText(out);
     } else if (const auto* sf = dynamic_cast<const mrpt::obs::CSensoryFrame*>(&entry)) {
         out << "Sensory frame with " << sf->size() << " observation(s)\n";
@@ -92,7 +103,7 @@ void describeEntry(const mrpt::serialization::CSerializable& entry, std::ostream
             if (!o) continue;
             out << "\n--- observation " << i++ << ": " << o->GetRuntimeClass()->className
                 << " ---\n";
-            o->load();
+            loadForDescription(*o, out);
             o->getDescriptionAsText(out);
         }
     } else if (const auto* acts = dynamic_cast<const mrpt::obs::CActionCollection*>(&entry)) {

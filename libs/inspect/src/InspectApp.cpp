@@ -4,16 +4,18 @@
 #include <lodestone/inspect/RawlogSummary.h>
 #include <lodestone/inspect/SensorExport.h>
 #include <lodestone/io/EntryContents.h>
+#include <lodestone/io/ImagesDirectory.h>
 #include <lodestone/io/RawlogReadError.h>
 #include <lodestone/io/RawlogReader.h>
 #include <lodestone/obs/registerAllClasses.h>
 #include <mrpt/3rdparty/tclap/CmdLine.h>
+#include <mrpt/img/CImage.h>
 #include <mrpt/obs/CActionCollection.h>
 
 #include <functional>
-#include <memory>
 #include <limits>
 #include <map>
+#include <memory>
 #include <vector>
 
 namespace lodestone::inspect {
@@ -35,7 +37,7 @@ struct UsageError : std::runtime_error {
 // MRPT's TCLAP returns false both for --help and for a parse error; this output tells them
 // apart and lets the caller word the error.
 class RecordingOutput : public TCLAP::StdOutput {
-public:
+  public:
     void failure(TCLAP::CmdLineInterface&, TCLAP::ArgException& e) override {
         error = e.argId() + ": " + e.error();
     }
@@ -59,8 +61,8 @@ bool parse(TCLAP::CmdLine& cmd, const std::string& name, const Args& args) {
 }
 
 int summary(const Args& args, std::ostream& out) {
-    TCLAP::CmdLine cmd("Format, time span, classes and per-sensor rates and gaps of a rawlog",
-                       ' ', "");
+    TCLAP::CmdLine cmd("Format, time span, classes and per-sensor rates and gaps of a rawlog", ' ',
+                       "");
     TCLAP::UnlabeledValueArg<std::string> file("FILE", "rawlog (plain or .gz)", true, "", "FILE",
                                                cmd);
     if (!parse(cmd, "summary", args)) return kExitOk;
@@ -121,6 +123,7 @@ int show(const Args& args, std::ostream& out) {
     TCLAP::UnlabeledValueArg<std::size_t> index("N", "entry index, from 0", true, 0, "N", cmd);
     if (!parse(cmd, "show", args)) return kExitOk;
     io::RawlogReader reader(file.getValue());
+    mrpt::img::CImage::setImagesPathBase(io::findImagesDirectory(file.getValue()));
     std::size_t seen = 0;
     while (auto entry = reader.next()) {
         ++seen;
@@ -141,10 +144,9 @@ int exportCmd(const Args& args, std::ostream& out) {
         ' ', "");
     TCLAP::UnlabeledValueArg<std::string> file("FILE", "rawlog (plain or .gz)", true, "", "FILE",
                                                cmd);
-    TCLAP::ValueArg<std::string> sensor("", "sensor", "sensor label to export", true, "",
-                                        "LABEL", cmd);
-    TCLAP::ValueArg<std::string> dir("", "out", "output directory (created)", true, "", "DIR",
-                                     cmd);
+    TCLAP::ValueArg<std::string> sensor("", "sensor", "sensor label to export", true, "", "LABEL",
+                                        cmd);
+    TCLAP::ValueArg<std::string> dir("", "out", "output directory (created)", true, "", "DIR", cmd);
     if (!parse(cmd, "export", args)) return kExitOk;
     const auto r = exportSensor(file.getValue(), sensor.getValue(), dir.getValue());
     if (!r.seriesFile.empty()) out << r.seriesRows << " rows -> " << r.seriesFile << "\n";
@@ -194,8 +196,11 @@ void printUsage(std::ostream& out) {
 int runInspectApp(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
     lodestone::registerAllClasses();
     const std::map<std::string, std::function<int(const Args&, std::ostream&)>> commands = {
-        {"summary", summary}, {"list", list},      {"show", show},
-        {"export", exportCmd}, {"to-imu", toImu}};
+        {"summary", summary},
+        {"list", list},
+        {"show", show},
+        {"export", exportCmd},
+        {"to-imu", toImu}};
     if (argc < 2) {
         printUsage(err);
         return kExitUsage;

@@ -8,7 +8,8 @@ namespace lodestone::inspect {
 
 namespace {
 bool endsWith(const std::string& s, const std::string& suffix) {
-    return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+    return s.size() >= suffix.size() &&
+           s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 }  // namespace
 
@@ -18,7 +19,8 @@ MagnetometerToImuResult magnetometersToImu(const std::string& inPath, const std:
     io::RawlogReader reader(inPath);
     io::RawlogWriter writer(outPath, {endsWith(outPath, ".gz") ? 6 : 0});
     MagnetometerToImuResult result;
-    const auto convert = [&](const mrpt::obs::CObservation::Ptr& obs) -> mrpt::obs::CObservation::Ptr {
+    const auto convert =
+        [&](const mrpt::obs::CObservation::Ptr& obs) -> mrpt::obs::CObservation::Ptr {
         if (auto mag = std::dynamic_pointer_cast<CObservationMagnetometer>(obs)) {
             ++result.converted;
             return lodestone::obs::imuFromMagnetometer(*mag, imuUnit);

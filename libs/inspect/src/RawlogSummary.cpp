@@ -3,7 +3,6 @@
 #include <lodestone/io/EntryContents.h>
 #include <lodestone/io/RawlogReadError.h>
 #include <lodestone/io/RawlogReader.h>
-
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CSensoryFrame.h>
 
@@ -103,7 +102,8 @@ void printSummary(const RawlogSummary& s, std::ostream& out) {
         out << "Timestamps          : none\n";
     }
     out << "Entry classes       :\n";
-    for (const auto& [cls, n] : s.entryClasses) out << "  " << std::setw(8) << n << "  " << cls << "\n";
+    for (const auto& [cls, n] : s.entryClasses)
+        out << "  " << std::setw(8) << n << "  " << cls << "\n";
     out << "Observation classes :\n";
     for (const auto& [cls, n] : s.observationClasses) {
         out << "  " << std::setw(8) << n << "  " << cls << "\n";
@@ -111,7 +111,8 @@ void printSummary(const RawlogSummary& s, std::ostream& out) {
     out << "Sensors             :\n";
     out << "  " << std::left << std::setw(20) << "label" << std::setw(42) << "class" << std::right
         << std::setw(9) << "count" << std::setw(12) << "rate[Hz]" << std::setw(11) << "span[s]"
-        << std::setw(13) << "max gap[s]" << std::setw(11) << "backwards" << "\n";
+        << std::setw(13) << "max gap[s]" << std::setw(11) << "backwards"
+        << "\n";
     for (const auto& [label, st] : s.sensors) {
         std::string classes;
         for (const auto& [cls, n] : st.classes) classes += (classes.empty() ? "" : ",") + cls;

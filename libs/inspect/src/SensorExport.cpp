@@ -36,7 +36,7 @@ void writePng(const fs::path& path, const cv::Mat& image) {
 }
 
 class Exporter {
-public:
+  public:
     Exporter(const fs::path& dir, const std::string& label) : dir_(dir), label_(label) {}
 
     void add(const mrpt::obs::CObservation& obs) {
@@ -55,7 +55,7 @@ public:
         return result_;
     }
 
-private:
+  private:
     void addRow(const mrpt::obs::CObservation& obs) {
         if (!series_.is_open()) {
             result_.seriesFile = (dir_ / (label_ + ".csv")).string();
@@ -85,7 +85,8 @@ private:
             cv::Mat depth(static_cast<int>(scan.rangeImage.rows()),
                           static_cast<int>(scan.rangeImage.cols()), CV_16UC1);
             for (int r = 0; r < depth.rows; ++r) {
-                for (int c = 0; c < depth.cols; ++c) depth.at<uint16_t>(r, c) = scan.rangeImage(r, c);
+                for (int c = 0; c < depth.cols; ++c)
+                    depth.at<uint16_t>(r, c) = scan.rangeImage(r, c);
             }
             depthFile = "depth/" + name;
             writePng(dir_ / depthFile, depth);
@@ -128,8 +129,7 @@ SensorExportResult exportSensor(const std::string& rawlogPath, const std::string
         std::string labels;
         for (const auto& l : otherLabels) labels += (labels.empty() ? "" : ", ") + ("'" + l + "'");
         throw std::runtime_error(rawlogPath + ": no observation has sensor label '" + label +
-                                 "' (labels present: " + (labels.empty() ? "none" : labels) +
-                                 ")");
+                                 "' (labels present: " + (labels.empty() ? "none" : labels) + ")");
     }
     return result;
 }

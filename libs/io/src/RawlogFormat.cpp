@@ -6,10 +6,10 @@
 namespace lodestone::io {
 
 RawlogFormat updateFormat(RawlogFormat format, const mrpt::serialization::CSerializable& entry) {
-    const bool isSfEntry = IS_CLASS(entry, mrpt::obs::CActionCollection) ||
-                           IS_CLASS(entry, mrpt::obs::CSensoryFrame);
-    const RawlogFormat kind = isSfEntry ? RawlogFormat::ActionsSensoryFrames
-                                        : RawlogFormat::Observations;
+    const bool isSfEntry =
+        IS_CLASS(entry, mrpt::obs::CActionCollection) || IS_CLASS(entry, mrpt::obs::CSensoryFrame);
+    const RawlogFormat kind =
+        isSfEntry ? RawlogFormat::ActionsSensoryFrames : RawlogFormat::Observations;
     if (format == RawlogFormat::Empty) return kind;
     return format == kind ? format : RawlogFormat::Mixed;
 }

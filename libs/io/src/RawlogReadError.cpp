@@ -2,8 +2,8 @@
 
 namespace lodestone::io {
 
-RawlogReadError::RawlogReadError(std::string file, std::size_t entryIndex,
-                                 std::uint64_t byteOffset, const std::string& reason)
+RawlogReadError::RawlogReadError(std::string file, std::size_t entryIndex, std::uint64_t byteOffset,
+                                 const std::string& reason)
     : std::runtime_error(file + ": entry " + std::to_string(entryIndex) + " at byte offset " +
                          std::to_string(byteOffset) + ": " + reason),
       file_(std::move(file)),

@@ -1,11 +1,11 @@
 #include <lodestone/io/EntryContents.h>
+#include <lodestone/io/ImagesDirectory.h>
 #include <lodestone/io/RawlogReadError.h>
 #include <lodestone/io/RawlogSource.h>
 #include <mrpt/img/CImage.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationOdometry.h>
-#include <mrpt/obs/CRawlog.h>
 
 namespace lodestone::io {
 
@@ -16,7 +16,7 @@ RawlogSource::RawlogSource(const std::string& path) : RawlogSource(path, Options
 RawlogSource::RawlogSource(const std::string& path, Options options)
     : reader_(path), options_(std::move(options)) {
     if (options_.imagesDir.empty()) {
-        options_.imagesDir = mrpt::obs::CRawlog::detectImagesDirectory(path);
+        options_.imagesDir = findImagesDirectory(path);
     }
     if (options_.reorderWindow == 0) options_.reorderWindow = 1;
     // MRPT resolves delay-loaded image paths against one process-wide base folder.

@@ -61,8 +61,7 @@ size_t ZlibFileStream::Read(void* buffer, size_t count) {
     size_t total = 0;
     auto* out = static_cast<char*>(buffer);
     while (total < count) {
-        const unsigned chunk =
-            static_cast<unsigned>(std::min<size_t>(count - total, 1u << 30));
+        const unsigned chunk = static_cast<unsigned>(std::min<size_t>(count - total, 1u << 30));
         const int n = gzread(asGz(file_), out + total, chunk);
         if (n < 0) {
             last_error_ = gzErrorText(file_);
@@ -84,8 +83,7 @@ size_t ZlibFileStream::Write(const void* buffer, size_t count) {
     size_t total = 0;
     const auto* in = static_cast<const char*>(buffer);
     while (total < count) {
-        const unsigned chunk =
-            static_cast<unsigned>(std::min<size_t>(count - total, 1u << 30));
+        const unsigned chunk = static_cast<unsigned>(std::min<size_t>(count - total, 1u << 30));
         const int n = gzwrite(asGz(file_), in + total, chunk);
         if (n <= 0) {
             last_error_ = gzErrorText(file_);

@@ -13,7 +13,7 @@
 namespace lodestone::io::detail {
 
 class ZlibFileStream : public mrpt::io::CStream {
-public:
+  public:
     enum class Mode { Read, WritePlain, WriteGzip };
 
     /** Opens `path`; throws std::runtime_error naming the file on failure.
@@ -41,7 +41,7 @@ public:
     /** The last zlib error text, or empty. */
     const std::string& lastError() const { return last_error_; }
 
-private:
+  private:
     void* file_{nullptr};  // gzFile, kept opaque so zlib.h stays out of this header
     std::string path_;
     Mode mode_;

@@ -14,8 +14,8 @@ int main() {
     auto archive = mrpt::serialization::archiveFrom(buffer);
     archive << m;
     buffer.Seek(0);
-    auto back = std::dynamic_pointer_cast<lodestone::obs::CObservationMagnetometer>(
-        archive.ReadObject());
+    auto back =
+        std::dynamic_pointer_cast<lodestone::obs::CObservationMagnetometer>(archive.ReadObject());
     if (!back || back->field.z != -44.0) {
         std::cerr << "consumer: round trip failed\n";
         return 1;

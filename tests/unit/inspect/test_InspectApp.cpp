@@ -32,7 +32,7 @@ std::size_t lineCount(const std::string& s) { return std::count(s.begin(), s.end
 }  // namespace
 
 class InspectApp : public ::testing::Test {
-protected:
+  protected:
     void SetUp() override {
         registerAllClasses();
         path_ = dir_.file("drive.rawlog");
@@ -91,8 +91,7 @@ TEST_F(InspectApp, ShowDescribesOneEntry) {
 
     const auto past = inspectCmd({"show", path_, "999999"});
     EXPECT_EQ(past.code, kExitBadInput);
-    EXPECT_NE(past.err.find("has " + std::to_string(drive_.size()) + " entries"),
-              std::string::npos)
+    EXPECT_NE(past.err.find("has " + std::to_string(drive_.size()) + " entries"), std::string::npos)
         << past.err;
 }
 

@@ -33,15 +33,16 @@ TEST_P(SummaryVsRawlogEdit, SameCountsAsRawlogEditInfo) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(StockDatasets, SummaryVsRawlogEdit,
-                         ::testing::Values("test_rtk_path.rawlog",
-                                           "2006-01ENE-21-SENA_Telecom Faculty_one_loop_only.rawlog",
-                                           "kf-slam_6D_demo.rawlog"),
-                         [](const auto& info) {
-                             std::string n = info.param.substr(0, 12);
-                             for (auto& c : n) c = std::isalnum(c) ? c : '_';
-                             return n;
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    StockDatasets, SummaryVsRawlogEdit,
+    ::testing::Values("test_rtk_path.rawlog",
+                      "2006-01ENE-21-SENA_Telecom Faculty_one_loop_only.rawlog",
+                      "kf-slam_6D_demo.rawlog"),
+    [](const auto& info) {
+        std::string n = info.param.substr(0, 12);
+        for (auto& c : n) c = std::isalnum(c) ? c : '_';
+        return n;
+    });
 
 TEST(RawlogSummary, RatesGapsAndCountsOfAKnownDrive) {
     registerAllClasses();
@@ -53,7 +54,8 @@ TEST(RawlogSummary, RatesGapsAndCountsOfAKnownDrive) {
     // Drop 0.3 s of magnetometer MAG_LEFT to make a known gap.
     drive.erase(std::remove_if(drive.begin(), drive.end(),
                                [&](const auto& o) {
-                                   const double t = mrpt::Clock::toDouble(o->timestamp) - options.t0;
+                                   const double t =
+                                       mrpt::Clock::toDouble(o->timestamp) - options.t0;
                                    return o->sensorLabel == "MAG_LEFT" && t > 1.005 && t < 1.295;
                                }),
                 drive.end());
@@ -71,7 +73,8 @@ TEST(RawlogSummary, RatesGapsAndCountsOfAKnownDrive) {
     EXPECT_NEAR(left.largestGap, 0.30, 1e-6);
     EXPECT_EQ(s.sensors.at("RGBD").count, 21u);
     EXPECT_NEAR(s.sensors.at("WHEELS").meanRate(), 50.0, 1e-6);
-    EXPECT_EQ(s.observationClasses.at("lodestone::obs::CObservationMagnetometer"), 401u + left.count);
+    EXPECT_EQ(s.observationClasses.at("lodestone::obs::CObservationMagnetometer"),
+              401u + left.count);
 }
 
 TEST(RawlogSummary, CorruptFileGivesThePartialSummaryAndTheError) {

@@ -21,7 +21,7 @@ std::vector<std::string> lines(const std::string& file) {
 }  // namespace
 
 class SensorExport : public ::testing::Test {
-protected:
+  protected:
     void SetUp() override {
         registerAllClasses();
         path_ = dir_.file("drive.rawlog");

@@ -13,7 +13,7 @@
 using namespace lodestone;
 
 class RawlogCorruptInput : public ::testing::Test {
-protected:
+  protected:
     void SetUp() override {
         registerAllClasses();
         for (int i = 0; i < 10; ++i) {

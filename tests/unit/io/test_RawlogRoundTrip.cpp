@@ -10,14 +10,17 @@ using namespace lodestone;
 
 namespace {
 std::vector<mrpt::obs::CObservation::Ptr> everyKind() {
-    return {test::makeRangeScan(100.0, 64, 48, 1.0), test::makeOdometry(100.01, 2.0),
-            test::makeImu(100.02, "IMU", 3.0), test::makeMagnetometer(100.03, "MAG_LEFT", 4.0),
-            test::makeMagnetometer(100.04, "MAG_RIGHT", 5.0), test::makeRangeScan(100.05, 64, 48, 2.0)};
+    return {test::makeRangeScan(100.0, 64, 48, 1.0),
+            test::makeOdometry(100.01, 2.0),
+            test::makeImu(100.02, "IMU", 3.0),
+            test::makeMagnetometer(100.03, "MAG_LEFT", 4.0),
+            test::makeMagnetometer(100.04, "MAG_RIGHT", 5.0),
+            test::makeRangeScan(100.05, 64, 48, 2.0)};
 }
 }  // namespace
 
 class RawlogRoundTrip : public ::testing::TestWithParam<int> {
-protected:
+  protected:
     void SetUp() override { registerAllClasses(); }
 };
 

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 #include <lodestone/io/RawlogReader.h>
 #include <lodestone/obs/registerAllClasses.h>
+#include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/obs/CObservationOdometry.h>
 
 #include "RawlogTestHelpers.h"
@@ -33,7 +34,8 @@ TEST(RawlogSource, SlightlyOutOfOrderEntriesAreReleasedInTimeOrder) {
 }
 
 TEST(RawlogSource, ActionsAndSensoryFramesFormatBecomesObservations) {
-    const auto path = test::mrptDatasetsDir() / "2006-01ENE-21-SENA_Telecom Faculty_one_loop_only.rawlog";
+    const auto path =
+        test::mrptDatasetsDir() / "2006-01ENE-21-SENA_Telecom Faculty_one_loop_only.rawlog";
     if (!std::filesystem::exists(path)) GTEST_SKIP() << "MRPT dataset absent: " << path;
     registerAllClasses();
 
@@ -62,4 +64,27 @@ TEST(RawlogSource, ActionsAndSensoryFramesFormatBecomesObservations) {
     EXPECT_EQ(odometry, actionEntries);  // one odometry action per entry in this dataset
     EXPECT_GT(got.observations.size(), odometry);
     EXPECT_GT(last.norm(), 1.0);  // the accumulated pose moved: increments were composed
+}
+
+TEST(RawlogSource, DelayLoadedImagesAreFoundInTheImagesFolderBesideTheRawlog) {
+    registerAllClasses();
+    test::TempDir dir;
+    const auto path = dir.file("ext.rawlog");
+    const auto imagesDir = dir.path() / "ext_Images";  // MRPT's naming convention
+    std::filesystem::create_directories(imagesDir);
+    auto scan = test::makeRangeScan(5.0, 40, 30, 1.0);
+    const auto original = scan->intensityImage.makeDeepCopy();
+    scan->intensityImage.saveToFile((imagesDir / "rgb_0.png").string());
+    scan->intensityImage.setExternalStorage("rgb_0.png");
+    test::writeRawlog(path, {scan});
+
+    io::RawlogSource source(path);
+    EXPECT_EQ(std::filesystem::path(source.imagesDir()), imagesDir);
+    auto read = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(source.next());
+    ASSERT_TRUE(read);
+    ASSERT_TRUE(read->intensityImage.isExternallyStored());
+    read->load();
+    ASSERT_EQ(read->intensityImage.getWidth(), 40u);
+    EXPECT_EQ(*read->intensityImage.ptr<uint8_t>(7, 9), *original.ptr<uint8_t>(7, 9));
+    EXPECT_EQ(*read->intensityImage.ptr<uint8_t>(20, 3), *original.ptr<uint8_t>(20, 3));
 }

@@ -54,7 +54,7 @@ void expectSame(const CObservationMagnetometer& a, const CObservationMagnetomete
 }  // namespace
 
 class MagnetometerTest : public ::testing::Test {
-protected:
+  protected:
     void SetUp() override { lodestone::registerAllClasses(); }
 };
 

@@ -17,13 +17,13 @@ struct SensorStats {
     std::size_t count{0};
     std::size_t timestamped{0};  ///< observations with a valid timestamp
     std::optional<mrpt::Clock::time_point> first, last;
-    double largestGap{0};     ///< largest step between consecutive observations [s]
+    double largestGap{0};      ///< largest step between consecutive observations [s]
     std::size_t backwards{0};  ///< observations older than the one before them
     /** Observations in sensory frames not preceded by an action collection. MRPT's
      * action/observation pair reader, and so `rawlog-edit --info`, skips them. */
     std::size_t inUnpairedFrames{0};
 
-    double span() const;      ///< last - first [s]
+    double span() const;  ///< last - first [s]
     /** (count - 1) / span [Hz], as rawlog-edit --info computes it; inf for a zero span. */
     double meanRate() const;
 };

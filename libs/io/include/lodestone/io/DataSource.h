@@ -9,7 +9,7 @@ namespace lodestone::io {
 /** A stream of observations in time order: a rawlog file, live sensors or the simulator.
  * Everything downstream (odometry, SLAM, inspection) reads through this one interface. */
 class DataSource {
-public:
+  public:
     virtual ~DataSource() = default;
 
     /** The next observation, or nullptr when the source is exhausted. Throws (with the

@@ -10,7 +10,7 @@ namespace lodestone::io {
  * failed (entries are counted from 0, as rawlog-edit does) and the byte offset in the
  * uncompressed stream where that entry starts. Entries before it were delivered. */
 class RawlogReadError : public std::runtime_error {
-public:
+  public:
     RawlogReadError(std::string file, std::size_t entryIndex, std::uint64_t byteOffset,
                     const std::string& reason);
 
@@ -19,7 +19,7 @@ public:
     std::uint64_t byteOffset() const { return byte_offset_; }
     const std::string& reason() const { return reason_; }
 
-private:
+  private:
     std::string file_;
     std::size_t entry_index_;
     std::uint64_t byte_offset_;

@@ -12,7 +12,7 @@ namespace lodestone::io {
 /** One top-level object of a rawlog: an observation (observation-only format), or a
  * CActionCollection / CSensoryFrame (actions + sensory frames format). */
 struct RawlogEntry {
-    std::size_t index{0};        ///< position in the file, from 0
+    std::size_t index{0};         ///< position in the file, from 0
     std::uint64_t byteOffset{0};  ///< where the entry starts in the uncompressed stream [bytes]
     mrpt::serialization::CSerializable::Ptr object;
 };
@@ -25,7 +25,7 @@ struct RawlogEntry {
  * RawlogReadError naming the file, the failing entry and its byte offset; every entry before
  * it has been returned. Call lodestone::registerAllClasses() before reading our rawlogs. */
 class RawlogReader {
-public:
+  public:
     /** Opens `path`; throws std::runtime_error naming the file if it cannot be opened. */
     explicit RawlogReader(const std::string& path);
     ~RawlogReader();
@@ -42,7 +42,7 @@ public:
     std::uint64_t fileSize() const { return file_size_; }
     bool isCompressed() const { return compressed_; }
 
-private:
+  private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
     std::string path_;

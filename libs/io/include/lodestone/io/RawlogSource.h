@@ -27,7 +27,7 @@ namespace lodestone::io {
  * On corrupt input every observation read before the fault is released first, then the
  * RawlogReadError is thrown. */
 class RawlogSource : public DataSource {
-public:
+  public:
     struct Options {
         std::string imagesDir;                  ///< external images; empty: auto-detect
         std::size_t reorderWindow{64};          ///< observations held back for sorting
@@ -46,7 +46,7 @@ public:
     std::size_t skippedActions() const { return skipped_actions_; }
     const std::string& imagesDir() const { return options_.imagesDir; }
 
-private:
+  private:
     struct Pending {
         mrpt::Clock::time_point stamp;
         std::uint64_t sequence;

@@ -12,7 +12,7 @@ namespace lodestone::io {
  * is written: a crash loses at most the entry being written, and the file
  * is a valid rawlog up to the last complete entry. */
 class RawlogWriter {
-public:
+  public:
     struct Options {
         int gzipLevel{0};  ///< 0: plain rawlog; 1..9: gzip level
     };
@@ -35,7 +35,7 @@ public:
     const std::string& path() const { return path_; }
     std::size_t entriesWritten() const { return entries_written_; }
 
-private:
+  private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
     std::string path_;

@@ -22,7 +22,7 @@ namespace lodestone::obs {
 class CObservationMagnetometer : public mrpt::obs::CObservation {
     DEFINE_SERIALIZABLE(CObservationMagnetometer, lodestone::obs)
 
-public:
+  public:
     CObservationMagnetometer() = default;
 
     mrpt::poses::CPose3D sensorPose;          ///< sensor frame on the robot frame

@@ -16,7 +16,7 @@ bool hasMagnetometerChannels(const mrpt::obs::CObservationIMU& imu);
 CObservationMagnetometer::Ptr magnetometerFromImu(const mrpt::obs::CObservationIMU& imu,
                                                   MagneticUnit imuUnit, bool calibrated = true,
                                                   const mrpt::math::TVector3D& noiseStd_uT = {0, 0,
-                                                                                             0});
+                                                                                              0});
 
 /** `mag` as a CObservationIMU carrying only IMU_MAG_X/Y/Z (and IMU_TEMPERATURE when known), in
  * `imuUnit` (gauss, as MRPT documents, by default), so stock MRPT tools can read the rawlog.
