@@ -4,7 +4,6 @@
 
 #include <cstdio>
 #include <map>
-#include <regex>
 #include <sstream>
 #include <string>
 
@@ -37,13 +36,22 @@ struct RawlogEditInfo {
 inline RawlogEditInfo rawlogEditInfo(const std::string& path) {
     RawlogEditInfo info;
     const auto r = runCommand("rawlog-edit --info -i '" + path + "'");
+    const auto trim = [](std::string s) {
+        s.erase(0, s.find_first_not_of(' '));
+        s.erase(s.find_last_not_of(' ') + 1);
+        return s;
+    };
     std::istringstream in(r.output);
-    const std::regex objects(R"(Overall number of objects\s*:\s*(\d+))");
-    const std::regex sensor(R"(Sensor \(Label/Occurs/Rate/Durat\.\)\s*:\s*(.*?)\s*/\s*(\d+)\s*/)");
     for (std::string line; std::getline(in, line);) {
-        std::smatch m;
-        if (std::regex_search(line, m, objects)) info.objects = std::stol(m[1]);
-        if (std::regex_search(line, m, sensor)) info.occurrences[m[1]] = std::stol(m[2]);
+        const auto colon = line.find(':');
+        if (colon == std::string::npos) continue;
+        const std::string key = trim(line.substr(0, colon)), value = line.substr(colon + 1);
+        if (key == "Overall number of objects") info.objects = std::stol(value);
+        if (key == "Sensor (Label/Occurs/Rate/Durat.)") {
+            // "<label> / <occurrences> / <rate> /<duration>"
+            const auto slash = value.find('/');
+            info.occurrences[trim(value.substr(0, slash))] = std::stol(value.substr(slash + 1));
+        }
     }
     return info;
 }
