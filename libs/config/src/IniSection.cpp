@@ -41,7 +41,11 @@ void IniSection::fail(const std::string& key, const std::string& why) const {
 bool IniSection::has(const std::string& key) const { return cfg_.keyExists(section_, key); }
 
 std::string IniSection::raw(const std::string& key) const {
-    return trim(cfg_.read_string(section_, key, "", false));
+    // MRPT keeps text after the value; Lodestone's INIs comment values with ';' or '#'.
+    std::string value = cfg_.read_string(section_, key, "", false);
+    const auto comment = value.find_first_of(";#");
+    if (comment != std::string::npos) value.resize(comment);
+    return trim(value);
 }
 
 double IniSection::getDouble(const std::string& key, double defaultValue) {

@@ -17,7 +17,8 @@ public:
 
 /** Strict reading of one INI section. Every getter records its key; `finish()` then rejects
  * any key in the file that no getter asked for, so a typo ("sped = 0.3") is an error instead
- * of a silently ignored line. Values are parsed strictly ("0.3m" is an error, not 0.3).
+ * of a silently ignored line. Values are parsed strictly ("0.3m" is an error, not 0.3); text
+ * after ';' or '#' on a value line is a comment.
  * Parameter structs (`Params : mrpt::config::CLoadableOptions`) read themselves through it. */
 class IniSection {
 public:

@@ -1,0 +1,97 @@
+#pragma once
+
+#include <lodestone/sim/MotionPlan.h>
+#include <lodestone/sim/SurfaceTexture.h>
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace lodestone::sim {
+
+/** A polyline of walls sharing one surface style, as written in the INI. */
+struct WallSpec {
+    std::string name;  ///< INI key, for messages
+    SurfaceSpec surface;
+    std::vector<Eigen::Vector2d> points;
+};
+
+/** A sensor's pose on the robot: position [m] and yaw [rad] (sensors are mounted level). */
+struct MountPose {
+    double x{0}, y{0}, z{0}, yaw{0};
+};
+
+struct CameraSpec {
+    bool enabled{true};
+    std::string label{"RGBD"};
+    double rate{30};                    ///< [Hz]
+    int width{640}, height{480};        ///< [px]
+    double fx{570.3}, fy{570.3}, cx{319.5}, cy{239.5};  ///< [px]
+    MountPose pose{0.10, 0.0, 0.45, 0.0};
+    double minRange{0.5}, maxRange{5.0};  ///< valid depth [m]
+    double depthNoise{1.425e-3};          ///< sigma(z) = depthNoise * z^2 [1/m]
+    double disparityStep{2.85e-3};        ///< depth steps of disparityStep * z^2 [1/m]; 0: none
+    double maxIncidence{1.309};           ///< beyond this angle to the normal: no depth [rad]
+    double rgbNoise{2.0};                 ///< per-channel intensity noise std [0..255]
+    bool externalImages{true};  ///< when written to a rawlog: images beside it, not inside
+};
+
+struct MagnetometerSpec {
+    std::string label;
+    double rate{100};                       ///< [Hz]
+    MountPose pose;
+    double noiseStd{0.3};                   ///< per-axis white noise [uT]
+    Eigen::Vector3d bias{0, 0, 0};          ///< constant, sensor frame [uT]
+};
+
+struct EncoderSpec {
+    std::string label{"WHEELS"};
+    double rate{50};                ///< [Hz]
+    double ticksPerRev{2578.33};    ///< Kobuki: 52 ticks x 49.58 gear ratio
+    double slipStd{0.01};           ///< relative noise on each wheel increment
+    double leftScale{1.0}, rightScale{1.0};  ///< systematic wheel radius errors (1: none)
+    std::string wheelDropLabel{"WHEEL_DROP"};
+};
+
+struct FieldSpec {
+    double earthMagnitude{50};   ///< [uT]
+    double inclination{1.15};    ///< [rad] (66 deg, mid-latitude Europe / Korea)
+    double declination{0.0};     ///< [rad] from world +x
+    double wallSpacing{0.5};     ///< rebar dipoles along walls, one per spacing [m]; 0: none
+    Eigen::Vector2d wallMoment{1.0, 6.0};   ///< moment range [A m^2]
+    double floorDensity{0.5};    ///< floor dipoles per m^2
+    Eigen::Vector2d floorDepth{0.05, 0.4};  ///< below the floor [m]
+    Eigen::Vector2d floorMoment{2.0, 12.0}; ///< [A m^2]
+    struct Line {
+        Eigen::Vector3d a, b, momentPerMetre;
+        double spacing;
+    };
+    std::vector<Line> lines;                 ///< explicit beams
+    std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> dipoles;  ///< explicit (pos, m)
+};
+
+/** Everything a scenario INI says, validated. */
+struct Scenario {
+    std::string name, source;  ///< scenario name; the INI path (for messages)
+    std::uint64_t seed{1};
+    double startTime{1.7e9};   ///< epoch of t = 0 [s]
+    double wallHeight{2.6};    ///< walls reach the ceiling [m]
+    double texturePixelsPerMetre{200};
+    SurfaceSpec floor, ceiling;
+    double lampSpacing{2.5};   ///< ceiling lamps on a grid [m]
+    std::vector<WallSpec> walls;
+    MotionPlan::Params motion;
+    double robotRadius{0.18};  ///< [m]
+    EncoderSpec encoders;
+    CameraSpec camera;
+    std::vector<MagnetometerSpec> magnetometers;
+    FieldSpec field;
+    std::vector<KidnapSpec> kidnaps;
+
+    /** Reads and validates an INI; throws config::ConfigError naming the file, section and key
+     * (or waypoint / kidnap) at fault. */
+    static Scenario load(const std::string& iniPath);
+};
+
+}  // namespace lodestone::sim

@@ -1,0 +1,95 @@
+#include <lodestone/sim/RgbdRenderer.h>
+
+#include <cmath>
+#include <limits>
+
+namespace lodestone::sim {
+
+RgbdRenderer::RgbdRenderer(const World& world, const CameraSpec& camera, std::uint64_t noiseSeed)
+    : world_(world),
+      camera_(camera),
+      noise_(noiseSeed),
+      cos_max_incidence_(std::cos(camera.maxIncidence)) {}
+
+// One pixel: h is the column's horizontal ray direction (forward component 1, so a ray
+// parameter is a depth), b the row's vertical slope (up positive).
+RgbdRenderer::Surface RgbdRenderer::trace(const Eigen::Vector3d& pos, const Eigen::Vector2d& h,
+                                          const std::optional<WallHit>& wall, double b) const {
+    const double hNorm = h.norm();
+    if (wall) {
+        const double z = pos.z() + b * wall->t;
+        if (z >= 0 && z <= world_.ceilingHeight()) {
+            const auto& tex = world_.wallTexture(world_.floorPlan().walls()[wall->wall].surface);
+            // Incidence in 3D: the wall normal is horizontal.
+            const double cosInc = wall->cosIncidence * hNorm / std::sqrt(hNorm * hNorm + b * b);
+            return {wall->t, cosInc, tex.sample(wall->u, z), true};
+        }
+    }
+    double t;
+    const SurfaceTexture* tex;
+    if (b < 0) {
+        t = pos.z() / -b;
+        tex = &world_.floorTexture();
+    } else if (b > 0) {
+        t = (world_.ceilingHeight() - pos.z()) / b;
+        tex = &world_.ceilingTexture();
+    } else {
+        return {0, 0, cv::Vec3f(0, 0, 0), false};
+    }
+    const Eigen::Vector2d p = pos.head<2>() + t * h - world_.floorOrigin();
+    const double cosInc = std::abs(b) / std::sqrt(hNorm * hNorm + b * b);
+    return {t, cosInc, tex->sample(p.x(), p.y()), true};
+}
+
+void RgbdRenderer::render(const Eigen::Vector3d& pos, double yaw, Random& rng, cv::Mat3b& rgb,
+                          cv::Mat_<uint16_t>& depth) const {
+    const int W = camera_.width, H = camera_.height;
+    rgb.create(H, W);
+    depth.create(H, W);
+    const Eigen::Vector2d forward(std::cos(yaw), std::sin(yaw)), left(-std::sin(yaw), std::cos(yaw));
+    const double farT = 1e3;
+    const std::size_t rgbNoise = noise_.randomOffset(rng), depthNoise = noise_.randomOffset(rng);
+    const float rgbStd = static_cast<float>(camera_.rgbNoise);
+    for (int c = 0; c < W; ++c) {
+        const double a = (camera_.cx - c) / camera_.fx;  // leftwards slope
+        const Eigen::Vector2d h = forward + a * left;
+        const auto wall = world_.floorPlan().castRay(pos.head<2>(), h, 1e-9, farT);
+        for (int r = 0; r < H; ++r) {
+            const double b = (camera_.cy - r) / camera_.fy;  // upwards slope
+            const Surface s = trace(pos, h, wall, b);
+            const std::size_t i = static_cast<std::size_t>(r) * W + c;
+            // Colour: what the surface looks like, plus sensor noise.
+            cv::Vec3b& px = rgb(r, c);
+            for (int ch = 0; ch < 3; ++ch) {
+                px[ch] = cv::saturate_cast<uchar>(s.colour[ch] + rgbStd * noise_.at(rgbNoise, 3 * i + ch));
+            }
+            // Depth: valid only within range and away from grazing angles.
+            uint16_t mm = 0;
+            if (s.valid && s.depth >= camera_.minRange && s.depth <= camera_.maxRange &&
+                s.cosInc >= cos_max_incidence_) {
+                const double sigma = camera_.depthNoise * s.depth * s.depth;
+                double z = s.depth + sigma * noise_.at(depthNoise, i);
+                if (camera_.disparityStep > 0) {
+                    // Structured light measures disparity: depth comes in steps of q z^2.
+                    const double q = camera_.disparityStep;
+                    z = 1.0 / (std::max(1.0, std::round(1.0 / (z * q))) * q);
+                }
+                mm = static_cast<uint16_t>(std::lround(std::clamp(z, 0.0, 65.0) * 1000.0));
+            }
+            depth(r, c) = mm;
+        }
+    }
+}
+
+double RgbdRenderer::idealDepth(const Eigen::Vector3d& pos, double yaw, int row, int col) const {
+    const Eigen::Vector2d forward(std::cos(yaw), std::sin(yaw)), left(-std::sin(yaw), std::cos(yaw));
+    const Eigen::Vector2d h = forward + ((camera_.cx - col) / camera_.fx) * left;
+    const auto wall = world_.floorPlan().castRay(pos.head<2>(), h, 1e-9, 1e3);
+    const Surface s = trace(pos, h, wall, (camera_.cy - row) / camera_.fy);
+    if (!s.valid || s.depth < camera_.minRange || s.depth > camera_.maxRange) {
+        return std::numeric_limits<double>::quiet_NaN();
+    }
+    return s.depth;
+}
+
+}  // namespace lodestone::sim

@@ -1,0 +1,96 @@
+#include <lodestone/io/ImagesDirectory.h>
+#include <lodestone/io/RawlogWriter.h>
+#include <lodestone/io/TumTrajectory.h>
+#include <lodestone/sim/ScenarioRecorder.h>
+#include <mrpt/img/CImage.h>
+#include <mrpt/obs/CObservation3DRangeScan.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+
+namespace lodestone::sim {
+
+namespace {
+bool endsWith(const std::string& s, const std::string& suffix) {
+    return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+std::string stemOf(const std::string& rawlog) {
+    std::string base = rawlog;
+    for (const std::string ext : {".gz", ".rawlog"}) {
+        if (endsWith(base, ext)) base.resize(base.size() - ext.size());
+    }
+    return base;
+}
+
+mrpt::poses::CPose3D toPose3D(const RobotPose& p) { return {p.x, p.y, p.z, p.yaw, 0, 0}; }
+
+// Moves a frame's colour image out of the observation into a PNG in `dir`. Depth stays in the
+// rawlog, where gzip packs it better than MRPT's raw external depth files.
+void externalize(mrpt::obs::CObservation3DRangeScan& scan, const std::string& dir, std::size_t k) {
+    char name[64];
+    std::snprintf(name, sizeof(name), "%s_%06zu", scan.sensorLabel.c_str(), k);
+    const std::string rgbFile = std::string(name) + ".png";
+    const cv::Mat bgr = scan.intensityImage.asCvMat<cv::Mat>(mrpt::img::SHALLOW_COPY);
+    if (!cv::imwrite(dir + "/" + rgbFile, bgr, {cv::IMWRITE_PNG_COMPRESSION, 1})) {
+        throw std::runtime_error(dir + "/" + rgbFile + ": cannot write image");
+    }
+    scan.intensityImage.setExternalStorage(rgbFile);
+}
+}  // namespace
+
+RecordingSummary recordScenario(SimulatorSource& source, const std::string& outRawlog,
+                                const std::function<void(double)>& progress) {
+    RecordingSummary r;
+    const std::string stem = stemOf(outRawlog);
+    r.rawlog = outRawlog;
+    r.groundTruth = stem + ".gt.tum";
+    r.events = stem + ".events.txt";
+    const bool external = source.scenario().camera.externalImages;
+    if (external) {
+        r.imagesDir = io::findImagesDirectory(outRawlog);
+        std::filesystem::create_directories(r.imagesDir);
+        mrpt::img::CImage::setImagesPathBase(r.imagesDir);
+    }
+
+    // The events file first: it is known before the run.
+    {
+        std::ofstream events(r.events);
+        if (!events) throw std::runtime_error(r.events + ": cannot create");
+        events << "# kidnaps of scenario '" << source.scenario().name << "'\n"
+               << "# index lift_time put_down_time put_down_x put_down_y put_down_yaw"
+                  "  (times [s since the epoch], pose [m, m, rad], world frame)\n";
+        int i = 1;
+        for (const auto& e : source.kidnapEvents()) {
+            char line[200];
+            std::snprintf(line, sizeof(line), "kidnap %d %.6f %.6f %.4f %.4f %.5f\n", i++, e.start,
+                          e.end, e.putDown.x, e.putDown.y, e.putDown.yaw);
+            events << line;
+        }
+    }
+
+    io::RawlogWriter writer(outRawlog, {endsWith(outRawlog, ".gz") ? 1 : 0});
+    io::TumTrajectoryWriter gt(r.groundTruth);
+    double lastReported = -1;
+    while (auto obs = source.next()) {
+        const double t = source.lastTime();
+        if (auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(obs)) {
+            if (external) externalize(*scan, r.imagesDir, r.frames);
+            ++r.frames;
+        }
+        writer.write(*obs);
+        gt.write(source.startTime() + t, toPose3D(source.truePose(t)));
+        ++r.observations;
+        r.duration = t;
+        if (progress && t - lastReported >= 5.0) {
+            progress(t / std::max(1e-9, source.duration()));
+            lastReported = t;
+        }
+    }
+    writer.close();
+    return r;
+}
+
+}  // namespace lodestone::sim

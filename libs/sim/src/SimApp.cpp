@@ -1,0 +1,88 @@
+#include <lodestone/obs/registerAllClasses.h>
+#include <lodestone/sim/ScenarioPlot.h>
+#include <lodestone/sim/ScenarioRecorder.h>
+#include <lodestone/sim/SimApp.h>
+#include <mrpt/3rdparty/tclap/CmdLine.h>
+
+#include <chrono>
+#include <iomanip>
+#include <opencv2/imgcodecs.hpp>
+
+namespace lodestone::sim {
+
+namespace {
+class RecordingOutput : public TCLAP::StdOutput {
+public:
+    void failure(TCLAP::CmdLineInterface&, TCLAP::ArgException& e) override {
+        error = e.argId() + ": " + e.error();
+    }
+    std::string error;
+};
+}  // namespace
+
+int runSimApp(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
+    lodestone::registerAllClasses();
+    TCLAP::CmdLine cmd("Simulate an indoor run (RGB-D, magnetometers, wheel encoders, kidnaps) "
+                       "and write a rawlog with its ground truth",
+                       ' ', "");
+    TCLAP::ValueArg<std::string> config("c", "config", "scenario INI (see config_ini/)", true, "",
+                                        "INI", cmd);
+    TCLAP::ValueArg<std::string> outArg("o", "out",
+                                        "output rawlog (.rawlog or .rawlog.gz); OUT.gt.tum and "
+                                        "OUT.events.txt are written beside it",
+                                        false, "", "OUT", cmd);
+    TCLAP::ValueArg<long> seed("s", "seed", "random seed (default: the INI's [scenario] seed)",
+                               false, -1, "N", cmd);
+    TCLAP::ValueArg<std::string> plot("p", "plot", "write a top-view picture of the scenario",
+                                      false, "", "PNG", cmd);
+    RecordingOutput output;
+    std::unique_ptr<TCLAP::CmdLineOutput> builtin(cmd.getOutput());
+    cmd.setOutput(&output);
+    std::vector<const char*> args(argv, argv + argc);
+    const bool parsed = cmd.parse(argc, args.data());
+    cmd.setOutput(nullptr);
+    if (!output.error.empty()) {
+        err << "lodestone-sim: " << output.error << " (see lodestone-sim --help)\n";
+        return 2;
+    }
+    if (!parsed) return 0;  // --help
+    if (!outArg.isSet() && !plot.isSet()) {
+        err << "lodestone-sim: nothing to do: give --out and/or --plot\n";
+        return 2;
+    }
+    try {
+        const Scenario scenario = Scenario::load(config.getValue());
+        const std::uint64_t s = seed.getValue() >= 0 ? static_cast<std::uint64_t>(seed.getValue())
+                                                     : scenario.seed;
+        SimulatorSource source(scenario, s);
+        out << "scenario '" << scenario.name << "', seed " << s << ": " << std::fixed
+            << std::setprecision(1) << source.duration() << " s, " << source.kidnapEvents().size()
+            << " kidnap(s)\n";
+        if (plot.isSet()) {
+            if (!cv::imwrite(plot.getValue(), plotScenario(source))) {
+                throw std::runtime_error(plot.getValue() + ": cannot write picture");
+            }
+            out << "picture -> " << plot.getValue() << "\n";
+        }
+        if (outArg.isSet()) {
+            const auto wall0 = std::chrono::steady_clock::now();
+            const auto r = recordScenario(source, outArg.getValue(), [&](double f) {
+                out << "\r  " << std::setw(5) << std::setprecision(1) << 100 * f << " %" << std::flush;
+            });
+            const double secs =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+            out << "\r" << r.observations << " observations (" << r.frames << " RGB-D frames), "
+                << std::setprecision(1) << r.duration << " s simulated in " << secs << " s\n"
+                << "  rawlog       " << r.rawlog << "\n"
+                << "  ground truth " << r.groundTruth << "\n"
+                << "  events       " << r.events << "\n";
+            if (!r.imagesDir.empty()) out << "  images       " << r.imagesDir << "\n";
+        }
+    } catch (const std::exception& e) {
+        err << "lodestone-sim: error: " << e.what() << "\n";
+        return 1;
+    }
+    return 0;
+}
+
+}  // namespace lodestone::sim

@@ -1,0 +1,61 @@
+#include <lodestone/sim/SimEncoders.h>
+#include <lodestone/sim/SimMagnetometer.h>
+#include <lodestone/sim/SimRgbdCamera.h>
+#include <lodestone/sim/SimWheelDrop.h>
+#include <lodestone/sim/SimulatorSource.h>
+
+#include <limits>
+
+namespace lodestone::sim {
+
+SimulatorSource::SimulatorSource(const Scenario& scenario, std::uint64_t seed)
+    : scenario_(scenario) {
+    Random rng(seed);
+    world_ = std::make_unique<World>(scenario_, rng.fork(100).nextU64());
+    const FloorPlan& plan = world_->floorPlan();
+    const double radius = scenario_.robotRadius;
+    plan_ = std::make_unique<MotionPlan>(
+        scenario_.motion, scenario_.kidnaps,
+        [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return !plan.blocks(a, b, radius); });
+    const double t0 = scenario_.startTime;
+    // Sensor order here is the tie-break order of simultaneous samples.
+    sensors_.push_back(std::make_unique<SimEncoders>(*plan_, scenario_.encoders, t0, rng.fork(1)));
+    sensors_.push_back(std::make_unique<SimWheelDrop>(*plan_, scenario_.encoders.wheelDropLabel, t0));
+    for (std::size_t i = 0; i < scenario_.magnetometers.size(); ++i) {
+        sensors_.push_back(std::make_unique<SimMagnetometer>(
+            *world_, *plan_, scenario_.magnetometers[i], t0, rng.fork(10 + i)));
+    }
+    if (scenario_.camera.enabled) {
+        sensors_.push_back(
+            std::make_unique<SimRgbdCamera>(*world_, *plan_, scenario_.camera, t0, rng.fork(2)));
+    }
+}
+
+SimulatorSource::~SimulatorSource() = default;
+
+mrpt::obs::CObservation::Ptr SimulatorSource::next() {
+    SimSensor* earliest = nullptr;
+    std::int64_t best = std::numeric_limits<std::int64_t>::max();
+    for (auto& s : sensors_) {
+        const std::int64_t t = s->nextTimeNs();
+        if (t < best) {
+            best = t;
+            earliest = s.get();
+        }
+    }
+    if (!earliest) return nullptr;
+    last_time_ns_ = best;
+    return earliest->produce();
+}
+
+std::vector<KidnapEvent> SimulatorSource::kidnapEvents() const {
+    std::vector<KidnapEvent> events;
+    for (const auto& s : plan_->segments()) {
+        if (s.kind == MotionSegment::Kind::Carry) {
+            events.push_back({scenario_.startTime + s.t0, scenario_.startTime + s.t1, s.end});
+        }
+    }
+    return events;
+}
+
+}  // namespace lodestone::sim
