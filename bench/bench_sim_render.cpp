@@ -22,13 +22,7 @@ int main(int argc, char** argv) {
             std::cerr << "bad size '" << argv[2] << "'\n";
             return 2;
         }
-        const double scale = w / static_cast<double>(sc.camera.width);
-        sc.camera.width = w;
-        sc.camera.height = h;
-        sc.camera.fx *= scale;
-        sc.camera.fy *= scale;
-        sc.camera.cx = (w - 1) / 2.0;
-        sc.camera.cy = (h - 1) / 2.0;
+        sc.camera.resize(w, h);
         const int frames = argc > 3 ? std::atoi(argv[3]) : 200;
         SimulatorSource source(sc, sc.seed);
         RgbdRenderer renderer(source.world(), sc.camera, 1);

@@ -1,3 +1,4 @@
+#include <lodestone/config/CommandLine.h>
 #include <lodestone/inspect/EntryText.h>
 #include <lodestone/inspect/InspectApp.h>
 #include <lodestone/inspect/MagnetometerToImu.h>
@@ -8,14 +9,12 @@
 #include <lodestone/io/RawlogReadError.h>
 #include <lodestone/io/RawlogReader.h>
 #include <lodestone/obs/registerAllClasses.h>
-#include <mrpt/3rdparty/tclap/CmdLine.h>
 #include <mrpt/img/CImage.h>
 #include <mrpt/obs/CActionCollection.h>
 
 #include <functional>
 #include <limits>
 #include <map>
-#include <memory>
 #include <vector>
 
 namespace lodestone::inspect {
@@ -34,30 +33,13 @@ struct UsageError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-// MRPT's TCLAP returns false both for --help and for a parse error; this output tells them
-// apart and lets the caller word the error.
-class RecordingOutput : public TCLAP::StdOutput {
-  public:
-    void failure(TCLAP::CmdLineInterface&, TCLAP::ArgException& e) override {
-        error = e.argId() + ": " + e.error();
-    }
-    std::string error;
-};
-
 // Parses a subcommand's arguments; returns false after --help printed the usage.
 bool parse(TCLAP::CmdLine& cmd, const std::string& name, const Args& args) {
     std::vector<std::string> words = {"lodestone-inspect " + name};
     words.insert(words.end(), args.begin(), args.end());
-    std::vector<const char*> argv;
-    for (const auto& w : words) argv.push_back(w.c_str());
-    RecordingOutput output;
-    // setOutput() makes the caller the owner of outputs: free TCLAP's built-in one.
-    std::unique_ptr<TCLAP::CmdLineOutput> builtin(cmd.getOutput());
-    cmd.setOutput(&output);
-    const bool ok = cmd.parse(static_cast<int>(argv.size()), argv.data());
-    cmd.setOutput(nullptr);
-    if (!output.error.empty()) throw UsageError(output.error);
-    return ok;
+    const auto outcome = config::parseCommandLine(cmd, words);
+    if (outcome.kind == config::ParseOutcome::Kind::UsageError) throw UsageError(outcome.error);
+    return outcome.kind == config::ParseOutcome::Kind::Run;
 }
 
 int summary(const Args& args, std::ostream& out) {

@@ -206,6 +206,16 @@ void validateGeometry(const Scenario& sc) {
 }
 }  // namespace
 
+void CameraSpec::resize(int newWidth, int newHeight) {
+    const double scale = newWidth / static_cast<double>(width);
+    fx *= scale;
+    fy *= scale;
+    width = newWidth;
+    height = newHeight;
+    cx = (width - 1) / 2.0;
+    cy = (height - 1) / 2.0;
+}
+
 Scenario Scenario::load(const std::string& iniPath) {
     if (!std::filesystem::is_regular_file(iniPath)) {
         throw ConfigError(iniPath + ": no such scenario file");

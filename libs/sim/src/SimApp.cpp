@@ -2,23 +2,14 @@
 #include <lodestone/sim/ScenarioPlot.h>
 #include <lodestone/sim/ScenarioRecorder.h>
 #include <lodestone/sim/SimApp.h>
-#include <mrpt/3rdparty/tclap/CmdLine.h>
+#include <lodestone/config/CommandLine.h>
 
 #include <chrono>
+#include <cstdio>
 #include <iomanip>
 #include <opencv2/imgcodecs.hpp>
 
 namespace lodestone::sim {
-
-namespace {
-class RecordingOutput : public TCLAP::StdOutput {
-public:
-    void failure(TCLAP::CmdLineInterface&, TCLAP::ArgException& e) override {
-        error = e.argId() + ": " + e.error();
-    }
-    std::string error;
-};
-}  // namespace
 
 int runSimApp(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
     lodestone::registerAllClasses();
@@ -35,23 +26,38 @@ int runSimApp(int argc, const char* const* argv, std::ostream& out, std::ostream
                                false, -1, "N", cmd);
     TCLAP::ValueArg<std::string> plot("p", "plot", "write a top-view picture of the scenario",
                                       false, "", "PNG", cmd);
-    RecordingOutput output;
-    std::unique_ptr<TCLAP::CmdLineOutput> builtin(cmd.getOutput());
-    cmd.setOutput(&output);
-    std::vector<const char*> args(argv, argv + argc);
-    const bool parsed = cmd.parse(argc, args.data());
-    cmd.setOutput(nullptr);
-    if (!output.error.empty()) {
-        err << "lodestone-sim: " << output.error << " (see lodestone-sim --help)\n";
+    TCLAP::ValueArg<std::string> camera("", "camera",
+                                        "override the camera: WIDTHxHEIGHT@RATE (e.g. 320x240@15)",
+                                        false, "", "WxH@HZ", cmd);
+    TCLAP::SwitchArg embedded("", "embedded-images",
+                              "keep colour images inside the rawlog (default: the INI's "
+                              "external_images, beside it)",
+                              cmd);
+    const auto outcome = config::parseCommandLine(cmd, std::vector<std::string>(argv, argv + argc));
+    if (outcome.kind == config::ParseOutcome::Kind::UsageError) {
+        err << "lodestone-sim: " << outcome.error << " (see lodestone-sim --help)\n";
         return 2;
     }
-    if (!parsed) return 0;  // --help
+    if (outcome.kind == config::ParseOutcome::Kind::HelpShown) return 0;
     if (!outArg.isSet() && !plot.isSet()) {
         err << "lodestone-sim: nothing to do: give --out and/or --plot\n";
         return 2;
     }
     try {
-        const Scenario scenario = Scenario::load(config.getValue());
+        Scenario scenario = Scenario::load(config.getValue());
+        if (camera.isSet()) {
+            int w = 0, h = 0;
+            double hz = 0;
+            if (std::sscanf(camera.getValue().c_str(), "%dx%d@%lf", &w, &h, &hz) != 3 || w < 16 ||
+                h < 16 || hz <= 0) {
+                err << "lodestone-sim: --camera: expected WIDTHxHEIGHT@RATE, got '"
+                    << camera.getValue() << "'\n";
+                return 2;
+            }
+            scenario.camera.resize(w, h);
+            scenario.camera.rate = hz;
+        }
+        if (embedded.getValue()) scenario.camera.externalImages = false;
         const std::uint64_t s = seed.getValue() >= 0 ? static_cast<std::uint64_t>(seed.getValue())
                                                      : scenario.seed;
         SimulatorSource source(scenario, s);

@@ -16,16 +16,29 @@ cv::Scalar randomColour(Random& rng, int lo, int hi) {
 // Posters, notices and frames: nested rectangles, discs, bars of "text" - many corners.
 void drawPosters(cv::Mat3b& img, double pxm, Random& rng) {
     const double area = img.cols * img.rows / (pxm * pxm);
-    const int count = std::max(1, static_cast<int>(area * 0.9));
+    const int count = std::max(1, static_cast<int>(area * 2.5));
     for (int i = 0; i < count; ++i) {
         const int w = static_cast<int>(rng.uniform(0.2, 0.8) * pxm);
         const int h = static_cast<int>(rng.uniform(0.2, 0.9) * pxm);
         const int x = rng.uniformInt(0, std::max(0, img.cols - w));
         const int y = rng.uniformInt(0, std::max(0, img.rows - h));
         const cv::Rect r(x, y, w, h);
-        cv::rectangle(img, r, randomColour(rng, 20, 235), cv::FILLED);
+        if (rng.uniform() < 0.4) {
+            // A photograph: smooth random blobs (a coarse random grid, upsampled cubically).
+            cv::Mat3b coarse(rng.uniformInt(4, 9), rng.uniformInt(4, 9));
+            for (auto& px : coarse) {
+                px = cv::Vec3b(static_cast<uchar>(rng.uniformInt(0, 255)),
+                               static_cast<uchar>(rng.uniformInt(0, 255)),
+                               static_cast<uchar>(rng.uniformInt(0, 255)));
+            }
+            cv::Mat3b photo;
+            cv::resize(coarse, photo, r.size(), 0, 0, cv::INTER_CUBIC);
+            photo.copyTo(img(r & cv::Rect(0, 0, img.cols, img.rows)));
+        } else {
+            cv::rectangle(img, r, randomColour(rng, 20, 235), cv::FILLED);
+        }
         cv::rectangle(img, r, randomColour(rng, 0, 80), std::max(1, static_cast<int>(pxm * 0.01)));
-        const int parts = rng.uniformInt(3, 10);
+        const int parts = rng.uniformInt(6, 16);
         for (int k = 0; k < parts; ++k) {
             const int pw = std::max(2, static_cast<int>(w * rng.uniform(0.1, 0.5)));
             const int ph = std::max(2, static_cast<int>(h * rng.uniform(0.05, 0.4)));
@@ -109,7 +122,7 @@ SurfaceSpec SurfaceSpec::parse(const std::string& text) {
     SurfaceSpec s;
     if (text == "posters") {
         s.style = SurfaceStyle::Posters;
-        s.baseColor = {205, 215, 220};
+        s.baseColor = {170, 180, 190};
     } else if (text == "bricks") {
         s.style = SurfaceStyle::Bricks;
     } else if (text == "plain") {

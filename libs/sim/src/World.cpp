@@ -44,7 +44,7 @@ World::World(const Scenario& sc, std::uint64_t seed)
         const double s = lamp_spacing_;
         const double x = floor_origin_.x() + u, y = floor_origin_.y() + v;
         const double dx = x - (std::floor(x / s) + 0.5) * s, dy = y - (std::floor(y / s) + 0.5) * s;
-        return 0.8 + (dx * dx + dy * dy < 0.04 ? 0.45 : 0.0);
+        return 0.8 + (dx * dx + dy * dy < 0.04 ? 0.25 : 0.0);
     });
     buildMagneticField(sc, fieldRng);
 }
@@ -56,7 +56,7 @@ double World::lightAt(double x, double y, double z) const {
     const double h = std::max(0.3, ceiling_height_ - z);
     const double d2 = dx * dx + dy * dy + h * h;
     const double reference = ceiling_height_ * ceiling_height_;  // under a lamp, on the floor
-    return 0.6 + 0.45 * std::min(1.5, reference / d2);
+    return 0.55 + 0.4 * std::min(1.0, reference / d2);
 }
 
 void World::buildMagneticField(const Scenario& sc, Random& rng) {

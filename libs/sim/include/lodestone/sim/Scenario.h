@@ -35,6 +35,9 @@ struct CameraSpec {
     double maxIncidence{1.309};           ///< beyond this angle to the normal: no depth [rad]
     double rgbNoise{2.0};                 ///< per-channel intensity noise std [0..255]
     bool externalImages{true};  ///< when written to a rawlog: images beside it, not inside
+
+    /** Changes the image size, scaling the intrinsics with it (principal point centred). */
+    void resize(int newWidth, int newHeight);
 };
 
 struct MagnetometerSpec {

@@ -14,7 +14,7 @@ enum class SurfaceStyle { Posters, Bricks, Plain, Tiles, Image };
 
 struct SurfaceSpec {
     SurfaceStyle style{SurfaceStyle::Plain};
-    cv::Vec3b baseColor{200, 205, 210};  ///< BGR, for plain / tiles / posters background
+    cv::Vec3b baseColor{175, 182, 190};  ///< BGR, for plain / tiles / posters background
     std::string imagePath;               ///< Image style: a photo, tiled
     double imageWidth{1.0};              ///< Image style: the photo's width on the wall [m]
 

@@ -1,0 +1,101 @@
+#include <gtest/gtest.h>
+#include <lodestone/sim/RgbdRenderer.h>
+
+#include <opencv2/features2d.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "SimTestWorlds.h"
+
+using namespace lodestone::sim;
+
+class RgbdRendererTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        sc_ = lodestone::test::boxScenario();
+        world_ = std::make_unique<World>(sc_, 5);
+        camera_.width = 640;
+        camera_.height = 480;
+        camera_.maxRange = 9.0;
+    }
+    Scenario sc_;
+    std::unique_ptr<World> world_;
+    CameraSpec camera_;
+};
+
+TEST_F(RgbdRendererTest, DepthEqualsTheAnalyticDistanceToAKnownWall) {
+    const RgbdRenderer renderer(*world_, camera_, 1);
+    const Eigen::Vector3d cam(1.0, 0.5, 1.2);  // the front wall is the plane x = 8
+    // Depth along the optical axis of a plane facing the camera is the same for every pixel.
+    for (const auto& [r, c] : {std::pair{240, 320}, {200, 250}, {300, 390}, {150, 300}}) {
+        EXPECT_NEAR(renderer.idealDepth(cam, 0.0, r, c), 7.0, 1e-9) << r << "," << c;
+    }
+    // Turned by 10 degrees, the centre ray meets the wall 7 / cos(10) away, at that depth.
+    const double yaw = 10 * M_PI / 180;
+    const double a = (camera_.cx - 320) / camera_.fx;  // the column's leftward slope
+    EXPECT_NEAR(renderer.idealDepth(cam, yaw, 240, 320), 7.0 / (std::cos(yaw) - a * std::sin(yaw)),
+                1e-9);
+    // A row looking down meets the floor: depth = height / slope.
+    const int row = 460;
+    const double slope = (row - camera_.cy) / camera_.fy;
+    EXPECT_NEAR(renderer.idealDepth(cam, 0.0, row, 320), 1.2 / slope, 1e-9);
+}
+
+TEST_F(RgbdRendererTest, NoisyDepthStaysWithinTheSensorModel) {
+    const RgbdRenderer renderer(*world_, camera_, 1);
+    Random rng(3);
+    cv::Mat3b rgb;
+    cv::Mat_<uint16_t> depth;
+    renderer.render({1.0, 0.5, 1.2}, 0.0, rng, rgb, depth);
+    // sigma at 7 m: 1.425e-3 * 49 = 7 cm; disparity steps of 2.85e-3 * 49 = 14 cm.
+    double sum = 0;
+    int n = 0;
+    for (int r = 200; r < 280; ++r) {
+        for (int c = 280; c < 360; ++c) {
+            ASSERT_GT(depth(r, c), 0);
+            EXPECT_NEAR(depth(r, c) / 1000.0, 7.0, 0.4);
+            sum += depth(r, c) / 1000.0;
+            ++n;
+        }
+    }
+    EXPECT_NEAR(sum / n, 7.0, 0.05);  // unbiased on average
+}
+
+TEST_F(RgbdRendererTest, RangeLimitsAndGrazingAnglesGiveNoDepth) {
+    camera_.maxRange = 5.0;
+    const RgbdRenderer renderer(*world_, camera_, 1);
+    Random rng(3);
+    cv::Mat3b rgb;
+    cv::Mat_<uint16_t> depth;
+    renderer.render({1.0, 0.0, 1.2}, 0.0, rng, rgb, depth);
+    EXPECT_EQ(depth(240, 320), 0);  // the wall is 7 m away, beyond 5 m
+    // Along a side wall (y = 3) from 0.3 m away: column 210 meets it 79 degrees off its normal
+    // (no depth), column 100 at 69 degrees (depth).
+    renderer.render({0.0, 2.7, 1.2}, 0.0, rng, rgb, depth);
+    EXPECT_NEAR(renderer.idealDepth({0.0, 2.7, 1.2}, 0.0, 240, 210), 0.3 * camera_.fx / (camera_.cx - 210), 1e-9);
+    EXPECT_EQ(depth(240, 210), 0);
+    EXPECT_NEAR(depth(240, 100) / 1000.0, 0.3 * camera_.fx / (camera_.cx - 100), 0.01);
+}
+
+// Posters give a corner detector hundreds of features; plain paint almost none. This is what
+// makes the corridor scenarios hard for RGB-D odometry.
+TEST(RgbdRendererSurfaces, PostersAreRichPlainWallsArePoor) {
+    CameraSpec cam;
+    int corners[2];
+    const char* surfaces[2] = {"posters", "plain"};
+    for (int i = 0; i < 2; ++i) {
+        const Scenario sc = lodestone::test::boxScenario(surfaces[i]);
+        const World world(sc, 5);
+        const RgbdRenderer renderer(world, cam, 1);
+        Random rng(3);
+        cv::Mat3b rgb;
+        cv::Mat_<uint16_t> depth;
+        renderer.render({6.5, 0.0, 1.2}, 0.0, rng, rgb, depth);  // 1.5 m from the front wall
+        cv::Mat grey;
+        cv::cvtColor(rgb(cv::Rect(0, 60, 640, 300)), grey, cv::COLOR_BGR2GRAY);  // wall only
+        std::vector<cv::KeyPoint> kp;
+        cv::FAST(grey, kp, 20, true);
+        corners[i] = static_cast<int>(kp.size());
+    }
+    EXPECT_GT(corners[0], 150) << "posters";
+    EXPECT_LT(corners[1], 10) << "plain";
+}

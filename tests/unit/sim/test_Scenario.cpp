@@ -1,0 +1,97 @@
+#include <gtest/gtest.h>
+#include <lodestone/config/IniSection.h>
+#include <lodestone/sim/Scenario.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "TestPaths.h"
+
+using namespace lodestone::sim;
+
+namespace {
+const std::string kConfigDir = LODESTONE_CONFIG_INI_DIR;
+
+std::string readFile(const std::string& path) {
+    std::ifstream in(path);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// office.ini with `from` replaced by `to`; returns the error message of loading it.
+std::string loadError(const std::string& from, const std::string& to) {
+    std::string text = readFile(kConfigDir + "/office.ini");
+    const auto at = text.find(from);
+    if (at == std::string::npos) return "test bug: '" + from + "' not in office.ini";
+    text.replace(at, from.size(), to);
+    lodestone::test::TempDir dir;
+    const auto path = dir.file("edited.ini");
+    std::ofstream(path) << text;
+    try {
+        Scenario::load(path);
+    } catch (const lodestone::config::ConfigError& e) {
+        return e.what();
+    }
+    return "";
+}
+}  // namespace
+
+TEST(Scenario, EveryShippedScenarioLoads) {
+    for (const char* name : {"office", "paper_loop", "paper_loop_qvga", "paper_kidnap", "corridor"}) {
+        const auto path = kConfigDir + "/" + name + ".ini";
+        Scenario sc;
+        ASSERT_NO_THROW(sc = Scenario::load(path)) << path;
+        EXPECT_EQ(sc.name, name);
+        EXPECT_EQ(sc.magnetometers.size(), 2u);
+        EXPECT_GE(sc.motion.waypoints.size(), 4u);
+    }
+    const auto kidnap = Scenario::load(kConfigDir + "/paper_kidnap.ini");
+    EXPECT_EQ(kidnap.kidnaps.size(), 5u);
+    const auto qvga = Scenario::load(kConfigDir + "/paper_loop_qvga.ini");
+    EXPECT_EQ(qvga.camera.width, 320);
+    EXPECT_NEAR(qvga.camera.fx, 570.3 / 2, 1e-9);
+}
+
+TEST(Scenario, UnknownKeyIsNamed) {
+    const auto msg = loadError("speed         = 0.4", "sped          = 0.4");
+    EXPECT_NE(msg.find("[robot] key 'sped'"), std::string::npos) << msg;
+}
+
+TEST(Scenario, UnknownSectionIsNamed) {
+    const auto msg = loadError("[camera]", "[camra]");
+    EXPECT_NE(msg.find("[camra]"), std::string::npos) << msg;
+}
+
+TEST(Scenario, MalformedNumberIsNamed) {
+    const auto msg = loadError("rate      = 30", "rate      = thirty");
+    EXPECT_NE(msg.find("[camera] key 'rate'"), std::string::npos) << msg;
+}
+
+TEST(Scenario, PathThroughAWallNamesTheWaypoints) {
+    const auto msg = loadError("waypoints = 1.2 1  3.8 1  3.8 3  1.2 3",
+                               "waypoints = 1.2 1  3.8 1  6.0 3  1.2 3");
+    EXPECT_NE(msg.find("waypoint 2"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("waypoint 3"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("passes through a wall"), std::string::npos) << msg;
+}
+
+TEST(Scenario, PutDownInsideAWallNamesTheKidnap) {
+    const auto msg = loadError("floor_moment    = 2 15",
+                               "floor_moment    = 2 15\n[kidnap]\nkidnap_1 = 5 2  5.0 2.0 0\n");
+    EXPECT_NE(msg.find("kidnap_1"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("inside a wall"), std::string::npos) << msg;
+}
+
+TEST(Scenario, BadSurfaceIsNamed) {
+    const auto msg = loadError("wall_2 = bricks", "wall_2 = brick");
+    EXPECT_NE(msg.find("key 'wall_2'"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("'brick'"), std::string::npos) << msg;
+}
+
+TEST(Scenario, MissingFileIsNamed) {
+    try {
+        Scenario::load("/nonexistent/scenario.ini");
+        FAIL();
+    } catch (const lodestone::config::ConfigError& e) {
+        EXPECT_NE(std::string(e.what()).find("/nonexistent/scenario.ini"), std::string::npos);
+    }
+}
