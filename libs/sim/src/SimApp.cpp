@@ -4,9 +4,12 @@
 #include <lodestone/sim/SimApp.h>
 #include <lodestone/config/CommandLine.h>
 
+#include <unistd.h>
+
 #include <chrono>
 #include <cstdio>
 #include <iomanip>
+#include <iostream>
 #include <opencv2/imgcodecs.hpp>
 
 namespace lodestone::sim {
@@ -72,8 +75,10 @@ int runSimApp(int argc, const char* const* argv, std::ostream& out, std::ostream
         }
         if (outArg.isSet()) {
             const auto wall0 = std::chrono::steady_clock::now();
+            // Progress only for a person watching a terminal, not for logs and pipes.
+            const bool terminal = &out == &std::cout && ::isatty(STDOUT_FILENO);
             const auto r = recordScenario(source, outArg.getValue(), [&](double f) {
-                out << "\r  " << std::setw(5) << std::setprecision(1) << 100 * f << " %" << std::flush;
+                if (terminal) out << "\r  " << std::setw(5) << std::setprecision(1) << 100 * f << " %" << std::flush;
             });
             const double secs =
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();

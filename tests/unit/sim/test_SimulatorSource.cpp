@@ -180,3 +180,38 @@ TEST(SimulatorSource, MagnetometerReadsTheFieldInItsFrame) {
     }
     EXPECT_GT(checked, 100);
 }
+
+TEST(SimulatorSource, RecordedFramesWithExternalImagesReadBackExactly) {
+    registerAllClasses();
+    Scenario sc = quickOffice();
+    sc.camera.externalImages = true;
+    test::TempDir dir;
+    const auto path = dir.file("office.rawlog");
+    {
+        SimulatorSource source(sc, 4);
+        const auto r = recordScenario(source, path);
+        EXPECT_EQ(std::filesystem::path(r.imagesDir), dir.path() / "office_Images");
+        EXPECT_GT(r.frames, 10u);
+    }
+    SimulatorSource again(sc, 4);
+    io::RawlogSource rawlog(path);
+    std::size_t frames = 0;
+    while (auto expected = again.next()) {
+        auto got = rawlog.next();
+        ASSERT_TRUE(got);
+        auto e = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(expected);
+        if (!e) continue;
+        auto g = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(got);
+        ASSERT_TRUE(g);
+        ASSERT_TRUE(g->intensityImage.isExternallyStored());
+        g->load();
+        const cv::Mat a = e->intensityImage.asCvMat<cv::Mat>(mrpt::img::SHALLOW_COPY);
+        const cv::Mat b = g->intensityImage.asCvMat<cv::Mat>(mrpt::img::SHALLOW_COPY);
+        ASSERT_EQ(a.size(), b.size());
+        EXPECT_EQ(cv::norm(a, b, cv::NORM_INF), 0.0) << "frame " << frames;
+        EXPECT_TRUE(e->rangeImage == g->rangeImage);
+        ++frames;
+    }
+    EXPECT_FALSE(rawlog.next());
+    EXPECT_GT(frames, 10u);
+}
