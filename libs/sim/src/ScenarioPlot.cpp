@@ -70,7 +70,8 @@ cv::Mat3b plotScenario(const SimulatorSource& source, double ppm) {
     char text[160];
     std::snprintf(text, sizeof(text), "|B| %.0f .. %.0f uT at z = %.2f m", vmin, vmax, z);
     cv::putText(canvas, text, cv::Point(10, H + 50), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
-    std::snprintf(text, sizeof(text), "%s: path white, kidnaps red", source.scenario().name.c_str());
+    std::snprintf(text, sizeof(text), "%s: path white; walls textured black, plain grey; kidnaps red",
+                  source.scenario().name.c_str());
     cv::putText(canvas, text, cv::Point(10, H + 66), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
     return canvas;
 }
