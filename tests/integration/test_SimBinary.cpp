@@ -38,6 +38,16 @@ TEST_P(SimBinary, ScenarioRunsAndInspectReadsItsRawlog) {
     EXPECT_EQ(summary.output.find("WHEEL_DROP") != std::string::npos, kidnaps > 0);
     // Ground truth: a pose for every observation.
     EXPECT_GT(countLines(dir.file(GetParam() + ".gt.tum"), "17"), 1000u);
+
+    // Rewritten for stock MRPT, rawlog-edit reads all of it.
+    if (!lodestone::test::haveRawlogEdit()) return;
+    const auto stock = dir.file(GetParam() + "_stock.rawlog.gz");
+    ASSERT_EQ(lodestone::test::runCommand(kInspect + " to-imu " + out + " " + stock).exitCode, 0);
+    auto info = lodestone::test::rawlogEditInfo(stock);
+    EXPECT_GT(info.objects, 1000);
+    EXPECT_GT(info.occurrences["RGBD"], 10);
+    // Wheel drops become comments (CObservationComment does not store a label).
+    EXPECT_EQ(static_cast<std::size_t>(info.occurrences[""]), 2 * kidnaps);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenarios, SimBinary,
@@ -51,7 +61,8 @@ TEST(SimBinaryErrors, BadScenarioNamesTheKeyAndExits1) {
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     text.replace(text.find("laps      = 1"), 13, "lapz      = 1");
     std::ofstream(ini) << text;
-    const auto r = lodestone::test::runCommand(kSim + " --config " + ini + " --out " + dir.file("x.rawlog"));
+    const auto r =
+        lodestone::test::runCommand(kSim + " --config " + ini + " --out " + dir.file("x.rawlog"));
     EXPECT_EQ(r.exitCode, 1) << r.output;
     EXPECT_NE(r.output.find("[path] key 'lapz'"), std::string::npos) << r.output;
     EXPECT_EQ(lodestone::test::runCommand(kSim + " --config " + ini + " --camera 12").exitCode, 2);

@@ -158,7 +158,9 @@ int toImu(const Args& args, std::ostream& out) {
     }
     const auto r = magnetometersToImu(in.getValue(), outFile.getValue(), imuUnit);
     out << r.entries << " entries written to " << outFile.getValue() << ", " << r.converted
-        << " magnetometer observation(s) rewritten as CObservationIMU\n";
+        << " magnetometer observation(s) rewritten as CObservationIMU";
+    if (r.commented) out << ", " << r.commented << " wheel drop(s) as CObservationComment";
+    out << "\n";
     return kExitOk;
 }
 

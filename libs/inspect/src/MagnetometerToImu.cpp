@@ -1,7 +1,9 @@
 #include <lodestone/inspect/MagnetometerToImu.h>
 #include <lodestone/io/RawlogReader.h>
 #include <lodestone/io/RawlogWriter.h>
+#include <lodestone/obs/CObservationWheelDrop.h>
 #include <lodestone/obs/ImuMagnetometerConversion.h>
+#include <mrpt/obs/CObservationComment.h>
 #include <mrpt/obs/CSensoryFrame.h>
 
 namespace lodestone::inspect {
@@ -24,6 +26,18 @@ MagnetometerToImuResult magnetometersToImu(const std::string& inPath, const std:
         if (auto mag = std::dynamic_pointer_cast<CObservationMagnetometer>(obs)) {
             ++result.converted;
             return lodestone::obs::imuFromMagnetometer(*mag, imuUnit);
+        }
+        if (auto drop = std::dynamic_pointer_cast<lodestone::obs::CObservationWheelDrop>(obs)) {
+            // MRPT has no wheel-drop class: keep the event as a comment stock tools can show.
+            auto comment = mrpt::obs::CObservationComment::Create();
+            comment->timestamp = drop->timestamp;
+            comment->sensorLabel = drop->sensorLabel;
+            // (A comment's serialization drops the label: it goes into the text as well.)
+            comment->text = drop->sensorLabel +
+                            " wheel drop: left=" + (drop->leftDropped ? "1" : "0") +
+                            " right=" + (drop->rightDropped ? "1" : "0");
+            ++result.commented;
+            return comment;
         }
         return obs;
     };

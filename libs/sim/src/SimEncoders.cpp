@@ -2,7 +2,6 @@
 #include <mrpt/obs/CObservationOdometry.h>
 
 #include <cmath>
-#include <limits>
 
 namespace lodestone::sim {
 
@@ -15,17 +14,15 @@ SimEncoders::SimEncoders(const MotionPlan& plan, const EncoderSpec& spec, double
     yaw_ = p0.yaw;
 }
 
-std::int64_t SimEncoders::nextTimeNs() const {
-    return clock_.now() * 1e-9 <= plan_.duration() ? clock_.now()
-                                                   : std::numeric_limits<std::int64_t>::max();
-}
+std::int64_t SimEncoders::nextTimeNs() const { return clock_.nextWithin(plan_.duration()); }
 
 mrpt::obs::CObservation::Ptr SimEncoders::produce() {
     const std::int64_t tNs = clock_.now();
     ++clock_.k;
     const double t = tNs * 1e-9;
     const Eigen::Vector2d wheels = plan_.wheelAnglesAt(t);
-    const Eigen::Vector2d step = first_ ? Eigen::Vector2d::Zero() : Eigen::Vector2d(wheels - last_true_);
+    const Eigen::Vector2d step =
+        first_ ? Eigen::Vector2d::Zero() : Eigen::Vector2d(wheels - last_true_);
     first_ = false;
     last_true_ = wheels;
     const double scale[2] = {spec_.leftScale, spec_.rightScale};

@@ -1,18 +1,18 @@
 #include <lodestone/obs/CObservationMagnetometer.h>
 #include <lodestone/sim/SimMagnetometer.h>
 
-#include <limits>
-
 namespace lodestone::sim {
 
 SimMagnetometer::SimMagnetometer(const World& world, const MotionPlan& plan,
                                  const MagnetometerSpec& spec, double startTime, Random rng)
-    : world_(world), plan_(plan), spec_(spec), start_time_(startTime), rng_(rng), clock_(spec.rate) {}
+    : world_(world),
+      plan_(plan),
+      spec_(spec),
+      start_time_(startTime),
+      rng_(rng),
+      clock_(spec.rate) {}
 
-std::int64_t SimMagnetometer::nextTimeNs() const {
-    return clock_.now() * 1e-9 <= plan_.duration() ? clock_.now()
-                                                   : std::numeric_limits<std::int64_t>::max();
-}
+std::int64_t SimMagnetometer::nextTimeNs() const { return clock_.nextWithin(plan_.duration()); }
 
 mrpt::obs::CObservation::Ptr SimMagnetometer::produce() {
     const std::int64_t tNs = clock_.now();
@@ -22,8 +22,8 @@ mrpt::obs::CObservation::Ptr SimMagnetometer::produce() {
     const Eigen::Vector3d bWorld = world_.field().at(s.position);
     // World -> sensor frame: the sensor is level, rotated by its yaw.
     const double c = std::cos(s.yaw), sn = std::sin(s.yaw);
-    const Eigen::Vector3d bSensor(c * bWorld.x() + sn * bWorld.y(), -sn * bWorld.x() + c * bWorld.y(),
-                                  bWorld.z());
+    const Eigen::Vector3d bSensor(c * bWorld.x() + sn * bWorld.y(),
+                                  -sn * bWorld.x() + c * bWorld.y(), bWorld.z());
     auto obs = lodestone::obs::CObservationMagnetometer::Create();
     obs->timestamp = simTimestamp(start_time_, tNs);
     obs->sensorLabel = spec_.label;

@@ -1,8 +1,6 @@
 #include <lodestone/sim/SimRgbdCamera.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 
-#include <limits>
-
 namespace lodestone::sim {
 
 SimRgbdCamera::SimRgbdCamera(const World& world, const MotionPlan& plan, const CameraSpec& spec,
@@ -14,10 +12,7 @@ SimRgbdCamera::SimRgbdCamera(const World& world, const MotionPlan& plan, const C
       clock_(spec.rate),
       renderer_(world, spec, rng.fork(7).nextU64()) {}
 
-std::int64_t SimRgbdCamera::nextTimeNs() const {
-    return clock_.now() * 1e-9 <= plan_.duration() ? clock_.now()
-                                                   : std::numeric_limits<std::int64_t>::max();
-}
+std::int64_t SimRgbdCamera::nextTimeNs() const { return clock_.nextWithin(plan_.duration()); }
 
 mrpt::obs::CObservation::Ptr SimRgbdCamera::produce() {
     const std::int64_t tNs = clock_.now();

@@ -2,14 +2,16 @@
 #include <lodestone/sim/RgbdRenderer.h>
 
 #include <opencv2/features2d.hpp>
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "SimTestWorlds.h"
+#include "TestPaths.h"
 
 using namespace lodestone::sim;
 
 class RgbdRendererTest : public ::testing::Test {
-protected:
+  protected:
     void SetUp() override {
         sc_ = lodestone::test::boxScenario();
         world_ = std::make_unique<World>(sc_, 5);
@@ -71,7 +73,8 @@ TEST_F(RgbdRendererTest, RangeLimitsAndGrazingAnglesGiveNoDepth) {
     // Along a side wall (y = 3) from 0.3 m away: column 210 meets it 79 degrees off its normal
     // (no depth), column 100 at 69 degrees (depth).
     renderer.render({0.0, 2.7, 1.2}, 0.0, rng, rgb, depth);
-    EXPECT_NEAR(renderer.idealDepth({0.0, 2.7, 1.2}, 0.0, 240, 210), 0.3 * camera_.fx / (camera_.cx - 210), 1e-9);
+    EXPECT_NEAR(renderer.idealDepth({0.0, 2.7, 1.2}, 0.0, 240, 210),
+                0.3 * camera_.fx / (camera_.cx - 210), 1e-9);
     EXPECT_EQ(depth(240, 210), 0);
     EXPECT_NEAR(depth(240, 100) / 1000.0, 0.3 * camera_.fx / (camera_.cx - 100), 0.01);
 }
@@ -98,4 +101,25 @@ TEST(RgbdRendererSurfaces, PostersAreRichPlainWallsArePoor) {
     }
     EXPECT_GT(corners[0], 150) << "posters";
     EXPECT_LT(corners[1], 10) << "plain";
+}
+
+TEST(SurfaceTextureImage, APhotoIsTiledAtItsWidth) {
+    lodestone::test::TempDir dir;
+    cv::Mat3b photo(40, 80, cv::Vec3b(10, 20, 30));
+    photo(cv::Rect(0, 0, 40, 40)).setTo(cv::Vec3b(200, 100, 50));  // left half different
+    const auto file = dir.file("photo.png");
+    cv::imwrite(file, photo);
+    const auto spec = SurfaceSpec::parse("image:" + file + ":0.5");
+    EXPECT_EQ(spec.style, SurfaceStyle::Image);
+    EXPECT_DOUBLE_EQ(spec.imageWidth, 0.5);
+    Random rng(1);
+    const auto tex = SurfaceTexture::generate(spec, 2.0, 1.0, 100, rng);
+    EXPECT_EQ(tex.raster().cols, 200);
+    // Every 0.5 m the photo starts again: its left half, then its right half.
+    for (double u : {0.1, 0.6, 1.1, 1.6}) EXPECT_NEAR(tex.sample(u, 0.1)[0], 200, 1) << u;
+    for (double u : {0.4, 0.9, 1.4}) EXPECT_NEAR(tex.sample(u, 0.1)[0], 10, 1) << u;
+    EXPECT_THROW(SurfaceSpec::parse("image:/nonexistent.png:0"), std::invalid_argument);
+    EXPECT_THROW(
+        SurfaceTexture::generate(SurfaceSpec::parse("image:/nonexistent.png:1"), 1, 1, 50, rng),
+        std::runtime_error);
 }
