@@ -142,3 +142,14 @@ void checkSections(const mrpt::config::CConfigFileBase& cfg, const std::set<std:
 }
 
 }  // namespace lodestone::config
+
+#include <mrpt/config/CConfigFile.h>
+
+namespace lodestone::config {
+std::string sourceName(const mrpt::config::CConfigFileBase& cfg) {
+    if (const auto* file = dynamic_cast<const mrpt::config::CConfigFile*>(&cfg)) {
+        return file->getAssociatedFile();
+    }
+    return "config";
+}
+}  // namespace lodestone::config

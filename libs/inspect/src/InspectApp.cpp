@@ -42,6 +42,17 @@ bool parse(TCLAP::CmdLine& cmd, const std::string& name, const Args& args) {
     return outcome.kind == config::ParseOutcome::Kind::Run;
 }
 
+// Two positional arguments, in command-line order. (One multi-argument rather than two
+// single ones: MRPT's TCLAP was seen to fill two unlabeled arguments in reverse order in an
+// ASan build.)
+std::pair<std::string, std::string> twoPositionals(TCLAP::UnlabeledMultiArg<std::string>& a,
+                                                   const std::string& names) {
+    if (a.getValue().size() != 2) {
+        throw UsageError("expected exactly two arguments: " + names);
+    }
+    return {a.getValue()[0], a.getValue()[1]};
+}
+
 int summary(const Args& args, std::ostream& out) {
     TCLAP::CmdLine cmd("Format, time span, classes and per-sensor rates and gaps of a rawlog", ' ',
                        "");
@@ -100,22 +111,30 @@ int list(const Args& args, std::ostream& out) {
 
 int show(const Args& args, std::ostream& out) {
     TCLAP::CmdLine cmd("The full description of one entry", ' ', "");
-    TCLAP::UnlabeledValueArg<std::string> file("FILE", "rawlog (plain or .gz)", true, "", "FILE",
-                                               cmd);
-    TCLAP::UnlabeledValueArg<std::size_t> index("N", "entry index, from 0", true, 0, "N", cmd);
+    TCLAP::UnlabeledMultiArg<std::string> words("FILE_N", "FILE (rawlog) then N (entry index)",
+                                                true, "FILE N", cmd);
     if (!parse(cmd, "show", args)) return kExitOk;
-    io::RawlogReader reader(file.getValue());
-    mrpt::img::CImage::setImagesPathBase(io::findImagesDirectory(file.getValue()));
+    const auto [file, n] = twoPositionals(words, "FILE N");
+    std::size_t wanted = 0;
+    try {
+        std::size_t used = 0;
+        wanted = std::stoul(n, &used);
+        if (used != n.size()) throw std::invalid_argument(n);
+    } catch (const std::exception&) {
+        throw UsageError("N: expected an entry index, got '" + n + "'");
+    }
+    io::RawlogReader reader(file);
+    mrpt::img::CImage::setImagesPathBase(io::findImagesDirectory(file));
     std::size_t seen = 0;
     while (auto entry = reader.next()) {
         ++seen;
-        if (entry->index == index.getValue()) {
+        if (entry->index == wanted) {
             out << "Entry " << entry->index << " at byte offset " << entry->byteOffset << "\n";
             describeEntry(*entry->object, out);
             return kExitOk;
         }
     }
-    throw BadInput(file.getValue() + ": no entry " + std::to_string(index.getValue()) +
+    throw BadInput(file + ": no entry " + std::to_string(wanted) +
                    " (the rawlog has " + std::to_string(seen) + " entries)");
 }
 
@@ -142,9 +161,9 @@ int toImu(const Args& args, std::ostream& out) {
         "Rewrite magnetometers as CObservationIMU (IMU_MAG_X/Y/Z) so stock MRPT tools can open "
         "the rawlog",
         ' ', "");
-    TCLAP::UnlabeledValueArg<std::string> in("FILE", "input rawlog", true, "", "FILE", cmd);
-    TCLAP::UnlabeledValueArg<std::string> outFile("OUT", "output rawlog (.gz: compressed)", true,
-                                                  "", "OUT", cmd);
+    TCLAP::UnlabeledMultiArg<std::string> words(
+        "FILE_OUT", "FILE (input rawlog) then OUT (output rawlog; .gz: compressed)", true,
+        "FILE OUT", cmd);
     TCLAP::ValueArg<std::string> unit("", "unit",
                                       "IMU magnetometer unit: gauss (MRPT's documented unit), uT, "
                                       "T or xsens:<local field uT>",
@@ -156,8 +175,9 @@ int toImu(const Args& args, std::ostream& out) {
     } catch (const std::invalid_argument& e) {
         throw UsageError(std::string("--unit: ") + e.what());
     }
-    const auto r = magnetometersToImu(in.getValue(), outFile.getValue(), imuUnit);
-    out << r.entries << " entries written to " << outFile.getValue() << ", " << r.converted
+    const auto [in, outFile] = twoPositionals(words, "FILE OUT");
+    const auto r = magnetometersToImu(in, outFile, imuUnit);
+    out << r.entries << " entries written to " << outFile << ", " << r.converted
         << " magnetometer observation(s) rewritten as CObservationIMU";
     if (r.commented) out << ", " << r.commented << " wheel drop(s) as CObservationComment";
     out << "\n";

@@ -64,3 +64,8 @@ void checkSections(const mrpt::config::CConfigFileBase& cfg, const std::set<std:
 bool parseDouble(const std::string& text, double& out);
 
 }  // namespace lodestone::config
+
+namespace lodestone::config {
+/** The file behind a configuration source, for messages ("config" if it has none). */
+std::string sourceName(const mrpt::config::CConfigFileBase& cfg);
+}  // namespace lodestone::config

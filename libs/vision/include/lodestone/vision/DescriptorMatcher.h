@@ -1,0 +1,36 @@
+#pragma once
+
+#include <mrpt/config/CLoadableOptions.h>
+
+#include <opencv2/core.hpp>
+#include <vector>
+
+namespace lodestone::vision {
+
+/** Brute-force Hamming matching of binary descriptors (OpenCV's BFMatcher) with the gates that
+ * make its output usable: a mutual best match (cross-check), a maximum distance and, when
+ * enabled, Lowe's ratio test against the second best. */
+class DescriptorMatcher {
+public:
+    struct Params : public mrpt::config::CLoadableOptions {
+        int maxDistance{64};   ///< Hamming distance above which a pair is no match [bits]
+        double ratio{0.0};     ///< best / second-best distance must be below this; 0: off
+        bool crossCheck{true};  ///< keep only mutual best matches
+
+        void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
+                                const std::string& section) override;
+        void dumpToTextStream(std::ostream& out) const override;
+    };
+
+    DescriptorMatcher();
+    explicit DescriptorMatcher(const Params& params);
+
+    /** Matches: queryIdx into `query`, trainIdx into `train`. */
+    std::vector<cv::DMatch> match(const cv::Mat& query, const cv::Mat& train) const;
+    const Params& params() const { return params_; }
+
+private:
+    Params params_;
+};
+
+}  // namespace lodestone::vision

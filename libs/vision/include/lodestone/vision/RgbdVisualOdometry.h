@@ -1,0 +1,90 @@
+#pragma once
+
+#include <lodestone/vision/DescriptorMatcher.h>
+#include <lodestone/vision/OrbFeatures.h>
+#include <lodestone/vision/RgbdFrame.h>
+#include <lodestone/vision/RigidRansac.h>
+#include <mrpt/config/CLoadableOptions.h>
+
+#include <optional>
+
+namespace lodestone::vision {
+
+/** Where the odometry stands. */
+enum class VoState {
+    Initializing,  ///< no reference frame yet (or just re-initialized after LOST)
+    Tracking,      ///< the last frames were aligned
+    Lost           ///< `lostAfter` consecutive frames failed; no motion is reported
+};
+
+/** Why a frame did not give a motion. */
+enum class VoFailure { None, NoReference, FewFeatures, FewMatches, NoConsensus, Implausible };
+
+const char* toString(VoState s);
+const char* toString(VoFailure f);
+
+/** Time spent on one frame [ms], by step. */
+struct VoTiming {
+    double orb{0}, matching{0}, ransac{0};
+};
+
+/** What one frame gave. */
+struct VoResult {
+    bool success{false};    ///< a motion was estimated for this frame
+    VoState state{VoState::Initializing};
+    VoFailure failure{VoFailure::None};
+    /** Pose of this frame in the reference frame's optical frame: p_ref = T p_cur. */
+    Eigen::Isometry3d T_ref_cur{Eigen::Isometry3d::Identity()};
+    Eigen::Matrix<double, 6, 6> covariance{Eigen::Matrix<double, 6, 6>::Identity()};  ///< see RigidEstimate
+    double referenceTimestamp{0};  ///< [s] of the reference frame T_ref_cur is relative to
+    std::size_t features{0}, matches{0}, inliers{0};
+    VoTiming timing;
+};
+
+/** RGB-D visual odometry as paper 001 §3: ORB features of the current frame are matched
+ * against the reference frame, 3D-3D pairs aligned by SVD inside RANSAC. On success the current
+ * frame becomes the reference; a frame that fails (too few features, matches or inliers, or an
+ * implausible jump) leaves the reference as it was and counts as lost; after `lostAfter`
+ * consecutive failures the state is LOST and the next frame re-initializes. A frame with no
+ * depth, no features (a plain wall) or NaNs simply fails. */
+class RgbdVisualOdometry {
+public:
+    struct Params : public mrpt::config::CLoadableOptions {
+        OrbExtractor::Params orb;
+        DescriptorMatcher::Params matcher;
+        RigidRansac::Params ransac;
+        int lostAfter{5};               ///< consecutive failed frames before LOST
+        double maxTranslation{0.5};     ///< per frame, beyond it the motion is implausible [m]
+        double maxRotation{0.6};        ///< per frame [rad]
+        std::uint64_t seed{1};          ///< RANSAC seed (deterministic results)
+
+        /** All keys in one section (ORB, matcher and RANSAC keys included). */
+        void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
+                                const std::string& section) override;
+        void dumpToTextStream(std::ostream& out) const override;
+    };
+
+    RgbdVisualOdometry();
+    explicit RgbdVisualOdometry(const Params& params);
+
+    /** Processes the next frame. */
+    VoResult process(const RgbdFrame& frame);
+    /** Forgets the reference: the next frame starts afresh. */
+    void reset();
+
+    VoState state() const { return state_; }
+    const Params& params() const { return params_; }
+
+private:
+    Params params_;
+    OrbExtractor extractor_;
+    DescriptorMatcher matcher_;
+    RigidRansac ransac_;
+    std::optional<FrameFeatures> reference_;
+    double reference_time_{0};
+    int failures_{0};
+    VoState state_{VoState::Initializing};
+    std::uint64_t frame_count_{0};
+};
+
+}  // namespace lodestone::vision

@@ -1,0 +1,159 @@
+#include <lodestone/config/IniSection.h>
+#include <lodestone/vision/RgbdVisualOdometry.h>
+
+#include <chrono>
+
+namespace lodestone::vision {
+
+namespace {
+double msSince(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+}  // namespace
+
+const char* toString(VoState s) {
+    switch (s) {
+        case VoState::Initializing:
+            return "INITIALIZING";
+        case VoState::Tracking:
+            return "TRACKING";
+        case VoState::Lost:
+            return "LOST";
+    }
+    return "?";
+}
+
+const char* toString(VoFailure f) {
+    switch (f) {
+        case VoFailure::None:
+            return "none";
+        case VoFailure::NoReference:
+            return "no reference frame";
+        case VoFailure::FewFeatures:
+            return "too few features with depth";
+        case VoFailure::FewMatches:
+            return "too few matches";
+        case VoFailure::NoConsensus:
+            return "too few RANSAC inliers";
+        case VoFailure::Implausible:
+            return "implausible motion";
+    }
+    return "?";
+}
+
+void RgbdVisualOdometry::Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
+                                                    const std::string& section) {
+    // One INI section for the whole odometry: the parts read their own keys from it (without
+    // checking for strangers); here every key of the section must belong to someone.
+    config::IniSection s(source, section, config::sourceName(source));
+    for (const char* k : {"orb_features", "orb_scale_factor", "orb_levels", "orb_fast_threshold",
+                          "min_depth", "max_depth", "match_max_distance", "match_ratio",
+                          "match_cross_check", "ransac_iterations", "ransac_threshold",
+                          "ransac_depth_scale", "min_inliers", "min_inlier_ratio"}) {
+        s.getString(k, "");  // known keys (parsed below by their owners)
+    }
+    lostAfter = s.getInt("lost_after", lostAfter);
+    maxTranslation = s.getDouble("max_translation", maxTranslation);
+    maxRotation = s.getDouble("max_rotation_deg", maxRotation * 180 / M_PI) * M_PI / 180;
+    seed = static_cast<std::uint64_t>(s.getInt("seed", static_cast<int>(seed)));
+    if (lostAfter < 1) s.fail("lost_after", "must be >= 1");
+    s.finish();
+    orb.loadFromConfigFile(source, section);
+    matcher.loadFromConfigFile(source, section);
+    ransac.loadFromConfigFile(source, section);
+}
+
+void RgbdVisualOdometry::Params::dumpToTextStream(std::ostream& out) const {
+    orb.dumpToTextStream(out);
+    matcher.dumpToTextStream(out);
+    ransac.dumpToTextStream(out);
+    out << "lost_after         = " << lostAfter << "  [frames]\n"
+        << "max_translation    = " << maxTranslation << "  [m per frame]\n"
+        << "max_rotation_deg   = " << maxRotation * 180 / M_PI << "  [deg per frame]\n"
+        << "seed               = " << seed << "\n";
+}
+
+RgbdVisualOdometry::RgbdVisualOdometry() : RgbdVisualOdometry(Params()) {}
+
+RgbdVisualOdometry::RgbdVisualOdometry(const Params& params)
+    : params_(params), extractor_(params.orb), matcher_(params.matcher), ransac_(params.ransac) {}
+
+void RgbdVisualOdometry::reset() {
+    reference_.reset();
+    failures_ = 0;
+    state_ = VoState::Initializing;
+}
+
+VoResult RgbdVisualOdometry::process(const RgbdFrame& frame) {
+    VoResult r;
+    ++frame_count_;
+    auto t0 = std::chrono::steady_clock::now();
+    FrameFeatures current = extractor_.extract(frame);
+    r.timing.orb = msSince(t0);
+    r.features = current.size();
+
+    const auto fail = [&](VoFailure why) {
+        r.failure = why;
+        if (state_ == VoState::Lost) return r;
+        if (++failures_ >= params_.lostAfter) state_ = VoState::Lost;
+        r.state = state_;
+        return r;
+    };
+    const auto becomeReference = [&]() {
+        reference_ = std::move(current);
+        reference_time_ = frame.timestamp;
+    };
+
+    if (state_ == VoState::Lost || !reference_) {
+        // (Re-)initialize on a frame good enough to track from.
+        r.state = state_;
+        if (current.size() < static_cast<std::size_t>(params_.ransac.minInliers)) {
+            r.failure = VoFailure::FewFeatures;
+            return r;
+        }
+        becomeReference();
+        failures_ = 0;
+        state_ = VoState::Initializing;
+        r.state = state_;
+        r.failure = VoFailure::NoReference;
+        return r;
+    }
+    r.referenceTimestamp = reference_time_;
+    if (current.size() < static_cast<std::size_t>(params_.ransac.minInliers)) {
+        return fail(VoFailure::FewFeatures);
+    }
+
+    t0 = std::chrono::steady_clock::now();
+    const auto matches = matcher_.match(current.descriptors, reference_->descriptors);
+    r.timing.matching = msSince(t0);
+    r.matches = matches.size();
+    if (matches.size() < static_cast<std::size_t>(params_.ransac.minInliers)) {
+        return fail(VoFailure::FewMatches);
+    }
+
+    t0 = std::chrono::steady_clock::now();
+    Eigen::Matrix3Xd src(3, matches.size()), dst(3, matches.size());
+    for (std::size_t i = 0; i < matches.size(); ++i) {
+        src.col(static_cast<Eigen::Index>(i)) = current.points.col(matches[i].queryIdx).cast<double>();
+        dst.col(static_cast<Eigen::Index>(i)) = reference_->points.col(matches[i].trainIdx).cast<double>();
+    }
+    const RigidEstimate est = ransac_.estimate(src, dst, params_.seed + frame_count_);
+    r.timing.ransac = msSince(t0);
+    r.inliers = est.inliers.size();
+    if (!est.success) return fail(VoFailure::NoConsensus);
+
+    const double angle = Eigen::AngleAxisd(est.transform.rotation()).angle();
+    if (est.transform.translation().norm() > params_.maxTranslation || angle > params_.maxRotation) {
+        return fail(VoFailure::Implausible);
+    }
+    r.success = true;
+    r.T_ref_cur = est.transform;
+    r.covariance = est.covariance;
+    failures_ = 0;
+    state_ = VoState::Tracking;
+    r.state = state_;
+    becomeReference();
+    return r;
+}
+
+}  // namespace lodestone::vision

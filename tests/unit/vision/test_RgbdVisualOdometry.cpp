@@ -1,0 +1,135 @@
+#include <gtest/gtest.h>
+#include <lodestone/sim/RgbdRenderer.h>
+#include <lodestone/vision/RgbdVisualOdometry.h>
+
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "SimTestWorlds.h"
+#include "TestPaths.h"
+
+using namespace lodestone::vision;
+
+namespace {
+const std::filesystem::path k3dMatch = lodestone::test::sharedDataDir() / "rgbd" / "3dmatch";
+
+RgbdFrame loadFrame(int index) {
+    char name[64];
+    std::snprintf(name, sizeof(name), "seq-01/frame-%06d", index);
+    RgbdFrame f;
+    const cv::Mat colour = cv::imread((k3dMatch / (std::string(name) + ".color.png")).string());
+    cv::cvtColor(colour, f.gray, cv::COLOR_BGR2GRAY);
+    const cv::Mat depth =
+        cv::imread((k3dMatch / (std::string(name) + ".depth.png")).string(), cv::IMREAD_UNCHANGED);
+    f.depth = depthToMetres(depth, 0.001);
+    f.intrinsics = {570.342205, 570.342205, 320.0, 240.0, 640, 480};
+    return f;
+}
+
+Eigen::Isometry3d loadPose(int index) {
+    char name[64];
+    std::snprintf(name, sizeof(name), "seq-01/frame-%06d.pose.txt", index);
+    std::ifstream in(k3dMatch / name);
+    Eigen::Matrix4d m;
+    for (int r = 0; r < 4; ++r) {
+        for (int c = 0; c < 4; ++c) in >> m(r, c);
+    }
+    Eigen::Isometry3d T;
+    T.matrix() = m;
+    return T;
+}
+
+// A simulated frame: the box world's posters wall seen from `x` metres along +x.
+RgbdFrame simulatedFrame(const lodestone::sim::World& world, const lodestone::sim::CameraSpec& cam,
+                         double x, double yaw) {
+    lodestone::sim::RgbdRenderer renderer(world, cam, 1);
+    lodestone::sim::Random rng(static_cast<std::uint64_t>(x * 1000) + 1);
+    cv::Mat3b rgb;
+    cv::Mat_<uint16_t> depth;
+    // MRPT's depth frame is x forward; the renderer's camera looks along world +x at `yaw`.
+    renderer.render({x, 0.2, 1.0}, yaw, rng, rgb, depth);
+    RgbdFrame f;
+    cv::cvtColor(rgb, f.gray, cv::COLOR_BGR2GRAY);
+    f.depth = depthToMetres(depth, 0.001);
+    f.intrinsics = {cam.fx, cam.fy, cam.cx, cam.cy, cam.width, cam.height};
+    return f;
+}
+}  // namespace
+
+TEST(RgbdVisualOdometry, RealKinectFramesAgreeWithTheGivenPoses) {
+    if (!std::filesystem::exists(k3dMatch)) {
+        GTEST_SKIP() << "real data absent: " << k3dMatch << " (read in place from ../shared/data)";
+    }
+    for (const int other : {1, 2}) {
+        RgbdVisualOdometry vo;
+        const auto init = vo.process(loadFrame(0));
+        EXPECT_FALSE(init.success);
+        EXPECT_EQ(init.state, VoState::Initializing);
+        const auto r = vo.process(loadFrame(other));
+        ASSERT_TRUE(r.success) << toString(r.failure) << " matches " << r.matches;
+        const Eigen::Isometry3d truth = loadPose(0).inverse() * loadPose(other);
+        const Eigen::Isometry3d err = truth.inverse() * r.T_ref_cur;
+        const double dt = err.translation().norm(), dr = Eigen::AngleAxisd(err.rotation()).angle();
+        RecordProperty("frame_" + std::to_string(other) + "_error_cm", std::to_string(100 * dt));
+        EXPECT_LT(dt, 0.02) << "frame 0 -> " << other << ": " << r.inliers << " inliers";
+        EXPECT_LT(dr, 1.0 * M_PI / 180) << "frame 0 -> " << other;
+        EXPECT_EQ(r.state, VoState::Tracking);
+    }
+}
+
+TEST(RgbdVisualOdometry, SimulatedMotionTowardsAPostersWall) {
+    const auto sc = lodestone::test::boxScenario("posters");
+    const lodestone::sim::World world(sc, 3);
+    lodestone::sim::CameraSpec cam;
+    RgbdVisualOdometry vo;
+    vo.process(simulatedFrame(world, cam, 5.0, 0.0));
+    const auto r = vo.process(simulatedFrame(world, cam, 5.08, 0.03));  // 8 cm on, 1.7 deg left
+    ASSERT_TRUE(r.success) << toString(r.failure);
+    // Optical frame: z forward, x right. Moving 8 cm forward; turning left is -y rotation.
+    EXPECT_NEAR(r.T_ref_cur.translation().z(), 0.08, 0.01);
+    EXPECT_NEAR(r.T_ref_cur.translation().x(), 0.0, 0.01);
+    const Eigen::AngleAxisd aa(r.T_ref_cur.rotation());
+    EXPECT_NEAR(aa.angle(), 0.03, 0.005);
+    EXPECT_NEAR(std::abs(aa.axis().y()), 1.0, 0.05);
+    EXPECT_LT(aa.axis().y() * 1.0, 0.0) << "a left turn is negative about y (down)";
+}
+
+TEST(RgbdVisualOdometry, PlainWallsMissingDepthAndNaNsFailThenLost) {
+    const auto plain = lodestone::test::boxScenario("plain");
+    const lodestone::sim::World world(plain, 3);
+    lodestone::sim::CameraSpec cam;
+    RgbdVisualOdometry::Params p;
+    p.lostAfter = 3;
+    RgbdVisualOdometry vo(p);
+    const auto blank = simulatedFrame(world, cam, 6.0, 0.0);
+    auto r = vo.process(blank);  // nothing to initialize on
+    EXPECT_FALSE(r.success);
+    EXPECT_EQ(r.failure, VoFailure::FewFeatures);
+
+    // Initialize on a textured frame, then feed featureless, depthless and NaN frames.
+    const auto posters = lodestone::test::boxScenario("posters");
+    const lodestone::sim::World textured(posters, 3);
+    r = vo.process(simulatedFrame(textured, cam, 5.0, 0.0));
+    EXPECT_EQ(r.state, VoState::Initializing);
+    RgbdFrame noDepth = simulatedFrame(textured, cam, 5.02, 0.0);
+    noDepth.depth.setTo(0);
+    RgbdFrame nanDepth = simulatedFrame(textured, cam, 5.02, 0.0);
+    nanDepth.depth.setTo(std::numeric_limits<float>::quiet_NaN());
+    RgbdFrame empty;
+    int failures = 0;
+    for (const RgbdFrame* f : std::vector<const RgbdFrame*>{&blank, &noDepth, &nanDepth}) {
+        r = vo.process(*f);
+        EXPECT_FALSE(r.success);
+        ++failures;
+        EXPECT_EQ(r.state, failures < 3 ? VoState::Initializing : VoState::Lost) << failures;
+    }
+    EXPECT_FALSE(vo.process(empty).success);
+    EXPECT_EQ(vo.state(), VoState::Lost);
+    // A textured frame re-initializes, the next one tracks again.
+    vo.process(simulatedFrame(textured, cam, 5.1, 0.0));
+    EXPECT_EQ(vo.state(), VoState::Initializing);
+    r = vo.process(simulatedFrame(textured, cam, 5.15, 0.0));
+    EXPECT_TRUE(r.success);
+    EXPECT_EQ(r.state, VoState::Tracking);
+}
