@@ -56,6 +56,8 @@ void RgbdVisualOdometry::Params::loadFromConfigFile(const mrpt::config::CConfigF
     maxTranslation = s.getDouble("max_translation", maxTranslation);
     maxRotation = s.getDouble("max_rotation_deg", maxRotation * 180 / M_PI) * M_PI / 180;
     seed = static_cast<std::uint64_t>(s.getInt("seed", static_cast<int>(seed)));
+    keyframeDistance = s.getDouble("keyframe_distance", keyframeDistance);
+    keyframeAngle = s.getDouble("keyframe_angle_deg", keyframeAngle * 180 / M_PI) * M_PI / 180;
     if (lostAfter < 1) s.fail("lost_after", "must be >= 1");
     s.finish();
     orb.loadFromConfigFile(source, section);
@@ -70,7 +72,9 @@ void RgbdVisualOdometry::Params::dumpToTextStream(std::ostream& out) const {
     out << "lost_after         = " << lostAfter << "  [frames]\n"
         << "max_translation    = " << maxTranslation << "  [m per frame]\n"
         << "max_rotation_deg   = " << maxRotation * 180 / M_PI << "  [deg per frame]\n"
-        << "seed               = " << seed << "\n";
+        << "seed               = " << seed << "\n"
+        << "keyframe_distance  = " << keyframeDistance << "  [m]\n"
+        << "keyframe_angle_deg = " << keyframeAngle * 180 / M_PI << "  [deg]\n";
 }
 
 RgbdVisualOdometry::RgbdVisualOdometry() : RgbdVisualOdometry(Params()) {}
@@ -94,8 +98,7 @@ VoResult RgbdVisualOdometry::process(const RgbdFrame& frame) {
 
     const auto fail = [&](VoFailure why) {
         r.failure = why;
-        if (state_ == VoState::Lost) return r;
-        if (++failures_ >= params_.lostAfter) state_ = VoState::Lost;
+        if (state_ != VoState::Lost && ++failures_ >= params_.lostAfter) state_ = VoState::Lost;
         r.state = state_;
         return r;
     };
@@ -106,10 +109,9 @@ VoResult RgbdVisualOdometry::process(const RgbdFrame& frame) {
 
     if (state_ == VoState::Lost || !reference_) {
         // (Re-)initialize on a frame good enough to track from.
-        r.state = state_;
         if (current.size() < static_cast<std::size_t>(params_.ransac.minInliers)) {
-            r.failure = VoFailure::FewFeatures;
-            return r;
+            // Nothing to start from either: that too counts towards LOST.
+            return fail(VoFailure::FewFeatures);
         }
         becomeReference();
         failures_ = 0;
@@ -152,7 +154,10 @@ VoResult RgbdVisualOdometry::process(const RgbdFrame& frame) {
     failures_ = 0;
     state_ = VoState::Tracking;
     r.state = state_;
-    becomeReference();
+    if (est.transform.translation().norm() >= params_.keyframeDistance ||
+        angle >= params_.keyframeAngle) {
+        becomeReference();
+    }
     return r;
 }
 

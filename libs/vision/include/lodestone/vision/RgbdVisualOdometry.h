@@ -43,7 +43,7 @@ struct VoResult {
 
 /** RGB-D visual odometry as paper 001 §3: ORB features of the current frame are matched
  * against the reference frame, 3D-3D pairs aligned by SVD inside RANSAC. On success the current
- * frame becomes the reference; a frame that fails (too few features, matches or inliers, or an
+ * frame becomes the reference once it is far enough from it (a keyframe); a frame that fails (too few features, matches or inliers, or an
  * implausible jump) leaves the reference as it was and counts as lost; after `lostAfter`
  * consecutive failures the state is LOST and the next frame re-initializes. A frame with no
  * depth, no features (a plain wall) or NaNs simply fails. */
@@ -56,6 +56,10 @@ public:
         int lostAfter{5};               ///< consecutive failed frames before LOST
         double maxTranslation{0.5};     ///< per frame, beyond it the motion is implausible [m]
         double maxRotation{0.6};        ///< per frame [rad]
+        /** A tracked frame replaces the reference only once it moved this far from it [m] or
+         * turned this much [rad]: fewer, longer steps accumulate less error. 0, 0: every frame. */
+        double keyframeDistance{0.10};
+        double keyframeAngle{0.09};
         std::uint64_t seed{1};          ///< RANSAC seed (deterministic results)
 
         /** All keys in one section (ORB, matcher and RANSAC keys included). */

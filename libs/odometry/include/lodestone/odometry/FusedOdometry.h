@@ -1,0 +1,92 @@
+#pragma once
+
+#include <lodestone/odometry/DiffDriveOdometry.h>
+#include <lodestone/odometry/PlanarFusion.h>
+#include <lodestone/vision/RgbdVisualOdometry.h>
+#include <mrpt/config/CLoadableOptions.h>
+#include <mrpt/obs/CObservation.h>
+
+#include <Eigen/Geometry>
+#include <deque>
+#include <map>
+#include <memory>
+#include <vector>
+
+namespace lodestone::odometry {
+
+/** The odometry front end: wheel encoders (CObservationOdometry with ticks) and RGB-D frames
+ * (CObservation3DRangeScan) in time order in, one planar pose per camera frame out, for one or
+ * several fusion methods at once (so they can be compared on the same VO run).
+ *
+ * Synchronization: a frame's wheel motion is the encoder travel interpolated at the frame's
+ * timestamp, so a frame is resolved when the first encoder sample after it arrives. VO motion
+ * (optical frame) is moved to the robot frame with the camera's sensorPose and projected on
+ * SE(2). When VO matched against an older reference (frames in between failed), its motion is
+ * re-based onto each method's own pose at that reference. */
+class FusedOdometry {
+public:
+    struct Params : public mrpt::config::CLoadableOptions {
+        DiffDriveOdometry::Params wheels;       ///< INI section [wheel_odometry]
+        vision::RgbdVisualOdometry::Params visual;  ///< INI section [visual_odometry]
+        std::string method{"covariance"};       ///< [odometry_fusion] method
+        double kalmanWeight{0.7};               ///< C of paper 003 eq. (2): weight of the wheels
+        double kalmanProcessNoise{0.5};         ///< constant-velocity model [unit^2/s^3]
+        double kalmanMeasurementNoise{1e-4};    ///< blended-position variance [m^2 or rad^2]
+        std::string encoderLabel;               ///< only this odometry label ("" = any)
+        std::string cameraLabel;                ///< only this RGB-D label ("" = any)
+
+        /** Reads [wheel_odometry], [visual_odometry] and [odometry_fusion] (`section` is the
+         * fusion one). */
+        void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
+                                const std::string& section) override;
+        void dumpToTextStream(std::ostream& out) const override;
+    };
+
+    /** One camera frame's outcome. */
+    struct Estimate {
+        double timestamp{0};                                ///< [s]
+        std::vector<mrpt::poses::CPosePDFGaussian> poses;  ///< one per method, in order
+        vision::VoResult visual;
+    };
+
+    /** `methods` defaults to {params.method}. */
+    explicit FusedOdometry(const Params& params, std::vector<std::string> methods = {});
+
+    /** Feeds one observation; returns the frames it resolved (usually zero or one). Other
+     * observation classes are ignored. */
+    std::vector<Estimate> process(const mrpt::obs::CObservation::Ptr& obs);
+    /** Resolves frames still waiting for a later encoder sample (at the end of the data). */
+    std::vector<Estimate> flush();
+
+    const std::vector<std::string>& methods() const { return method_names_; }
+    std::size_t framesProcessed() const { return frames_; }
+
+private:
+    struct Pending {
+        double t;
+        vision::VoResult vo;
+        Eigen::Isometry3d T_robot_optical;
+    };
+    struct WheelSample {
+        double t, left, right;  // cumulative wheel travels [m]
+    };
+    Eigen::Vector2d travelAt(double t) const;
+    Estimate resolve(const Pending& p);
+    mrpt::poses::CPosePDFGaussian visualOnRobot(const Pending& p) const;
+
+    Params params_;
+    std::vector<std::string> method_names_;
+    std::vector<std::unique_ptr<PlanarFusion>> fusions_;
+    std::vector<std::map<double, mrpt::poses::CPose2D>> recent_;  // per method: frame time -> pose
+    DiffDriveOdometry wheels_;
+    vision::RgbdVisualOdometry visual_;
+    std::deque<WheelSample> wheel_history_;
+    std::deque<Pending> pending_;
+    double cum_left_{0}, cum_right_{0};
+    std::optional<double> last_frame_time_;
+    Eigen::Vector2d last_frame_travel_{0, 0};
+    std::size_t frames_{0};
+    double oldestReference_{0};  // frames before it cannot be VO's reference any more
+};
+
+}  // namespace lodestone::odometry

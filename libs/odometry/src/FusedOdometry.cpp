@@ -1,0 +1,172 @@
+#include <lodestone/config/IniSection.h>
+#include <lodestone/odometry/FusedOdometry.h>
+#include <lodestone/odometry/RgbdObservationFrame.h>
+#include <mrpt/obs/CObservation3DRangeScan.h>
+#include <mrpt/obs/CObservationOdometry.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+
+namespace lodestone::odometry {
+
+void FusedOdometry::Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
+                                               const std::string& section) {
+    wheels.loadFromConfigFile(source, "wheel_odometry");
+    visual.loadFromConfigFile(source, "visual_odometry");
+    config::IniSection s(source, section, config::sourceName(source));
+    method = s.getString("method", method);
+    kalmanWeight = s.getDouble("kalman_weight", kalmanWeight);
+    kalmanProcessNoise = s.getDouble("kalman_process_noise", kalmanProcessNoise);
+    kalmanMeasurementNoise = s.getDouble("kalman_measurement_noise", kalmanMeasurementNoise);
+    encoderLabel = s.getString("encoder_label", encoderLabel);
+    cameraLabel = s.getString("camera_label", cameraLabel);
+    if (kalmanWeight <= 0 || kalmanWeight >= 1) s.fail("kalman_weight", "must be in (0, 1)");
+    try {
+        makePlanarFusion(method);
+    } catch (const std::invalid_argument& e) {
+        s.fail("method", e.what());
+    }
+    s.finish();
+}
+
+void FusedOdometry::Params::dumpToTextStream(std::ostream& out) const {
+    out << "[wheel_odometry]\n";
+    wheels.dumpToTextStream(out);
+    out << "[visual_odometry]\n";
+    visual.dumpToTextStream(out);
+    out << "[odometry_fusion]\nmethod = " << method << "\nkalman_weight = " << kalmanWeight
+        << "\nkalman_process_noise = " << kalmanProcessNoise
+        << "\nkalman_measurement_noise = " << kalmanMeasurementNoise << "\n";
+}
+
+FusedOdometry::FusedOdometry(const Params& params, std::vector<std::string> methods)
+    : params_(params),
+      method_names_(methods.empty() ? std::vector<std::string>{params.method} : std::move(methods)),
+      wheels_(params.wheels),
+      visual_(params.visual) {
+    for (const auto& m : method_names_) {
+        fusions_.push_back(makePlanarFusion(m, params.kalmanWeight, params.kalmanProcessNoise,
+                                            params.kalmanMeasurementNoise));
+    }
+    recent_.resize(fusions_.size());
+}
+
+std::vector<FusedOdometry::Estimate> FusedOdometry::process(const mrpt::obs::CObservation::Ptr& obs) {
+    std::vector<Estimate> out;
+    if (auto odo = std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(obs)) {
+        if (!odo->hasEncodersInfo) return out;
+        if (!params_.encoderLabel.empty() && odo->sensorLabel != params_.encoderLabel) return out;
+        const double t = mrpt::Clock::toDouble(odo->timestamp);
+        if (auto inc = wheels_.addTicks(odo->encoderLeftTicks, odo->encoderRightTicks)) {
+            cum_left_ += inc->leftTravel;
+            cum_right_ += inc->rightTravel;
+        }
+        wheel_history_.push_back({t, cum_left_, cum_right_});
+        while (wheel_history_.size() > 2 && wheel_history_[1].t < t - 5.0) wheel_history_.pop_front();
+        while (!pending_.empty() && pending_.front().t <= t) {
+            out.push_back(resolve(pending_.front()));
+            pending_.pop_front();
+        }
+    } else if (auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(obs)) {
+        if (!params_.cameraLabel.empty() && scan->sensorLabel != params_.cameraLabel) return out;
+        vision::RgbdFrame frame = frameFromObservation(*scan);
+        Pending p{frame.timestamp, visual_.process(frame), opticalFrameOnRobot(scan->sensorPose)};
+        scan->unload();
+        pending_.push_back(std::move(p));
+        ++frames_;
+    }
+    return out;
+}
+
+std::vector<FusedOdometry::Estimate> FusedOdometry::flush() {
+    std::vector<Estimate> out;
+    while (!pending_.empty()) {
+        out.push_back(resolve(pending_.front()));
+        pending_.pop_front();
+    }
+    return out;
+}
+
+Eigen::Vector2d FusedOdometry::travelAt(double t) const {
+    if (wheel_history_.empty()) return {0, 0};
+    if (t <= wheel_history_.front().t) return {wheel_history_.front().left, wheel_history_.front().right};
+    for (std::size_t i = 1; i < wheel_history_.size(); ++i) {
+        const auto& a = wheel_history_[i - 1];
+        const auto& b = wheel_history_[i];
+        if (t <= b.t) {
+            const double f = b.t > a.t ? (t - a.t) / (b.t - a.t) : 1.0;
+            return {a.left + f * (b.left - a.left), a.right + f * (b.right - a.right)};
+        }
+    }
+    return {wheel_history_.back().left, wheel_history_.back().right};
+}
+
+mrpt::poses::CPosePDFGaussian FusedOdometry::visualOnRobot(const Pending& p) const {
+    // Robot-frame motion: A T A^-1, with A the optical frame on the robot.
+    const Eigen::Isometry3d& A = p.T_robot_optical;
+    const Eigen::Isometry3d T = A * p.vo.T_ref_cur * A.inverse();
+    // Covariance of a left perturbation moves with the adjoint of A: [R 0; t^R R] for (w, v).
+    Eigen::Matrix<double, 6, 6> Ad = Eigen::Matrix<double, 6, 6>::Zero();
+    const Eigen::Matrix3d R = A.linear();
+    const Eigen::Vector3d t = A.translation();
+    Eigen::Matrix3d tx;
+    tx << 0, -t.z(), t.y(), t.z(), 0, -t.x(), -t.y(), t.x(), 0;
+    Ad.block<3, 3>(0, 0) = R;
+    Ad.block<3, 3>(3, 0) = tx * R;
+    Ad.block<3, 3>(3, 3) = R;
+    const Eigen::Matrix<double, 6, 6> C = Ad * p.vo.covariance * Ad.transpose();
+    const int idx[3] = {3, 4, 2};  // (x, y, yaw) = (v_x, v_y, w_z)
+    mrpt::poses::CPosePDFGaussian m;
+    m.mean = mrpt::poses::CPose2D(T.translation().x(), T.translation().y(),
+                                  std::atan2(T.linear()(1, 0), T.linear()(0, 0)));
+    for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) m.cov(i, j) = C(idx[i], idx[j]);
+    }
+    return m;
+}
+
+FusedOdometry::Estimate FusedOdometry::resolve(const Pending& p) {
+    Estimate e;
+    e.timestamp = p.t;
+    e.visual = p.vo;
+    // VO's reference is this frame's, or (when it re-initialized here) this frame itself.
+    oldestReference_ = p.vo.success ? p.vo.referenceTimestamp : p.t;
+    if (!p.vo.success && p.vo.referenceTimestamp > 0) oldestReference_ = p.vo.referenceTimestamp;
+    const Eigen::Vector2d travel = travelAt(p.t);
+    if (!last_frame_time_) {
+        for (auto& f : fusions_) f->reset({});
+    } else {
+        OdometryStep step;
+        step.dt = p.t - *last_frame_time_;
+        const Eigen::Vector2d d = travel - last_frame_travel_;
+        step.wheel = DiffDriveOdometry::stepFromOrigin(d[0], d[1], params_.wheels);
+        const bool visualMotion = p.vo.success;
+        const auto robotMotion = visualMotion ? visualOnRobot(p) : mrpt::poses::CPosePDFGaussian();
+        for (std::size_t m = 0; m < fusions_.size(); ++m) {
+            OdometryStep s = step;
+            if (visualMotion) {
+                // Re-base: VO says where the robot is relative to it at the reference frame.
+                const auto ref = recent_[m].find(p.vo.referenceTimestamp);
+                if (ref != recent_[m].end()) {
+                    mrpt::poses::CPosePDFGaussian v = robotMotion;
+                    v.mean = (ref->second - fusions_[m]->pose().mean) + robotMotion.mean;
+                    s.visual = v;
+                }
+            }
+            fusions_[m]->step(s);
+        }
+    }
+    for (std::size_t m = 0; m < fusions_.size(); ++m) {
+        e.poses.push_back(fusions_[m]->pose());
+        recent_[m][p.t] = fusions_[m]->pose().mean;
+        // Only frames VO may still use as its reference are kept.
+        while (!recent_[m].empty() && recent_[m].begin()->first < oldestReference_) {
+            recent_[m].erase(recent_[m].begin());
+        }
+    }
+    last_frame_time_ = p.t;
+    last_frame_travel_ = travel;
+    return e;
+}
+
+}  // namespace lodestone::odometry

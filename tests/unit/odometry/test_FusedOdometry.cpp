@@ -1,0 +1,87 @@
+#include <gtest/gtest.h>
+#include <lodestone/eval/TrajectoryError.h>
+#include <lodestone/odometry/FusedOdometry.h>
+#include <lodestone/sim/SimulatorSource.h>
+#include <mrpt/config/CConfigFileMemory.h>
+
+using namespace lodestone;
+
+namespace {
+struct OfficeRun {
+    std::vector<std::vector<io::TumPose>> est;
+    std::vector<io::TumPose> gt;
+    std::size_t tracked{0}, lost{0};
+};
+
+OfficeRun runOffice(const std::string& surface = "") {
+    sim::Scenario sc = sim::Scenario::load(std::string(LODESTONE_CONFIG_INI_DIR) + "/office.ini");
+    sc.camera.resize(320, 240);
+    sc.camera.rate = 15;
+    if (!surface.empty()) {
+        for (auto& w : sc.walls) w.surface = sim::SurfaceSpec::parse(surface);
+        sc.floor = sim::SurfaceSpec::parse(surface);
+    }
+    sim::SimulatorSource source(sc, sc.seed);
+    odometry::FusedOdometry::Params p;
+    p.wheels.wheelBase = sc.motion.wheelBase;
+    p.wheels.wheelRadius = sc.motion.wheelRadius;
+    p.wheels.ticksPerRev = sc.encoders.ticksPerRev;
+    odometry::FusedOdometry odo(p, {"wheel", "visual", "covariance", "kalman"});
+    OfficeRun r;
+    r.est.resize(4);
+    const auto take = [&](const std::vector<odometry::FusedOdometry::Estimate>& es) {
+        for (const auto& e : es) {
+            for (std::size_t m = 0; m < 4; ++m) {
+                const auto& q = e.poses[m].mean;
+                r.est[m].push_back({e.timestamp, mrpt::poses::CPose3D(q.x(), q.y(), 0, q.phi(), 0, 0)});
+            }
+            const auto t = source.truePose(e.timestamp - sc.startTime);
+            r.gt.push_back({e.timestamp, mrpt::poses::CPose3D(t.x, t.y, 0, t.yaw, 0, 0)});
+            r.tracked += e.visual.success;
+            r.lost += e.visual.state == vision::VoState::Lost;
+        }
+    };
+    while (auto obs = source.next()) take(odo.process(obs));
+    take(odo.flush());
+    return r;
+}
+}  // namespace
+
+TEST(FusedOdometry, FusionBeatsEitherSourceInATexturedRoom) {
+    const OfficeRun r = runOffice();
+    ASSERT_GT(r.gt.size(), 400u);  // 28.5 s at 15 Hz
+    EXPECT_GT(r.tracked, r.gt.size() * 9 / 10);
+    double ate[4];
+    for (int m = 0; m < 4; ++m) ate[m] = eval::absoluteTrajectoryError(r.est[m], r.gt).rmse;
+    EXPECT_GT(ate[0], 0.03) << "the wheels drift (scale errors and slip)";
+    EXPECT_LT(ate[1], 0.05) << "VO tracks the textured room";
+    EXPECT_LT(ate[2], ate[0]) << "covariance fusion beats the wheels";
+    EXPECT_LT(ate[2], ate[1]) << "covariance fusion beats VO";
+    EXPECT_LT(ate[3], ate[0]) << "paper 003's Kalman blend beats the wheels";
+}
+
+TEST(FusedOdometry, InAFeaturelessRoomVoIsLostAndFusionFollowsTheWheels) {
+    const OfficeRun r = runOffice("plain");
+    EXPECT_GT(r.lost, r.gt.size() * 9 / 10);
+    const double wheel = eval::absoluteTrajectoryError(r.est[0], r.gt).rmse;
+    for (int m : {2, 3}) {
+        EXPECT_NEAR(eval::absoluteTrajectoryError(r.est[m], r.gt).rmse, wheel, 1e-3) << m;
+    }
+}
+
+TEST(FusedOdometry, ParamsFromIniAndUnknownMethod) {
+    mrpt::config::CConfigFileMemory ini(
+        "[wheel_odometry]\nwheel_base = 0.3\n[visual_odometry]\norb_features = 400\nlost_after = 3\n"
+        "[odometry_fusion]\nmethod = kalman\nkalman_weight = 0.6\n");
+    odometry::FusedOdometry::Params p;
+    p.loadFromConfigFile(ini, "odometry_fusion");
+    EXPECT_DOUBLE_EQ(p.wheels.wheelBase, 0.3);
+    EXPECT_EQ(p.visual.orb.features, 400);
+    EXPECT_EQ(p.visual.lostAfter, 3);
+    EXPECT_EQ(p.method, "kalman");
+    EXPECT_DOUBLE_EQ(p.kalmanWeight, 0.6);
+    mrpt::config::CConfigFileMemory bad("[odometry_fusion]\nmethod = average\n");
+    EXPECT_THROW(p.loadFromConfigFile(bad, "odometry_fusion"), std::runtime_error);
+    mrpt::config::CConfigFileMemory typo("[visual_odometry]\norb_feature = 400\n");
+    EXPECT_THROW(p.loadFromConfigFile(typo, "odometry_fusion"), std::runtime_error);
+}
