@@ -26,7 +26,8 @@ int main(int argc, char** argv) {
         if (argc > 2) {
             int w = 0, h = 0;
             double hz = 0;
-            if (std::sscanf(argv[2], "%dx%d@%lf", &w, &h, &hz) != 3) throw std::runtime_error("bad camera");
+            if (std::sscanf(argv[2], "%dx%d@%lf", &w, &h, &hz) != 3)
+                throw std::runtime_error("bad camera");
             sc.camera.resize(w, h);
             sc.camera.rate = hz;
         }
@@ -48,7 +49,8 @@ int main(int argc, char** argv) {
             for (const auto& e : es) {
                 for (std::size_t m = 0; m < methods.size(); ++m) {
                     const auto& p = e.poses[m].mean;
-                    est[m].push_back({e.timestamp, mrpt::poses::CPose3D(p.x(), p.y(), 0, p.phi(), 0, 0)});
+                    est[m].push_back(
+                        {e.timestamp, mrpt::poses::CPose3D(p.x(), p.y(), 0, p.phi(), 0, 0)});
                 }
                 const auto t = source.truePose(e.timestamp - sc.startTime);
                 gt.push_back({e.timestamp, mrpt::poses::CPose3D(t.x, t.y, 0, t.yaw, 0, 0)});
@@ -67,7 +69,9 @@ int main(int argc, char** argv) {
                 // Decode: what turning the observation into a frame costs (done again inside).
                 const auto t0 = std::chrono::steady_clock::now();
                 const auto frame = odometry::frameFromObservation(*scan);
-                decodeMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+                decodeMs +=
+                    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                        .count();
             }
             take(odo.process(obs));
         }
@@ -82,8 +86,9 @@ int main(int argc, char** argv) {
             const auto& g0 = gt.front().pose;
             const auto eEnd = est[m].back().pose - e0, gEnd = gt.back().pose - g0;
             const double drift = std::hypot(eEnd.x() - gEnd.x(), eEnd.y() - gEnd.y());
-            std::printf("| %s | %s | %.3f | %.4f | %.2f | %.3f |\n", sc.name.c_str(), methods[m].c_str(),
-                        ate.rmse, rpeS.translationRmse, 100 * rpeM.translationRmse, drift);
+            std::printf("| %s | %s | %.3f | %.4f | %.2f | %.3f |\n", sc.name.c_str(),
+                        methods[m].c_str(), ate.rmse, rpeS.translationRmse,
+                        100 * rpeM.translationRmse, drift);
         }
         // VO alone on stretches it tracked throughout: 1 m pairs with every frame between tracked.
         std::vector<io::TumPose> voEst, voGt;
@@ -92,7 +97,8 @@ int main(int argc, char** argv) {
             if (!tracked[i]) {
                 // A break: evaluate the run so far and start a new one.
                 if (voEst.size() > 10) {
-                    const auto r = eval::relativePoseError(voEst, voGt, eval::RpeInterval::Metres, 1.0);
+                    const auto r =
+                        eval::relativePoseError(voEst, voGt, eval::RpeInterval::Metres, 1.0);
                     best = std::max(best, 0.0);
                     (void)r;
                 }
@@ -128,10 +134,12 @@ int main(int argc, char** argv) {
         double sq = 0;
         for (double e : errs) sq += e * e;
         const double voRpe = errs.empty() ? std::nan("") : std::sqrt(sq / errs.size());
-        std::fprintf(stderr, "VO | %s | %dx%d@%.0f | %zu | %zu | %zu | %.2f %% (%zu pairs) | %.2f | %.2f | %.2f | %.2f | %.2f |\n",
-                     sc.name.c_str(), sc.camera.width, sc.camera.height, sc.camera.rate, ok, failed, lost,
-                     100 * voRpe, errs.size(), decodeMs / n, orbMs / n, matchMs / n, ransacMs / n,
-                     (decodeMs + orbMs + matchMs + ransacMs) / n);
+        std::fprintf(stderr,
+                     "VO | %s | %dx%d@%.0f | %zu | %zu | %zu | %.2f %% (%zu pairs) | %.2f | %.2f | "
+                     "%.2f | %.2f | %.2f |\n",
+                     sc.name.c_str(), sc.camera.width, sc.camera.height, sc.camera.rate, ok, failed,
+                     lost, 100 * voRpe, errs.size(), decodeMs / n, orbMs / n, matchMs / n,
+                     ransacMs / n, (decodeMs + orbMs + matchMs + ransacMs) / n);
     } catch (const std::exception& e) {
         std::cerr << "bench_odometry: " << e.what() << "\n";
         return 1;

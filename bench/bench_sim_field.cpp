@@ -50,7 +50,8 @@ int main(int argc, char** argv) {
         double corrLength = 0;
         for (std::size_t lag = 1; lag < b.size() / 2; ++lag) {
             double c = 0;
-            for (std::size_t i = 0; i + lag < b.size(); ++i) c += (b[i] - mean) * (b[i + lag] - mean);
+            for (std::size_t i = 0; i + lag < b.size(); ++i)
+                c += (b[i] - mean) * (b[i + lag] - mean);
             c /= (b.size() - lag) * var;
             if (c < std::exp(-1.0)) {
                 corrLength = lag * 0.02;

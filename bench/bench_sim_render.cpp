@@ -40,7 +40,8 @@ int main(int argc, char** argv) {
             renderer.render(s.position, s.yaw, rng, rgb, depth);
             valid += static_cast<std::size_t>(cv::countNonZero(depth));
         }
-        const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        const double secs =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         std::printf("| %s | %dx%d | %d | %.2f | %.1f | %.0f %% |\n", sc.name.c_str(), w, h, frames,
                     1e3 * secs / frames, frames / secs, 100.0 * valid / (double(frames) * w * h));
     } catch (const std::exception& e) {

@@ -6,7 +6,7 @@ namespace lodestone::config {
 
 namespace {
 class RecordingOutput : public TCLAP::StdOutput {
-public:
+  public:
     void failure(TCLAP::CmdLineInterface&, TCLAP::ArgException& e) override {
         error = e.argId() + ": " + e.error();
     }

@@ -29,7 +29,8 @@ std::vector<std::pair<std::size_t, std::size_t>> associate(const std::vector<io:
     std::size_t lo = 0;
     for (std::size_t i = 0; i < est.size(); ++i) {
         while (lo < gt.size() && gt[lo].timestamp < est[i].timestamp - maxDt) ++lo;
-        for (std::size_t j = lo; j < gt.size() && gt[j].timestamp <= est[i].timestamp + maxDt; ++j) {
+        for (std::size_t j = lo; j < gt.size() && gt[j].timestamp <= est[i].timestamp + maxDt;
+             ++j) {
             candidates.emplace_back(std::abs(gt[j].timestamp - est[i].timestamp), i, j);
         }
     }
@@ -85,7 +86,8 @@ RpeResult relativePoseError(const std::vector<io::TumPose>& est, const std::vect
     for (std::size_t k = 1; k < pairs.size(); ++k) {
         const auto& a = gt[pairs[k - 1].second].pose;
         const auto& b = gt[pairs[k].second].pose;
-        travelled[k] = travelled[k - 1] + std::hypot(std::hypot(b.x() - a.x(), b.y() - a.y()), b.z() - a.z());
+        travelled[k] =
+            travelled[k - 1] + std::hypot(std::hypot(b.x() - a.x(), b.y() - a.y()), b.z() - a.z());
     }
     const auto key = [&](std::size_t k) {
         return kind == RpeInterval::Seconds ? est[pairs[k].first].timestamp : travelled[k];

@@ -134,8 +134,8 @@ int show(const Args& args, std::ostream& out) {
             return kExitOk;
         }
     }
-    throw BadInput(file + ": no entry " + std::to_string(wanted) +
-                   " (the rawlog has " + std::to_string(seen) + " entries)");
+    throw BadInput(file + ": no entry " + std::to_string(wanted) + " (the rawlog has " +
+                   std::to_string(seen) + " entries)");
 }
 
 int exportCmd(const Args& args, std::ostream& out) {

@@ -10,7 +10,8 @@ std::string findImagesDirectory(const std::string& rawlogPath) {
     const fs::path path(rawlogPath);
     std::string base = path.filename().string();
     for (const std::string ext : {".gz", ".rawlog"}) {
-        if (base.size() > ext.size() && base.compare(base.size() - ext.size(), ext.size(), ext) == 0) {
+        if (base.size() > ext.size() &&
+            base.compare(base.size() - ext.size(), ext.size(), ext) == 0) {
             base.resize(base.size() - ext.size());
         }
     }

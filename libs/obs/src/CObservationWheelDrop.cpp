@@ -29,7 +29,9 @@ void CObservationWheelDrop::getDescriptionAsText(std::ostream& o) const {
     o << "Right wheel dropped: " << (rightDropped ? "yes" : "no") << "\n";
 }
 
-std::string CObservationWheelDrop::exportTxtHeader() const { return "  LEFT_DROPPED  RIGHT_DROPPED"; }
+std::string CObservationWheelDrop::exportTxtHeader() const {
+    return "  LEFT_DROPPED  RIGHT_DROPPED";
+}
 
 std::string CObservationWheelDrop::exportTxtDataRow() const {
     return std::string(" ") + (leftDropped ? "1" : "0") + " " + (rightDropped ? "1" : "0");

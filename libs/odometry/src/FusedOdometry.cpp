@@ -51,7 +51,8 @@ FusedOdometry::FusedOdometry(const Params& params, std::vector<std::string> meth
     recent_.resize(fusions_.size());
 }
 
-std::vector<FusedOdometry::Estimate> FusedOdometry::process(const mrpt::obs::CObservation::Ptr& obs) {
+std::vector<FusedOdometry::Estimate> FusedOdometry::process(
+    const mrpt::obs::CObservation::Ptr& obs) {
     std::vector<Estimate> out;
     if (auto odo = std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(obs)) {
         if (!odo->hasEncodersInfo) return out;
@@ -62,7 +63,8 @@ std::vector<FusedOdometry::Estimate> FusedOdometry::process(const mrpt::obs::COb
             cum_right_ += inc->rightTravel;
         }
         wheel_history_.push_back({t, cum_left_, cum_right_});
-        while (wheel_history_.size() > 2 && wheel_history_[1].t < t - 5.0) wheel_history_.pop_front();
+        while (wheel_history_.size() > 2 && wheel_history_[1].t < t - 5.0)
+            wheel_history_.pop_front();
         while (!pending_.empty() && pending_.front().t <= t) {
             out.push_back(resolve(pending_.front()));
             pending_.pop_front();
@@ -89,7 +91,8 @@ std::vector<FusedOdometry::Estimate> FusedOdometry::flush() {
 
 Eigen::Vector2d FusedOdometry::travelAt(double t) const {
     if (wheel_history_.empty()) return {0, 0};
-    if (t <= wheel_history_.front().t) return {wheel_history_.front().left, wheel_history_.front().right};
+    if (t <= wheel_history_.front().t)
+        return {wheel_history_.front().left, wheel_history_.front().right};
     for (std::size_t i = 1; i < wheel_history_.size(); ++i) {
         const auto& a = wheel_history_[i - 1];
         const auto& b = wheel_history_[i];

@@ -49,7 +49,8 @@ const mrpt::poses::CPosePDFGaussian& KalmanFusion::step(const OdometryStep& s) {
     const Eigen::Matrix2d R = Eigen::Vector2d(r_, 2 * r_ / (dt * dt)).asDiagonal();
     Eigen::Vector3d fused;
     for (int a = 0; a < 3; ++a) {
-        const Eigen::Vector4d sources(last_wheel_[a], last_visual_[a], wheelBefore[a], visualBefore[a]);
+        const Eigen::Vector4d sources(last_wheel_[a], last_visual_[a], wheelBefore[a],
+                                      visualBefore[a]);
         const Eigen::Vector2d z = H * sources;
         Eigen::Vector2d x = F * state_.col(a);
         Eigen::Matrix2d P = F * cov_.block<2, 2>(0, 2 * a) * F.transpose() + Q;

@@ -9,7 +9,7 @@ namespace lodestone::odometry {
 namespace {
 // One source alone: the wheels, or VO (standing still while it has nothing).
 class SingleSourceFusion : public PlanarFusion {
-public:
+  public:
     explicit SingleSourceFusion(bool visual) : visual_(visual) {}
     const mrpt::poses::CPosePDFGaussian& step(const OdometryStep& s) override {
         if (!visual_) {
@@ -23,7 +23,7 @@ public:
     void reset(const mrpt::poses::CPosePDFGaussian& start) override { pose_ = start; }
     std::string name() const override { return visual_ ? "visual" : "wheel"; }
 
-private:
+  private:
     bool visual_;
     mrpt::poses::CPosePDFGaussian pose_;
 };

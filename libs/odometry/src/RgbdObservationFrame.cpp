@@ -13,7 +13,11 @@ vision::RgbdFrame frameFromObservation(const mrpt::obs::CObservation3DRangeScan&
     vision::RgbdFrame f;
     f.timestamp = mrpt::Clock::toDouble(obs.timestamp);
     const auto& cam = obs.cameraParams;
-    f.intrinsics = {cam.fx(), cam.fy(), cam.cx(), cam.cy(), static_cast<int>(cam.ncols),
+    f.intrinsics = {cam.fx(),
+                    cam.fy(),
+                    cam.cx(),
+                    cam.cy(),
+                    static_cast<int>(cam.ncols),
                     static_cast<int>(cam.nrows)};
     if (obs.hasIntensityImage && !obs.intensityImage.isEmpty()) {
         const cv::Mat img = obs.intensityImage.asCvMat<cv::Mat>(mrpt::img::SHALLOW_COPY);

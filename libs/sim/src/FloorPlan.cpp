@@ -7,7 +7,9 @@
 namespace lodestone::sim {
 
 namespace {
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return a.x() * b.y() - a.y() * b.x();
+}
 
 double pointSegmentDistance(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
                             const Eigen::Vector2d& b) {
@@ -61,8 +63,7 @@ double FloorPlan::clearance(const Eigen::Vector2d& p) const {
     return best;
 }
 
-bool FloorPlan::blocks(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
-                       double clearance) const {
+bool FloorPlan::blocks(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double clearance) const {
     for (const auto& w : walls_) {
         if (segmentDistance(a, b, w.a, w.b) < clearance) return true;
     }

@@ -25,7 +25,8 @@ void MagneticField::addLine(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
     }
 }
 
-Eigen::Vector3d MagneticField::dipoleField(const Eigen::Vector3d& moment, const Eigen::Vector3d& r) {
+Eigen::Vector3d MagneticField::dipoleField(const Eigen::Vector3d& moment,
+                                           const Eigen::Vector3d& r) {
     const double d2 = r.squaredNorm();
     if (d2 < 1e-4) return Eigen::Vector3d::Zero();
     const double d = std::sqrt(d2);

@@ -23,8 +23,8 @@ struct Cursor {
 
 void MotionPlan::append(MotionSegment s) {
     if (s.t1 <= s.t0) return;
-    Eigen::Vector2d wheels = wheel_at_start_.empty() ? Eigen::Vector2d::Zero()
-                                                     : Eigen::Vector2d(wheel_at_start_.back());
+    Eigen::Vector2d wheels =
+        wheel_at_start_.empty() ? Eigen::Vector2d::Zero() : Eigen::Vector2d(wheel_at_start_.back());
     if (!segments_.empty()) {
         const auto& prev = segments_.back();
         const double r = params_.wheelRadius, half = params_.wheelBase / 2;
@@ -90,7 +90,8 @@ MotionPlan::MotionPlan(
                 }
             }
             if (bestIndex == wp.size()) {
-                throw std::invalid_argument(k.name + ": no waypoint can be reached in a straight "
+                throw std::invalid_argument(k.name +
+                                            ": no waypoint can be reached in a straight "
                                             "line from the put-down pose");
             }
             c.nextWaypoint = bestIndex;

@@ -46,7 +46,8 @@ void RgbdRenderer::render(const Eigen::Vector3d& pos, double yaw, Random& rng, c
     const int W = camera_.width, H = camera_.height;
     rgb.create(H, W);
     depth.create(H, W);
-    const Eigen::Vector2d forward(std::cos(yaw), std::sin(yaw)), left(-std::sin(yaw), std::cos(yaw));
+    const Eigen::Vector2d forward(std::cos(yaw), std::sin(yaw)),
+        left(-std::sin(yaw), std::cos(yaw));
     const double farT = 1e3;
     const std::size_t rgbNoise = noise_.randomOffset(rng), depthNoise = noise_.randomOffset(rng);
     const float rgbStd = static_cast<float>(camera_.rgbNoise);
@@ -61,7 +62,8 @@ void RgbdRenderer::render(const Eigen::Vector3d& pos, double yaw, Random& rng, c
             // Colour: what the surface looks like, plus sensor noise.
             cv::Vec3b& px = rgb(r, c);
             for (int ch = 0; ch < 3; ++ch) {
-                px[ch] = cv::saturate_cast<uchar>(s.colour[ch] + rgbStd * noise_.at(rgbNoise, 3 * i + ch));
+                px[ch] = cv::saturate_cast<uchar>(s.colour[ch] +
+                                                  rgbStd * noise_.at(rgbNoise, 3 * i + ch));
             }
             // Depth: valid only within range and away from grazing angles.
             uint16_t mm = 0;
@@ -82,7 +84,8 @@ void RgbdRenderer::render(const Eigen::Vector3d& pos, double yaw, Random& rng, c
 }
 
 double RgbdRenderer::idealDepth(const Eigen::Vector3d& pos, double yaw, int row, int col) const {
-    const Eigen::Vector2d forward(std::cos(yaw), std::sin(yaw)), left(-std::sin(yaw), std::cos(yaw));
+    const Eigen::Vector2d forward(std::cos(yaw), std::sin(yaw)),
+        left(-std::sin(yaw), std::cos(yaw));
     const Eigen::Vector2d h = forward + ((camera_.cx - col) / camera_.fx) * left;
     const auto wall = world_.floorPlan().castRay(pos.head<2>(), h, 1e-9, 1e3);
     const Surface s = trace(pos, h, wall, (camera_.cy - row) / camera_.fy);

@@ -62,7 +62,8 @@ void readWorld(IniSection& s, Scenario& sc) {
         std::vector<double> xy;
         for (std::string word; in >> word;) {
             double v = 0;
-            if (!config::parseDouble(word, v)) s.fail(key, "expected coordinates, got '" + word + "'");
+            if (!config::parseDouble(word, v))
+                s.fail(key, "expected coordinates, got '" + word + "'");
             xy.push_back(v);
         }
         if (xy.size() < 4 || xy.size() % 2) {
@@ -71,13 +72,16 @@ void readWorld(IniSection& s, Scenario& sc) {
         for (std::size_t i = 0; i < xy.size(); i += 2) w.points.emplace_back(xy[i], xy[i + 1]);
         sc.walls.push_back(std::move(w));
     }
-    if (sc.walls.empty()) s.fail("wall_1", "a world needs walls (wall_<n> = <surface> x1 y1 x2 y2 ...)");
+    if (sc.walls.empty())
+        s.fail("wall_1", "a world needs walls (wall_<n> = <surface> x1 y1 x2 y2 ...)");
 }
 
 void readPath(IniSection& s, Scenario& sc) {
     const auto xy = s.getDoubles("waypoints", {});
-    if (xy.size() < 4 || xy.size() % 2) s.fail("waypoints", "expected x1 y1 x2 y2 ... (>= 2 points)");
-    for (std::size_t i = 0; i < xy.size(); i += 2) sc.motion.waypoints.emplace_back(xy[i], xy[i + 1]);
+    if (xy.size() < 4 || xy.size() % 2)
+        s.fail("waypoints", "expected x1 y1 x2 y2 ... (>= 2 points)");
+    for (std::size_t i = 0; i < xy.size(); i += 2)
+        sc.motion.waypoints.emplace_back(xy[i], xy[i + 1]);
     sc.motion.laps = s.getInt("laps", 1);
     if (sc.motion.laps < 1) s.fail("laps", "must be >= 1");
 }
@@ -157,7 +161,8 @@ void readField(IniSection& s, FieldSpec& f) {
     }
     for (const auto& key : s.keysWithPrefix("dipole_")) {
         const auto v = s.getDoubles(key, {}, 6);
-        f.dipoles.emplace_back(Eigen::Vector3d(v[0], v[1], v[2]), Eigen::Vector3d(v[3], v[4], v[5]));
+        f.dipoles.emplace_back(Eigen::Vector3d(v[0], v[1], v[2]),
+                               Eigen::Vector3d(v[3], v[4], v[5]));
     }
 }
 
@@ -184,7 +189,8 @@ std::string xyText(const Eigen::Vector2d& p) {
 void validateGeometry(const Scenario& sc) {
     FloorPlan plan;
     for (const auto& w : sc.walls) {
-        for (std::size_t i = 0; i + 1 < w.points.size(); ++i) plan.addWall({w.points[i], w.points[i + 1]});
+        for (std::size_t i = 0; i + 1 < w.points.size(); ++i)
+            plan.addWall({w.points[i], w.points[i + 1]});
     }
     const auto& wp = sc.motion.waypoints;
     for (std::size_t i = 0; i < wp.size(); ++i) {
@@ -223,8 +229,8 @@ Scenario Scenario::load(const std::string& iniPath) {
     mrpt::config::CConfigFile cfg(iniPath);
     std::vector<std::string> sections;
     cfg.getAllSections(sections);
-    std::set<std::string> allowed = {"scenario", "world", "path", "robot", "encoders",
-                                     "camera", "magnetic_field", "kidnap"};
+    std::set<std::string> allowed = {"scenario", "world",  "path",           "robot",
+                                     "encoders", "camera", "magnetic_field", "kidnap"};
     for (const auto& name : sections) {
         if (name.rfind("magnetometer_", 0) == 0) allowed.insert(name);
     }

@@ -10,10 +10,12 @@ cv::Mat3b plotScenario(const SimulatorSource& source, double ppm) {
     const FloorPlan& plan = world.floorPlan();
     const Eigen::Vector2d lo = plan.minCorner() - Eigen::Vector2d(0.5, 0.5);
     const Eigen::Vector2d hi = plan.maxCorner() + Eigen::Vector2d(0.5, 0.5);
-    const int W = static_cast<int>((hi.x() - lo.x()) * ppm), H = static_cast<int>((hi.y() - lo.y()) * ppm);
+    const int W = static_cast<int>((hi.x() - lo.x()) * ppm),
+              H = static_cast<int>((hi.y() - lo.y()) * ppm);
     const int legend = 70;
     const auto px = [&](double x, double y) {
-        return cv::Point(static_cast<int>((x - lo.x()) * ppm), static_cast<int>((hi.y() - y) * ppm));
+        return cv::Point(static_cast<int>((x - lo.x()) * ppm),
+                         static_cast<int>((hi.y() - y) * ppm));
     };
     const auto& mags = source.scenario().magnetometers;
     const double z = mags.empty() ? 0.3 : mags.front().pose.z;
@@ -31,7 +33,8 @@ cv::Mat3b plotScenario(const SimulatorSource& source, double ppm) {
     std::sort(sorted.begin(), sorted.end());
     const float vmin = sorted[sorted.size() / 50], vmax = sorted[sorted.size() * 49 / 50];
     cv::Mat1b scaled;
-    magnitude.convertTo(scaled, CV_8U, 255.0 / std::max(1e-3f, vmax - vmin), -vmin * 255.0 / std::max(1e-3f, vmax - vmin));
+    magnitude.convertTo(scaled, CV_8U, 255.0 / std::max(1e-3f, vmax - vmin),
+                        -vmin * 255.0 / std::max(1e-3f, vmax - vmin));
     cv::Mat3b map;
     cv::applyColorMap(scaled, map, cv::COLORMAP_VIRIDIS);
 
@@ -51,7 +54,8 @@ cv::Mat3b plotScenario(const SimulatorSource& source, double ppm) {
         if (s.kind == MotionSegment::Kind::Carry) {
             cv::line(canvas, px(a.x, a.y), px(b.x, b.y), cv::Scalar(40, 40, 230), 2, cv::LINE_AA);
             cv::circle(canvas, px(b.x, b.y), 7, cv::Scalar(40, 40, 230), 2, cv::LINE_AA);
-            cv::line(canvas, px(b.x, b.y), px(b.x + 0.5 * std::cos(b.yaw), b.y + 0.5 * std::sin(b.yaw)),
+            cv::line(canvas, px(b.x, b.y),
+                     px(b.x + 0.5 * std::cos(b.yaw), b.y + 0.5 * std::sin(b.yaw)),
                      cv::Scalar(40, 40, 230), 2, cv::LINE_AA);
         } else if (s.kind == MotionSegment::Kind::Drive) {
             cv::line(canvas, px(a.x, a.y), px(b.x, b.y), cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
@@ -65,14 +69,18 @@ cv::Mat3b plotScenario(const SimulatorSource& source, double ppm) {
         cv::Mat1b v(1, 1, static_cast<uchar>(c));
         cv::Mat3b col;
         cv::applyColorMap(v, col, cv::COLORMAP_VIRIDIS);
-        cv::line(canvas, cv::Point(10 + c, H + 12), cv::Point(10 + c, H + 30), cv::Scalar(col(0, 0)), 1);
+        cv::line(canvas, cv::Point(10 + c, H + 12), cv::Point(10 + c, H + 30),
+                 cv::Scalar(col(0, 0)), 1);
     }
     char text[160];
     std::snprintf(text, sizeof(text), "|B| %.0f .. %.0f uT at z = %.2f m", vmin, vmax, z);
-    cv::putText(canvas, text, cv::Point(10, H + 50), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
-    std::snprintf(text, sizeof(text), "%s: path white; walls textured black, plain grey; kidnaps red",
+    cv::putText(canvas, text, cv::Point(10, H + 50), cv::FONT_HERSHEY_SIMPLEX, 0.45,
+                cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+    std::snprintf(text, sizeof(text),
+                  "%s: path white; walls textured black, plain grey; kidnaps red",
                   source.scenario().name.c_str());
-    cv::putText(canvas, text, cv::Point(10, H + 66), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+    cv::putText(canvas, text, cv::Point(10, H + 66), cv::FONT_HERSHEY_SIMPLEX, 0.45,
+                cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
     return canvas;
 }
 

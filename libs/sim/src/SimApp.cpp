@@ -1,9 +1,8 @@
+#include <lodestone/config/CommandLine.h>
 #include <lodestone/obs/registerAllClasses.h>
 #include <lodestone/sim/ScenarioPlot.h>
 #include <lodestone/sim/ScenarioRecorder.h>
 #include <lodestone/sim/SimApp.h>
-#include <lodestone/config/CommandLine.h>
-
 #include <unistd.h>
 
 #include <chrono>
@@ -16,9 +15,10 @@ namespace lodestone::sim {
 
 int runSimApp(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
     lodestone::registerAllClasses();
-    TCLAP::CmdLine cmd("Simulate an indoor run (RGB-D, magnetometers, wheel encoders, kidnaps) "
-                       "and write a rawlog with its ground truth",
-                       ' ', "");
+    TCLAP::CmdLine cmd(
+        "Simulate an indoor run (RGB-D, magnetometers, wheel encoders, kidnaps) "
+        "and write a rawlog with its ground truth",
+        ' ', "");
     TCLAP::ValueArg<std::string> config("c", "config", "scenario INI (see config_ini/)", true, "",
                                         "INI", cmd);
     TCLAP::ValueArg<std::string> outArg("o", "out",
@@ -61,8 +61,8 @@ int runSimApp(int argc, const char* const* argv, std::ostream& out, std::ostream
             scenario.camera.rate = hz;
         }
         if (embedded.getValue()) scenario.camera.externalImages = false;
-        const std::uint64_t s = seed.getValue() >= 0 ? static_cast<std::uint64_t>(seed.getValue())
-                                                     : scenario.seed;
+        const std::uint64_t s =
+            seed.getValue() >= 0 ? static_cast<std::uint64_t>(seed.getValue()) : scenario.seed;
         SimulatorSource source(scenario, s);
         out << "scenario '" << scenario.name << "', seed " << s << ": " << std::fixed
             << std::setprecision(1) << source.duration() << " s, " << source.kidnapEvents().size()
@@ -78,7 +78,9 @@ int runSimApp(int argc, const char* const* argv, std::ostream& out, std::ostream
             // Progress only for a person watching a terminal, not for logs and pipes.
             const bool terminal = &out == &std::cout && ::isatty(STDOUT_FILENO);
             const auto r = recordScenario(source, outArg.getValue(), [&](double f) {
-                if (terminal) out << "\r  " << std::setw(5) << std::setprecision(1) << 100 * f << " %" << std::flush;
+                if (terminal)
+                    out << "\r  " << std::setw(5) << std::setprecision(1) << 100 * f << " %"
+                        << std::flush;
             });
             const double secs =
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();

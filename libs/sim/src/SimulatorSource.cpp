@@ -14,13 +14,15 @@ SimulatorSource::SimulatorSource(const Scenario& scenario, std::uint64_t seed)
     world_ = std::make_unique<World>(scenario_, rng.fork(100).nextU64());
     const FloorPlan& plan = world_->floorPlan();
     const double radius = scenario_.robotRadius;
-    plan_ = std::make_unique<MotionPlan>(
-        scenario_.motion, scenario_.kidnaps,
-        [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return !plan.blocks(a, b, radius); });
+    plan_ = std::make_unique<MotionPlan>(scenario_.motion, scenario_.kidnaps,
+                                         [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+                                             return !plan.blocks(a, b, radius);
+                                         });
     const double t0 = scenario_.startTime;
     // Sensor order here is the tie-break order of simultaneous samples.
     sensors_.push_back(std::make_unique<SimEncoders>(*plan_, scenario_.encoders, t0, rng.fork(1)));
-    sensors_.push_back(std::make_unique<SimWheelDrop>(*plan_, scenario_.encoders.wheelDropLabel, t0));
+    sensors_.push_back(
+        std::make_unique<SimWheelDrop>(*plan_, scenario_.encoders.wheelDropLabel, t0));
     for (std::size_t i = 0; i < scenario_.magnetometers.size(); ++i) {
         sensors_.push_back(std::make_unique<SimMagnetometer>(
             *world_, *plan_, scenario_.magnetometers[i], t0, rng.fork(10 + i)));

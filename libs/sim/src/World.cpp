@@ -5,7 +5,7 @@
 namespace lodestone::sim {
 
 namespace {
-constexpr double kMargin = 1.0;          // floor / ceiling beyond the walls [m]
+constexpr double kMargin = 1.0;  // floor / ceiling beyond the walls [m]
 constexpr double kFloorPixelsPerMetre = 100;
 }  // namespace
 
@@ -33,8 +33,10 @@ World::World(const Scenario& sc, std::uint64_t seed)
         }
     }
     floor_origin_ = plan_.minCorner() - Eigen::Vector2d(kMargin, kMargin);
-    const Eigen::Vector2d size = plan_.maxCorner() - floor_origin_ + Eigen::Vector2d(kMargin, kMargin);
-    floor_ = SurfaceTexture::generate(sc.floor, size.x(), size.y(), kFloorPixelsPerMetre, textureRng);
+    const Eigen::Vector2d size =
+        plan_.maxCorner() - floor_origin_ + Eigen::Vector2d(kMargin, kMargin);
+    floor_ =
+        SurfaceTexture::generate(sc.floor, size.x(), size.y(), kFloorPixelsPerMetre, textureRng);
     floor_.bakeShading([&](double u, double v) {
         return lightAt(floor_origin_.x() + u, floor_origin_.y() + v, 0.0);
     });
@@ -73,9 +75,11 @@ void World::buildMagneticField(const Scenario& sc, Random& rng) {
             for (int i = 0; i < n; ++i) {
                 const double s = (i + rng.uniform(0.2, 0.8)) / n;
                 const Eigen::Vector2d p = w.a + s * (w.b - w.a);
-                const double z = rng.uniform() < 0.5 ? rng.uniform(0.0, 0.3) : rng.uniform(0.8, 1.6);
-                field_.addDipole({{p.x(), p.y(), z},
-                                  randomDirection() * rng.uniform(f.wallMoment.x(), f.wallMoment.y())});
+                const double z =
+                    rng.uniform() < 0.5 ? rng.uniform(0.0, 0.3) : rng.uniform(0.8, 1.6);
+                field_.addDipole(
+                    {{p.x(), p.y(), z},
+                     randomDirection() * rng.uniform(f.wallMoment.x(), f.wallMoment.y())});
             }
         }
     }
@@ -85,9 +89,11 @@ void World::buildMagneticField(const Scenario& sc, Random& rng) {
     for (int i = 0; i < floorCount; ++i) {
         const Eigen::Vector3d p(rng.uniform(lo.x(), hi.x()), rng.uniform(lo.y(), hi.y()),
                                 -rng.uniform(f.floorDepth.x(), f.floorDepth.y()));
-        field_.addDipole({p, randomDirection() * rng.uniform(f.floorMoment.x(), f.floorMoment.y())});
+        field_.addDipole(
+            {p, randomDirection() * rng.uniform(f.floorMoment.x(), f.floorMoment.y())});
     }
-    for (const auto& line : f.lines) field_.addLine(line.a, line.b, line.momentPerMetre, line.spacing);
+    for (const auto& line : f.lines)
+        field_.addLine(line.a, line.b, line.momentPerMetre, line.spacing);
     for (const auto& [p, m] : f.dipoles) field_.addDipole({p, m});
 }
 

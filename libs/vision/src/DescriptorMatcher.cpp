@@ -52,7 +52,8 @@ std::vector<cv::DMatch> DescriptorMatcher::match(const cv::Mat& query, const cv:
     for (const auto& k : knn) {
         if (k.empty() || k[0].distance > params_.maxDistance) continue;
         if (k.size() > 1 && k[0].distance >= params_.ratio * k[1].distance) continue;
-        if (params_.crossCheck && reverse[static_cast<std::size_t>(k[0].trainIdx)] != k[0].queryIdx) {
+        if (params_.crossCheck &&
+            reverse[static_cast<std::size_t>(k[0].trainIdx)] != k[0].queryIdx) {
             continue;
         }
         out.push_back(k[0]);

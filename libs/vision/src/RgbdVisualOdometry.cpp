@@ -136,8 +136,10 @@ VoResult RgbdVisualOdometry::process(const RgbdFrame& frame) {
     t0 = std::chrono::steady_clock::now();
     Eigen::Matrix3Xd src(3, matches.size()), dst(3, matches.size());
     for (std::size_t i = 0; i < matches.size(); ++i) {
-        src.col(static_cast<Eigen::Index>(i)) = current.points.col(matches[i].queryIdx).cast<double>();
-        dst.col(static_cast<Eigen::Index>(i)) = reference_->points.col(matches[i].trainIdx).cast<double>();
+        src.col(static_cast<Eigen::Index>(i)) =
+            current.points.col(matches[i].queryIdx).cast<double>();
+        dst.col(static_cast<Eigen::Index>(i)) =
+            reference_->points.col(matches[i].trainIdx).cast<double>();
     }
     const RigidEstimate est = ransac_.estimate(src, dst, params_.seed + frame_count_);
     r.timing.ransac = msSince(t0);
@@ -145,7 +147,8 @@ VoResult RgbdVisualOdometry::process(const RgbdFrame& frame) {
     if (!est.success) return fail(VoFailure::NoConsensus);
 
     const double angle = Eigen::AngleAxisd(est.transform.rotation()).angle();
-    if (est.transform.translation().norm() > params_.maxTranslation || angle > params_.maxRotation) {
+    if (est.transform.translation().norm() > params_.maxTranslation ||
+        angle > params_.maxRotation) {
         return fail(VoFailure::Implausible);
     }
     r.success = true;

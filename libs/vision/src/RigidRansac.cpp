@@ -45,7 +45,8 @@ std::vector<int> RigidRansac::inliersOf(const Eigen::Isometry3d& T, const Eigen:
     for (Eigen::Index i = 0; i < src.cols(); ++i) {
         const double z = dst(2, i);
         const double gate = params_.threshold + params_.depthScale * z * z;
-        if ((T * src.col(i) - dst.col(i)).squaredNorm() < gate * gate) in.push_back(static_cast<int>(i));
+        if ((T * src.col(i) - dst.col(i)).squaredNorm() < gate * gate)
+            in.push_back(static_cast<int>(i));
     }
     return in;
 }

@@ -54,8 +54,9 @@ TEST(IniSection, MalformedValuesAreRejected) {
 
 TEST(IniSection, UnknownSectionIsNamed) {
     auto cfg = ini("[camera]\nrate = 30\n[camra]\nrate = 15\n");
-    const auto msg =
-        errorOf([&] { lodestone::config::checkSections(cfg, {"camera", "robot"}, "s.ini"); });
+    const auto msg = errorOf([&] {
+        lodestone::config::checkSections(cfg, {"camera", "robot"}, "s.ini");
+    });
     EXPECT_NE(msg.find("[camra]"), std::string::npos) << msg;
 }
 

@@ -12,7 +12,8 @@ io::TumPose at(double t, double x, double y, double yaw = 0) {
 }  // namespace
 
 TEST(TrajectoryError, AssociationIsOneToOneWithinTheTolerance) {
-    const std::vector<io::TumPose> est = {at(1.000, 0, 0), at(1.005, 0, 0), at(2.0, 0, 0), at(3.5, 0, 0)};
+    const std::vector<io::TumPose> est = {at(1.000, 0, 0), at(1.005, 0, 0), at(2.0, 0, 0),
+                                          at(3.5, 0, 0)};
     const std::vector<io::TumPose> gt = {at(1.003, 0, 0), at(2.015, 0, 0), at(3.0, 0, 0)};
     const auto pairs = eval::associate(est, gt, 0.02);
     ASSERT_EQ(pairs.size(), 2u);

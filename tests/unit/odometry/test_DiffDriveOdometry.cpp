@@ -1,9 +1,8 @@
 #include <gtest/gtest.h>
-
-#include <Eigen/Dense>
 #include <lodestone/odometry/DiffDriveOdometry.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
+#include <Eigen/Dense>
 #include <cmath>
 
 using lodestone::odometry::DiffDriveOdometry;

@@ -33,7 +33,8 @@ OfficeRun runOffice(const std::string& surface = "") {
         for (const auto& e : es) {
             for (std::size_t m = 0; m < 4; ++m) {
                 const auto& q = e.poses[m].mean;
-                r.est[m].push_back({e.timestamp, mrpt::poses::CPose3D(q.x(), q.y(), 0, q.phi(), 0, 0)});
+                r.est[m].push_back(
+                    {e.timestamp, mrpt::poses::CPose3D(q.x(), q.y(), 0, q.phi(), 0, 0)});
             }
             const auto t = source.truePose(e.timestamp - sc.startTime);
             r.gt.push_back({e.timestamp, mrpt::poses::CPose3D(t.x, t.y, 0, t.yaw, 0, 0)});
@@ -71,7 +72,8 @@ TEST(FusedOdometry, InAFeaturelessRoomVoIsLostAndFusionFollowsTheWheels) {
 
 TEST(FusedOdometry, ParamsFromIniAndUnknownMethod) {
     mrpt::config::CConfigFileMemory ini(
-        "[wheel_odometry]\nwheel_base = 0.3\n[visual_odometry]\norb_features = 400\nlost_after = 3\n"
+        "[wheel_odometry]\nwheel_base = 0.3\n[visual_odometry]\norb_features = 400\nlost_after = "
+        "3\n"
         "[odometry_fusion]\nmethod = kalman\nkalman_weight = 0.6\n");
     odometry::FusedOdometry::Params p;
     p.loadFromConfigFile(ini, "odometry_fusion");

@@ -23,8 +23,8 @@ TEST(CovarianceWeightedFusion, CombinesByInformation) {
     EXPECT_NEAR(equal.mean.x(), 0.11, 1e-9);
     EXPECT_NEAR(equal.mean.phi(), 0.01, 1e-9);
     EXPECT_NEAR(equal.cov(0, 0), 0.5e-4, 1e-12);  // two equal measurements halve the variance
-    const auto lopsided = CovarianceWeightedFusion::combine(gaussian(0.10, 0, 0, 1e-2),
-                                                            gaussian(0.12, 0, 0, 1e-6));
+    const auto lopsided =
+        CovarianceWeightedFusion::combine(gaussian(0.10, 0, 0, 1e-2), gaussian(0.12, 0, 0, 1e-6));
     EXPECT_NEAR(lopsided.mean.x(), 0.12, 1e-5);  // the certain one wins
     // Headings either side of +-pi are averaged across it, not through 0.
     const auto wrap = CovarianceWeightedFusion::combine(gaussian(0, 0, M_PI - 0.01, 1e-4),

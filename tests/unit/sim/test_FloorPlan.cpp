@@ -26,8 +26,8 @@ TEST(FloorPlan, ClearanceAndBlockedMoves) {
     FloorPlan plan;
     plan.addWall({{0, 0}, {10, 0}, 2.6, 0});
     EXPECT_NEAR(plan.clearance({5, 1.5}), 1.5, 1e-12);
-    EXPECT_NEAR(plan.clearance({-3, 4}), 5.0, 1e-12);  // to the end point
-    EXPECT_TRUE(plan.blocks({5, 1}, {5, -1}, 0.1));     // through the wall
+    EXPECT_NEAR(plan.clearance({-3, 4}), 5.0, 1e-12);      // to the end point
+    EXPECT_TRUE(plan.blocks({5, 1}, {5, -1}, 0.1));        // through the wall
     EXPECT_TRUE(plan.blocks({0, 0.15}, {10, 0.15}, 0.2));  // too close along it
     EXPECT_FALSE(plan.blocks({0, 0.5}, {10, 0.5}, 0.2));
     EXPECT_EQ(plan.minCorner(), Eigen::Vector2d(0, 0));

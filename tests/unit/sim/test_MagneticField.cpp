@@ -50,7 +50,7 @@ TEST(MagneticField, SumOfSourcesIsContinuousCurlFreeAndDivergenceFree) {
     f.addDipole({{-1, 0.2, 1.0}, {-5, 1, 0}});
     f.addLine({-2, -1, -0.3}, {3, -1, -0.3}, {0, 4, -3}, 0.1);
     for (const Eigen::Vector3d& p : {Eigen::Vector3d(0, 0, 0.3), Eigen::Vector3d(1.2, -0.4, 0.3),
-                                    Eigen::Vector3d(-0.7, 0.9, 0.5)}) {
+                                     Eigen::Vector3d(-0.7, 0.9, 0.5)}) {
         const Eigen::Matrix3d J = jacobian(f, p);
         const double scale = J.norm();
         ASSERT_GT(scale, 1.0);  // a field that varies, so the checks below mean something

@@ -41,7 +41,8 @@ std::string loadError(const std::string& from, const std::string& to) {
 }  // namespace
 
 TEST(Scenario, EveryShippedScenarioLoads) {
-    for (const char* name : {"office", "paper_loop", "paper_loop_qvga", "paper_kidnap", "corridor"}) {
+    for (const char* name :
+         {"office", "paper_loop", "paper_loop_qvga", "paper_kidnap", "corridor"}) {
         const auto path = kConfigDir + "/" + name + ".ini";
         Scenario sc;
         ASSERT_NO_THROW(sc = Scenario::load(path)) << path;

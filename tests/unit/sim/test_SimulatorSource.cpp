@@ -143,7 +143,8 @@ TEST(SimulatorSource, KidnapsShowAsWheelDropsWhereTheEventsSay) {
         }
         if (auto odo = std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(o)) {
             if (t > events[0].start + 0.05 && t < events[0].end - 0.05) {
-                if (ticksDuringCarry >= 0 && odo->encoderLeftTicks != ticksDuringCarry) ticksChanged = true;
+                if (ticksDuringCarry >= 0 && odo->encoderLeftTicks != ticksDuringCarry)
+                    ticksChanged = true;
                 ticksDuringCarry = odo->encoderLeftTicks;
             }
         }

@@ -38,7 +38,8 @@ TEST(DescriptorMatcher, FindsTheSameDescriptorsShuffledAndSlightlyChanged) {
 
 TEST(DescriptorMatcher, UnrelatedDescriptorsAreGatedOut) {
     // Random 256-bit strings are ~128 bits apart; the distance gate rejects them all.
-    const auto matches = DescriptorMatcher().match(randomDescriptors(200, 3), randomDescriptors(200, 4));
+    const auto matches =
+        DescriptorMatcher().match(randomDescriptors(200, 3), randomDescriptors(200, 4));
     EXPECT_TRUE(matches.empty()) << matches.size();
     EXPECT_TRUE(DescriptorMatcher().match(cv::Mat(), randomDescriptors(5, 1)).empty());
 }

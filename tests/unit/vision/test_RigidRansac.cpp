@@ -2,7 +2,6 @@
 #include <lodestone/vision/RigidRansac.h>
 
 #include <Eigen/Eigenvalues>
-
 #include <random>
 
 using namespace lodestone::vision;

@@ -11,7 +11,7 @@ namespace lodestone::config {
 
 /** A configuration mistake: the message names the file, the section and the key. */
 class ConfigError : public std::runtime_error {
-public:
+  public:
     using std::runtime_error::runtime_error;
 };
 
@@ -21,7 +21,7 @@ public:
  * after ';' or '#' on a value line is a comment.
  * Parameter structs (`Params : mrpt::config::CLoadableOptions`) read themselves through it. */
 class IniSection {
-public:
+  public:
     IniSection(const mrpt::config::CConfigFileBase& cfg, std::string section,
                std::string sourceName);
 
@@ -48,7 +48,7 @@ public:
     [[noreturn]] void fail(const std::string& key, const std::string& why) const;
     const std::string& section() const { return section_; }
 
-private:
+  private:
     std::string raw(const std::string& key) const;
 
     const mrpt::config::CConfigFileBase& cfg_;

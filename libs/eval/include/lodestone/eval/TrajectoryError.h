@@ -19,7 +19,7 @@ std::vector<std::pair<std::size_t, std::size_t>> associate(const std::vector<io:
  * translational differences. */
 struct AteResult {
     std::size_t pairs{0};
-    double rmse{0}, mean{0}, median{0}, max{0};  ///< [m]
+    double rmse{0}, mean{0}, median{0}, max{0};                  ///< [m]
     Eigen::Isometry3d alignment{Eigen::Isometry3d::Identity()};  ///< applied to the estimate
     std::vector<double> errors;  ///< per associated pair [m], estimate order
     std::vector<double> times;   ///< their timestamps [s]

@@ -16,13 +16,13 @@ struct TumPose {
 
 /** Writes a TUM trajectory line by line (flushed, so a crash keeps what was written). */
 class TumTrajectoryWriter {
-public:
+  public:
     /** Creates `path` with a comment header; throws std::runtime_error naming it on failure. */
     explicit TumTrajectoryWriter(const std::string& path);
     void write(double timestamp, const mrpt::poses::CPose3D& pose);
     const std::string& path() const { return path_; }
 
-private:
+  private:
     std::string path_;
     std::ofstream out_;
 };

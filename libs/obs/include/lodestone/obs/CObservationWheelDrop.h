@@ -12,7 +12,7 @@ namespace lodestone::obs {
 class CObservationWheelDrop : public mrpt::obs::CObservation {
     DEFINE_SERIALIZABLE(CObservationWheelDrop, lodestone::obs)
 
-public:
+  public:
     bool leftDropped{false};   ///< left wheel hangs free
     bool rightDropped{false};  ///< right wheel hangs free
 

@@ -9,7 +9,7 @@ namespace lodestone::odometry {
  * linearized at the wheel estimate (increments are small) — and composes the result onto the
  * pose. Without a visual estimate the wheel step is taken as is. */
 class CovarianceWeightedFusion : public PlanarFusion {
-public:
+  public:
     const mrpt::poses::CPosePDFGaussian& step(const OdometryStep& s) override;
     const mrpt::poses::CPosePDFGaussian& pose() const override { return pose_; }
     void reset(const mrpt::poses::CPosePDFGaussian& start) override { pose_ = start; }
@@ -19,7 +19,7 @@ public:
     static mrpt::poses::CPosePDFGaussian combine(const mrpt::poses::CPosePDFGaussian& a,
                                                  const mrpt::poses::CPosePDFGaussian& b);
 
-private:
+  private:
     mrpt::poses::CPosePDFGaussian pose_;
 };
 

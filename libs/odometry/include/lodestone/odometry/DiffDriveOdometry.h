@@ -15,12 +15,12 @@ namespace lodestone::odometry {
  * with the covariance propagated from per-wheel noise: each wheel's travel has variance
  * k |Δs| (errors grow with distance, as slip does), mapped through the Jacobian of eq. (1). */
 class DiffDriveOdometry {
-public:
+  public:
     struct Params : public mrpt::config::CLoadableOptions {
-        double wheelBase{0.23};        ///< distance between the wheel contact points [m]
-        double wheelRadius{0.035};     ///< [m]
-        double ticksPerRev{2578.33};   ///< encoder ticks per wheel revolution
-        double wheelNoise{4e-4};       ///< variance per metre of wheel travel, k [m^2/m]
+        double wheelBase{0.23};       ///< distance between the wheel contact points [m]
+        double wheelRadius{0.035};    ///< [m]
+        double ticksPerRev{2578.33};  ///< encoder ticks per wheel revolution
+        double wheelNoise{4e-4};      ///< variance per metre of wheel travel, k [m^2/m]
 
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                                 const std::string& section) override;
@@ -53,9 +53,9 @@ public:
 
     /** Eq. (1) and its covariance for one step from the origin, for tests and fusion. */
     static mrpt::poses::CPosePDFGaussian stepFromOrigin(double leftTravel, double rightTravel,
-                                                         const Params& params);
+                                                        const Params& params);
 
-private:
+  private:
     Params params_;
     mrpt::poses::CPosePDFGaussian pose_;
     std::optional<std::pair<std::int32_t, std::int32_t>> last_ticks_;

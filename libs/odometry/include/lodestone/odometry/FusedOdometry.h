@@ -24,16 +24,16 @@ namespace lodestone::odometry {
  * SE(2). When VO matched against an older reference (frames in between failed), its motion is
  * re-based onto each method's own pose at that reference. */
 class FusedOdometry {
-public:
+  public:
     struct Params : public mrpt::config::CLoadableOptions {
-        DiffDriveOdometry::Params wheels;       ///< INI section [wheel_odometry]
+        DiffDriveOdometry::Params wheels;           ///< INI section [wheel_odometry]
         vision::RgbdVisualOdometry::Params visual;  ///< INI section [visual_odometry]
-        std::string method{"covariance"};       ///< [odometry_fusion] method
-        double kalmanWeight{0.7};               ///< C of paper 003 eq. (2): weight of the wheels
-        double kalmanProcessNoise{0.5};         ///< constant-velocity model [unit^2/s^3]
-        double kalmanMeasurementNoise{1e-4};    ///< blended-position variance [m^2 or rad^2]
-        std::string encoderLabel;               ///< only this odometry label ("" = any)
-        std::string cameraLabel;                ///< only this RGB-D label ("" = any)
+        std::string method{"covariance"};           ///< [odometry_fusion] method
+        double kalmanWeight{0.7};             ///< C of paper 003 eq. (2): weight of the wheels
+        double kalmanProcessNoise{0.5};       ///< constant-velocity model [unit^2/s^3]
+        double kalmanMeasurementNoise{1e-4};  ///< blended-position variance [m^2 or rad^2]
+        std::string encoderLabel;             ///< only this odometry label ("" = any)
+        std::string cameraLabel;              ///< only this RGB-D label ("" = any)
 
         /** Reads [wheel_odometry], [visual_odometry] and [odometry_fusion] (`section` is the
          * fusion one). */
@@ -44,7 +44,7 @@ public:
 
     /** One camera frame's outcome. */
     struct Estimate {
-        double timestamp{0};                                ///< [s]
+        double timestamp{0};                               ///< [s]
         std::vector<mrpt::poses::CPosePDFGaussian> poses;  ///< one per method, in order
         vision::VoResult visual;
     };
@@ -61,7 +61,7 @@ public:
     const std::vector<std::string>& methods() const { return method_names_; }
     std::size_t framesProcessed() const { return frames_; }
 
-private:
+  private:
     struct Pending {
         double t;
         vision::VoResult vo;

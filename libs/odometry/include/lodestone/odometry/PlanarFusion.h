@@ -14,12 +14,12 @@ namespace lodestone::odometry {
 struct OdometryStep {
     mrpt::poses::CPosePDFGaussian wheel;
     std::optional<mrpt::poses::CPosePDFGaussian> visual;  ///< none: VO failed or LOST
-    double dt{0};  ///< [s]
+    double dt{0};                                         ///< [s]
 };
 
 /** A way of combining wheel and visual odometry into one planar trajectory. */
 class PlanarFusion {
-public:
+  public:
     virtual ~PlanarFusion() = default;
     /** Takes one step; returns the fused pose after it. */
     virtual const mrpt::poses::CPosePDFGaussian& step(const OdometryStep& s) = 0;

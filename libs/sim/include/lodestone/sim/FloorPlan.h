@@ -1,7 +1,6 @@
 #pragma once
 
 #include <Eigen/Core>
-
 #include <optional>
 #include <string>
 #include <vector>
@@ -18,15 +17,15 @@ struct Wall {
 
 /** Where a horizontal ray meets the walls. */
 struct WallHit {
-    double t;              ///< ray parameter: hit = origin + t * direction
-    int wall;              ///< index into FloorPlan::walls()
-    double u;              ///< distance along the wall from its end a [m]
-    double cosIncidence;   ///< |cos| of the angle between the ray and the wall normal
+    double t;             ///< ray parameter: hit = origin + t * direction
+    int wall;             ///< index into FloorPlan::walls()
+    double u;             ///< distance along the wall from its end a [m]
+    double cosIncidence;  ///< |cos| of the angle between the ray and the wall normal
 };
 
 /** The walls of the world, as 2D segments, with the geometric queries the simulator needs. */
 class FloorPlan {
-public:
+  public:
     void addWall(const Wall& wall);
     const std::vector<Wall>& walls() const { return walls_; }
 
@@ -45,7 +44,7 @@ public:
     Eigen::Vector2d minCorner() const;
     Eigen::Vector2d maxCorner() const;
 
-private:
+  private:
     std::vector<Wall> walls_;
 };
 

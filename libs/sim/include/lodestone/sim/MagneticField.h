@@ -1,7 +1,6 @@
 #pragma once
 
 #include <Eigen/Core>
-
 #include <vector>
 
 namespace lodestone::sim {
@@ -18,7 +17,7 @@ struct MagneticDipole {
  * there, as a real ambient field is. Values in microtesla, world frame (x, y horizontal, z up).
  */
 class MagneticField {
-public:
+  public:
     /** Earth field from magnitude [uT], inclination [rad] (positive: pointing down, northern
      * hemisphere) and declination [rad] (angle of its horizontal part from world +x towards +y).
      */
@@ -40,7 +39,7 @@ public:
      * mu0/(4 pi) (3 (m.r^) r^ - m) / |r|^3. Zero closer than 1 cm (inside the steel). */
     static Eigen::Vector3d dipoleField(const Eigen::Vector3d& moment, const Eigen::Vector3d& r);
 
-private:
+  private:
     Eigen::Vector3d earth_{0, 0, 0};
     std::vector<MagneticDipole> dipoles_;
 };

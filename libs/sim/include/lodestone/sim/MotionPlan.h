@@ -1,7 +1,6 @@
 #pragma once
 
 #include <Eigen/Core>
-
 #include <functional>
 #include <string>
 #include <vector>
@@ -11,7 +10,7 @@ namespace lodestone::sim {
 /** The robot's pose: planar, plus the height it is lifted to while kidnapped. */
 struct RobotPose {
     double x{0}, y{0}, yaw{0};  ///< [m, m, rad]
-    double z{0};                 ///< lift above the floor [m]; 0 on the ground
+    double z{0};                ///< lift above the floor [m]; 0 on the ground
 };
 
 /** One piece of motion with a closed-form pose at any time in [t0, t1]. */
@@ -29,7 +28,7 @@ RobotPose poseOnSegment(const MotionSegment& s, double t);
 /** A kidnap: at `start` the robot is lifted, carried for `duration` and put down at `putDown`.
  */
 struct KidnapSpec {
-    std::string name;  ///< the INI key, for messages
+    std::string name;              ///< the INI key, for messages
     double start{0}, duration{0};  ///< [s]
     RobotPose putDown;
     double liftHeight{0.4};  ///< [m]
@@ -40,20 +39,21 @@ struct KidnapSpec {
  * a put-down the robot drives to the nearest waypoint it can reach in a straight line and
  * carries on round the loop from there. All poses and wheel angles are closed-form in time. */
 class MotionPlan {
-public:
+  public:
     struct Params {
         std::vector<Eigen::Vector2d> waypoints;  ///< a closed loop [m]
         int laps{1};
-        double speed{0.3};            ///< [m/s]
-        double turnRate{0.6};         ///< [rad/s]
-        double wheelBase{0.23};       ///< distance between the wheels [m]
-        double wheelRadius{0.035};    ///< [m]
+        double speed{0.3};          ///< [m/s]
+        double turnRate{0.6};       ///< [rad/s]
+        double wheelBase{0.23};     ///< distance between the wheels [m]
+        double wheelRadius{0.035};  ///< [m]
     };
 
     /** Plans the motion. `reachable(a, b)` says whether the robot may drive straight from a to
      * b; a kidnap whose put-down reaches no waypoint throws std::invalid_argument naming it. */
-    MotionPlan(const Params& params, const std::vector<KidnapSpec>& kidnaps,
-               const std::function<bool(const Eigen::Vector2d&, const Eigen::Vector2d&)>& reachable);
+    MotionPlan(
+        const Params& params, const std::vector<KidnapSpec>& kidnaps,
+        const std::function<bool(const Eigen::Vector2d&, const Eigen::Vector2d&)>& reachable);
 
     RobotPose poseAt(double t) const;
     /** Total rotation of the left / right wheel since the start [rad], positive forward. */
@@ -67,7 +67,7 @@ public:
     const std::vector<MotionSegment>& segments() const { return segments_; }
     const Params& params() const { return params_; }
 
-private:
+  private:
     const MotionSegment& segmentAt(double t) const;
     void append(MotionSegment s);
 

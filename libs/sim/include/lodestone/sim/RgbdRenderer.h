@@ -15,7 +15,7 @@ namespace lodestone::sim {
  * units, and no value beyond the range limits or at grazing angles;
  * colour gets per-channel noise. */
 class RgbdRenderer {
-public:
+  public:
     RgbdRenderer(const World& world, const CameraSpec& camera, std::uint64_t noiseSeed);
 
     /** Renders from a camera at `position` [m] with heading `yaw` [rad] (optical axis level).
@@ -27,10 +27,10 @@ public:
      * within the range limits (for tests). */
     double idealDepth(const Eigen::Vector3d& position, double yaw, int row, int col) const;
 
-private:
+  private:
     struct Surface {
-        double depth;    // along the optical axis [m]
-        double cosInc;   // |cos| of the incidence angle
+        double depth;   // along the optical axis [m]
+        double cosInc;  // |cos| of the incidence angle
         cv::Vec3f colour;
         bool valid;
     };

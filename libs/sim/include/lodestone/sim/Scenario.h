@@ -25,8 +25,8 @@ struct MountPose {
 struct CameraSpec {
     bool enabled{true};
     std::string label{"RGBD"};
-    double rate{30};                    ///< [Hz]
-    int width{640}, height{480};        ///< [px]
+    double rate{30};                                    ///< [Hz]
+    int width{640}, height{480};                        ///< [px]
     double fx{570.3}, fy{570.3}, cx{319.5}, cy{239.5};  ///< [px]
     MountPose pose{0.10, 0.0, 0.45, 0.0};
     double minRange{0.5}, maxRange{5.0};  ///< valid depth [m]
@@ -42,35 +42,35 @@ struct CameraSpec {
 
 struct MagnetometerSpec {
     std::string label;
-    double rate{100};                       ///< [Hz]
+    double rate{100};  ///< [Hz]
     MountPose pose;
-    double noiseStd{0.3};                   ///< per-axis white noise [uT]
-    Eigen::Vector3d bias{0, 0, 0};          ///< constant, sensor frame [uT]
+    double noiseStd{0.3};           ///< per-axis white noise [uT]
+    Eigen::Vector3d bias{0, 0, 0};  ///< constant, sensor frame [uT]
 };
 
 struct EncoderSpec {
     std::string label{"WHEELS"};
-    double rate{50};                ///< [Hz]
-    double ticksPerRev{2578.33};    ///< Kobuki: 52 ticks x 49.58 gear ratio
-    double slipStd{0.01};           ///< relative noise on each wheel increment
+    double rate{50};                         ///< [Hz]
+    double ticksPerRev{2578.33};             ///< Kobuki: 52 ticks x 49.58 gear ratio
+    double slipStd{0.01};                    ///< relative noise on each wheel increment
     double leftScale{1.0}, rightScale{1.0};  ///< systematic wheel radius errors (1: none)
     std::string wheelDropLabel{"WHEEL_DROP"};
 };
 
 struct FieldSpec {
-    double earthMagnitude{50};   ///< [uT]
-    double inclination{1.15};    ///< [rad] (66 deg, mid-latitude Europe / Korea)
-    double declination{0.0};     ///< [rad] from world +x
-    double wallSpacing{0.5};     ///< rebar dipoles along walls, one per spacing [m]; 0: none
-    Eigen::Vector2d wallMoment{1.0, 6.0};   ///< moment range [A m^2]
-    double floorDensity{0.5};    ///< floor dipoles per m^2
-    Eigen::Vector2d floorDepth{0.05, 0.4};  ///< below the floor [m]
-    Eigen::Vector2d floorMoment{2.0, 12.0}; ///< [A m^2]
+    double earthMagnitude{50};  ///< [uT]
+    double inclination{1.15};   ///< [rad] (66 deg, mid-latitude Europe / Korea)
+    double declination{0.0};    ///< [rad] from world +x
+    double wallSpacing{0.5};    ///< rebar dipoles along walls, one per spacing [m]; 0: none
+    Eigen::Vector2d wallMoment{1.0, 6.0};    ///< moment range [A m^2]
+    double floorDensity{0.5};                ///< floor dipoles per m^2
+    Eigen::Vector2d floorDepth{0.05, 0.4};   ///< below the floor [m]
+    Eigen::Vector2d floorMoment{2.0, 12.0};  ///< [A m^2]
     struct Line {
         Eigen::Vector3d a, b, momentPerMetre;
         double spacing;
     };
-    std::vector<Line> lines;                 ///< explicit beams
+    std::vector<Line> lines;                                           ///< explicit beams
     std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> dipoles;  ///< explicit (pos, m)
 };
 
@@ -78,11 +78,11 @@ struct FieldSpec {
 struct Scenario {
     std::string name, source;  ///< scenario name; the INI path (for messages)
     std::uint64_t seed{1};
-    double startTime{1.7e9};   ///< epoch of t = 0 [s]
-    double wallHeight{2.6};    ///< walls reach the ceiling [m]
+    double startTime{1.7e9};  ///< epoch of t = 0 [s]
+    double wallHeight{2.6};   ///< walls reach the ceiling [m]
     double texturePixelsPerMetre{200};
     SurfaceSpec floor, ceiling;
-    double lampSpacing{2.5};   ///< ceiling lamps on a grid [m]
+    double lampSpacing{2.5};  ///< ceiling lamps on a grid [m]
     std::vector<WallSpec> walls;
     MotionPlan::Params motion;
     double robotRadius{0.18};  ///< [m]

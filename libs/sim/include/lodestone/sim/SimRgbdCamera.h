@@ -9,7 +9,7 @@ namespace lodestone::sim {
  * frame +X forward, +Y left, +Z up; range_is_depth; 1 mm range units; RGB and depth
  * registered, i.e. the same intrinsics). */
 class SimRgbdCamera : public SimSensor {
-public:
+  public:
     SimRgbdCamera(const World& world, const MotionPlan& plan, const CameraSpec& spec,
                   double startTime, Random rng);
     std::int64_t nextTimeNs() const override;
@@ -17,7 +17,7 @@ public:
 
     const RgbdRenderer& renderer() const { return renderer_; }
 
-private:
+  private:
     const MotionPlan& plan_;
     CameraSpec spec_;
     double start_time_;

@@ -10,12 +10,12 @@ namespace lodestone::sim {
 /** The base's wheel-drop switches: a CObservationWheelDrop when the robot is lifted (both
  * wheels drop) and when it is put down again. */
 class SimWheelDrop : public SimSensor {
-public:
+  public:
     SimWheelDrop(const MotionPlan& plan, const std::string& label, double startTime);
     std::int64_t nextTimeNs() const override;
     mrpt::obs::CObservation::Ptr produce() override;
 
-private:
+  private:
     std::string label_;
     double start_time_;
     std::vector<std::pair<std::int64_t, bool>> events_;  // (time, lifted)

@@ -21,7 +21,7 @@ struct KidnapEvent {
  * (ties in sensor order), with the true robot pose at each. Same scenario + seed, same
  * observations, byte for byte. */
 class SimulatorSource : public io::DataSource {
-public:
+  public:
     SimulatorSource(const Scenario& scenario, std::uint64_t seed);
     ~SimulatorSource() override;
 
@@ -40,7 +40,7 @@ public:
     const World& world() const { return *world_; }
     const MotionPlan& plan() const { return *plan_; }
 
-private:
+  private:
     Scenario scenario_;
     std::unique_ptr<World> world_;
     std::unique_ptr<MotionPlan> plan_;

@@ -26,7 +26,7 @@ struct SurfaceSpec {
 /** An albedo raster of one surface (a wall side, the floor, the ceiling), in metres: u along
  * the surface, v across (up for walls). Lighting is baked in, so rendering is a lookup. */
 class SurfaceTexture {
-public:
+  public:
     SurfaceTexture() = default;
     /** A width x height [m] raster at `pixelsPerMetre`, drawn from `spec` with `rng`. */
     static SurfaceTexture generate(const SurfaceSpec& spec, double width, double height,
@@ -41,7 +41,7 @@ public:
     const cv::Mat3b& raster() const { return raster_; }
     double pixelsPerMetre() const { return px_per_m_; }
 
-private:
+  private:
     cv::Mat3b raster_;
     double px_per_m_{100};
 };

@@ -12,7 +12,7 @@ namespace lodestone::sim {
 /** The static world of a scenario, built once from the INI and a seed: walls with their lit
  * textures, floor and ceiling, and the magnetic field. Same scenario + seed, same world. */
 class World {
-public:
+  public:
     World(const Scenario& scenario, std::uint64_t seed);
 
     const FloorPlan& floorPlan() const { return plan_; }
@@ -28,7 +28,7 @@ public:
     /** View-independent light factor at a world point (ceiling lamps on a grid). */
     double lightAt(double x, double y, double z) const;
 
-private:
+  private:
     void buildMagneticField(const Scenario& scenario, Random& rng);
 
     FloorPlan plan_;

@@ -11,10 +11,10 @@ namespace lodestone::vision {
  * make its output usable: a mutual best match (cross-check), a maximum distance and, when
  * enabled, Lowe's ratio test against the second best. */
 class DescriptorMatcher {
-public:
+  public:
     struct Params : public mrpt::config::CLoadableOptions {
-        int maxDistance{64};   ///< Hamming distance above which a pair is no match [bits]
-        double ratio{0.0};     ///< best / second-best distance must be below this; 0: off
+        int maxDistance{64};    ///< Hamming distance above which a pair is no match [bits]
+        double ratio{0.0};      ///< best / second-best distance must be below this; 0: off
         bool crossCheck{true};  ///< keep only mutual best matches
 
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
@@ -29,7 +29,7 @@ public:
     std::vector<cv::DMatch> match(const cv::Mat& query, const cv::Mat& train) const;
     const Params& params() const { return params_; }
 
-private:
+  private:
     Params params_;
 };
 

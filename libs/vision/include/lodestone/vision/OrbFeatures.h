@@ -23,14 +23,14 @@ struct FrameFeatures {
  * whose depth is missing or out of [minDepth, maxDepth] are dropped: they cannot be aligned in
  * 3D. */
 class OrbExtractor {
-public:
+  public:
     struct Params : public mrpt::config::CLoadableOptions {
-        int features{600};          ///< ORB keypoints requested per frame
-        double scaleFactor{1.2};    ///< pyramid scale step
-        int levels{8};              ///< pyramid levels
-        int fastThreshold{20};      ///< FAST corner threshold [grey levels]
-        double minDepth{0.3};       ///< [m]
-        double maxDepth{6.0};       ///< [m]
+        int features{600};        ///< ORB keypoints requested per frame
+        double scaleFactor{1.2};  ///< pyramid scale step
+        int levels{8};            ///< pyramid levels
+        int fastThreshold{20};    ///< FAST corner threshold [grey levels]
+        double minDepth{0.3};     ///< [m]
+        double maxDepth{6.0};     ///< [m]
 
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                                 const std::string& section) override;
@@ -42,7 +42,7 @@ public:
     FrameFeatures extract(const RgbdFrame& frame) const;
     const Params& params() const { return params_; }
 
-private:
+  private:
     Params params_;
     cv::Ptr<cv::Feature2D> orb_;
 };

@@ -30,12 +30,13 @@ struct VoTiming {
 
 /** What one frame gave. */
 struct VoResult {
-    bool success{false};    ///< a motion was estimated for this frame
+    bool success{false};  ///< a motion was estimated for this frame
     VoState state{VoState::Initializing};
     VoFailure failure{VoFailure::None};
     /** Pose of this frame in the reference frame's optical frame: p_ref = T p_cur. */
     Eigen::Isometry3d T_ref_cur{Eigen::Isometry3d::Identity()};
-    Eigen::Matrix<double, 6, 6> covariance{Eigen::Matrix<double, 6, 6>::Identity()};  ///< see RigidEstimate
+    Eigen::Matrix<double, 6, 6> covariance{
+        Eigen::Matrix<double, 6, 6>::Identity()};  ///< see RigidEstimate
     double referenceTimestamp{0};  ///< [s] of the reference frame T_ref_cur is relative to
     std::size_t features{0}, matches{0}, inliers{0};
     VoTiming timing;
@@ -43,24 +44,24 @@ struct VoResult {
 
 /** RGB-D visual odometry as paper 001 §3: ORB features of the current frame are matched
  * against the reference frame, 3D-3D pairs aligned by SVD inside RANSAC. On success the current
- * frame becomes the reference once it is far enough from it (a keyframe); a frame that fails (too few features, matches or inliers, or an
- * implausible jump) leaves the reference as it was and counts as lost; after `lostAfter`
- * consecutive failures the state is LOST and the next frame re-initializes. A frame with no
- * depth, no features (a plain wall) or NaNs simply fails. */
+ * frame becomes the reference once it is far enough from it (a keyframe); a frame that fails (too
+ * few features, matches or inliers, or an implausible jump) leaves the reference as it was and
+ * counts as lost; after `lostAfter` consecutive failures the state is LOST and the next frame
+ * re-initializes. A frame with no depth, no features (a plain wall) or NaNs simply fails. */
 class RgbdVisualOdometry {
-public:
+  public:
     struct Params : public mrpt::config::CLoadableOptions {
         OrbExtractor::Params orb;
         DescriptorMatcher::Params matcher;
         RigidRansac::Params ransac;
-        int lostAfter{5};               ///< consecutive failed frames before LOST
-        double maxTranslation{0.5};     ///< per frame, beyond it the motion is implausible [m]
-        double maxRotation{0.6};        ///< per frame [rad]
+        int lostAfter{5};            ///< consecutive failed frames before LOST
+        double maxTranslation{0.5};  ///< per frame, beyond it the motion is implausible [m]
+        double maxRotation{0.6};     ///< per frame [rad]
         /** A tracked frame replaces the reference only once it moved this far from it [m] or
          * turned this much [rad]: fewer, longer steps accumulate less error. 0, 0: every frame. */
         double keyframeDistance{0.10};
         double keyframeAngle{0.09};
-        std::uint64_t seed{1};          ///< RANSAC seed (deterministic results)
+        std::uint64_t seed{1};  ///< RANSAC seed (deterministic results)
 
         /** All keys in one section (ORB, matcher and RANSAC keys included). */
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
@@ -79,7 +80,7 @@ public:
     VoState state() const { return state_; }
     const Params& params() const { return params_; }
 
-private:
+  private:
     Params params_;
     OrbExtractor extractor_;
     DescriptorMatcher matcher_;

@@ -15,8 +15,8 @@ namespace lodestone::vision {
 struct RigidEstimate {
     bool success{false};
     Eigen::Isometry3d transform{Eigen::Isometry3d::Identity()};  ///< src -> dst
-    std::vector<int> inliers;  ///< indices into the input pairs
-    double rmse{0};            ///< over the inliers [m]
+    std::vector<int> inliers;                                    ///< indices into the input pairs
+    double rmse{0};                                              ///< over the inliers [m]
     /** 6x6 covariance of a left perturbation exp(xi) * transform, xi = (rx, ry, rz, tx, ty, tz)
      * [rad, m], from the inlier residuals: sigma^2 (J^T J)^-1. */
     Eigen::Matrix<double, 6, 6> covariance{Eigen::Matrix<double, 6, 6>::Identity()};
@@ -29,12 +29,12 @@ Eigen::Isometry3d alignRigid(const Eigen::Matrix3Xd& src, const Eigen::Matrix3Xd
  * A pair is an inlier when |R src + t - dst| < threshold + depthScale * z_dst^2 (depth noise of
  * structured light grows with z^2). Deterministic for a given seed. */
 class RigidRansac {
-public:
+  public:
     struct Params : public mrpt::config::CLoadableOptions {
-        int iterations{200};         ///< RANSAC hypotheses
-        double threshold{0.03};      ///< inlier distance at zero depth [m]
-        double depthScale{0.006};    ///< added inlier distance per z^2 [1/m]
-        int minInliers{15};          ///< fewer: no estimate
+        int iterations{200};          ///< RANSAC hypotheses
+        double threshold{0.03};       ///< inlier distance at zero depth [m]
+        double depthScale{0.006};     ///< added inlier distance per z^2 [1/m]
+        int minInliers{15};           ///< fewer: no estimate
         double minInlierRatio{0.25};  ///< inliers / pairs below this: no estimate
 
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
@@ -48,7 +48,7 @@ public:
                            std::uint64_t seed = 1) const;
     const Params& params() const { return params_; }
 
-private:
+  private:
     std::vector<int> inliersOf(const Eigen::Isometry3d& T, const Eigen::Matrix3Xd& src,
                                const Eigen::Matrix3Xd& dst) const;
     Params params_;
