@@ -2,6 +2,7 @@
 #include <lodestone/eval/TrajectoryError.h>
 #include <lodestone/odometry/FusedOdometry.h>
 #include <lodestone/sim/SimulatorSource.h>
+#include <mrpt/config/CConfigFile.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
 using namespace lodestone;
@@ -86,4 +87,18 @@ TEST(FusedOdometry, ParamsFromIniAndUnknownMethod) {
     EXPECT_THROW(p.loadFromConfigFile(bad, "odometry_fusion"), std::runtime_error);
     mrpt::config::CConfigFileMemory typo("[visual_odometry]\norb_feature = 400\n");
     EXPECT_THROW(p.loadFromConfigFile(typo, "odometry_fusion"), std::runtime_error);
+}
+
+TEST(FusedOdometry, ShippedIniLoadsWithItsDefaults) {
+    mrpt::config::CConfigFile ini(std::string(LODESTONE_CONFIG_INI_DIR) + "/odometry.ini");
+    odometry::FusedOdometry::Params p;
+    p.loadFromConfigFile(ini, "odometry_fusion");
+    const odometry::FusedOdometry::Params defaults;
+    EXPECT_EQ(p.method, defaults.method);
+    EXPECT_DOUBLE_EQ(p.wheels.wheelBase, defaults.wheels.wheelBase);
+    EXPECT_EQ(p.visual.orb.features, defaults.visual.orb.features);
+    EXPECT_NEAR(p.visual.maxRotation, defaults.visual.maxRotation, 1e-3);
+    EXPECT_NEAR(p.visual.keyframeAngle, defaults.visual.keyframeAngle, 1e-3);
+    EXPECT_DOUBLE_EQ(p.visual.ransac.threshold, defaults.visual.ransac.threshold);
+    EXPECT_EQ(p.encoderLabel, "");
 }

@@ -6,6 +6,7 @@
 #include <lodestone/vision/RigidRansac.h>
 #include <mrpt/config/CLoadableOptions.h>
 
+#include <cmath>
 #include <optional>
 
 namespace lodestone::vision {
@@ -56,11 +57,11 @@ class RgbdVisualOdometry {
         RigidRansac::Params ransac;
         int lostAfter{5};            ///< consecutive failed frames before LOST
         double maxTranslation{0.5};  ///< per frame, beyond it the motion is implausible [m]
-        double maxRotation{0.6};     ///< per frame [rad]
+        double maxRotation{35 * M_PI / 180};  ///< per frame [rad]
         /** A tracked frame replaces the reference only once it moved this far from it [m] or
          * turned this much [rad]: fewer, longer steps accumulate less error. 0, 0: every frame. */
         double keyframeDistance{0.10};
-        double keyframeAngle{0.09};
+        double keyframeAngle{5 * M_PI / 180};
         std::uint64_t seed{1};  ///< RANSAC seed (deterministic results)
 
         /** All keys in one section (ORB, matcher and RANSAC keys included). */
