@@ -1,0 +1,145 @@
+#include <lodestone/io/RawlogWriter.h>
+#include <lodestone/io/TumRgbdImport.h>
+#include <lodestone/io/TumTrajectory.h>
+#include <mrpt/obs/CObservation3DRangeScan.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+#include <tuple>
+
+namespace lodestone::io {
+
+namespace fs = std::filesystem;
+
+namespace {
+struct Stamped {
+    double t;
+    std::string file;
+};
+
+// "timestamp filename" lines; '#' comments.
+std::vector<Stamped> readList(const fs::path& path) {
+    std::ifstream in(path);
+    if (!in) throw std::runtime_error(path.string() + ": cannot open");
+    std::vector<Stamped> out;
+    std::string line;
+    for (int n = 1; std::getline(in, line); ++n) {
+        const auto first = line.find_first_not_of(" \t\r");
+        if (first == std::string::npos || line[first] == '#') continue;
+        std::istringstream s(line);
+        Stamped e;
+        if (!(s >> e.t >> e.file) || !std::isfinite(e.t)) {
+            throw std::runtime_error(path.string() + ": line " + std::to_string(n) +
+                                     ": expected 'timestamp filename'");
+        }
+        out.push_back(e);
+    }
+    return out;
+}
+
+// Nearest-time pairs within the tolerance, each side used once (TUM's associate.py).
+std::vector<std::pair<std::size_t, std::size_t>> associateLists(const std::vector<Stamped>& a,
+                                                                const std::vector<Stamped>& b,
+                                                                double maxDt) {
+    std::vector<std::tuple<double, std::size_t, std::size_t>> c;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        for (std::size_t j = 0; j < b.size(); ++j) {
+            const double d = std::abs(a[i].t - b[j].t);
+            if (d <= maxDt) c.emplace_back(d, i, j);
+        }
+    }
+    std::sort(c.begin(), c.end());
+    std::vector<char> ua(a.size(), 0), ub(b.size(), 0);
+    std::vector<std::pair<std::size_t, std::size_t>> out;
+    for (const auto& [d, i, j] : c) {
+        if (ua[i] || ub[j]) continue;
+        ua[i] = ub[j] = 1;
+        out.emplace_back(i, j);
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+}  // namespace
+
+TumIntrinsics TumIntrinsics::parse(const std::string& text) {
+    if (text == "fr1") return {517.3, 516.5, 318.6, 255.3};
+    if (text == "fr2") return {520.9, 521.0, 325.1, 249.7};
+    if (text == "fr3") return {535.4, 539.2, 320.1, 247.6};
+    if (text == "default") return {};
+    TumIntrinsics k;
+    char c1 = 0, c2 = 0, c3 = 0;
+    std::istringstream s(text);
+    if ((s >> k.fx >> c1 >> k.fy >> c2 >> k.cx >> c3 >> k.cy) && c1 == ',' && c2 == ',' &&
+        c3 == ',' && s.peek() == EOF && k.fx > 0 && k.fy > 0) {
+        return k;
+    }
+    throw std::invalid_argument("intrinsics '" + text +
+                                "': expected fr1, fr2, fr3, default or fx,fy,cx,cy");
+}
+
+TumImportResult importTumRgbd(const std::string& sequenceDir, const std::string& outRawlog,
+                              const TumImportOptions& o) {
+    const fs::path dir = fs::absolute(sequenceDir);
+    const auto rgb = readList(dir / "rgb.txt");
+    const auto depth = readList(dir / "depth.txt");
+    const auto pairs = associateLists(rgb, depth, o.maxTimeDifference);
+
+    TumImportResult r;
+    r.rawlog = outRawlog;
+    r.unmatchedRgb = rgb.size() - pairs.size();
+    r.unmatchedDepth = depth.size() - pairs.size();
+    std::string stem = outRawlog;
+    for (const std::string ext : {".gz", ".rawlog"}) {
+        if (stem.size() > ext.size() && stem.compare(stem.size() - ext.size(), ext.size(), ext) == 0) {
+            stem.resize(stem.size() - ext.size());
+        }
+    }
+    if (fs::exists(dir / "groundtruth.txt")) {
+        r.groundTruth = stem + ".gt.tum";
+        const auto gt = readTumTrajectory((dir / "groundtruth.txt").string());
+        TumTrajectoryWriter writer(r.groundTruth);
+        for (const auto& p : gt) writer.write(p.timestamp, p.pose);
+        r.groundTruthPoses = gt.size();
+    }
+
+    RawlogWriter writer(outRawlog, {outRawlog.size() > 3 && outRawlog.substr(outRawlog.size() - 3) == ".gz" ? 1 : 0});
+    for (const auto& [i, j] : pairs) {
+        const fs::path rgbFile = dir / rgb[i].file, depthFile = dir / depth[j].file;
+        if (!fs::exists(rgbFile)) throw std::runtime_error(rgbFile.string() + ": missing (listed in rgb.txt)");
+        const cv::Mat d = cv::imread(depthFile.string(), cv::IMREAD_UNCHANGED);
+        if (d.empty() || d.type() != CV_16UC1) {
+            throw std::runtime_error(depthFile.string() + ": missing or not a 16-bit depth PNG");
+        }
+        auto obs = mrpt::obs::CObservation3DRangeScan::Create();
+        obs->timestamp = mrpt::Clock::fromDouble(rgb[i].t);
+        obs->sensorLabel = o.sensorLabel;
+        obs->sensorPose = mrpt::poses::CPose3D();  // the camera is the robot in TUM sequences
+        auto& cam = obs->cameraParams;
+        cam.ncols = static_cast<uint32_t>(d.cols);
+        cam.nrows = static_cast<uint32_t>(d.rows);
+        cam.fx(o.intrinsics.fx);
+        cam.fy(o.intrinsics.fy);
+        cam.cx(o.intrinsics.cx);
+        cam.cy(o.intrinsics.cy);
+        obs->cameraParamsIntensity = cam;
+        obs->range_is_depth = true;
+        obs->rangeUnits = static_cast<float>(1.0 / o.depthScale);
+        obs->hasRangeImage = true;
+        obs->rangeImage_setSize(d.rows, d.cols);
+        for (int y = 0; y < d.rows; ++y) {
+            for (int x = 0; x < d.cols; ++x) obs->rangeImage(y, x) = d.at<uint16_t>(y, x);
+        }
+        obs->hasIntensityImage = true;
+        obs->intensityImage.setExternalStorage(rgbFile.string());  // absolute: read in place
+        writer.write(*obs);
+        ++r.frames;
+    }
+    writer.close();
+    return r;
+}
+
+}  // namespace lodestone::io
