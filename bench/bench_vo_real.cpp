@@ -27,7 +27,8 @@ RgbdFrame load(const fs::path& dir, int i, double& decodeMs) {
     std::snprintf(name, sizeof(name), "seq-01/frame-%06d", i);
     const auto t0 = std::chrono::steady_clock::now();
     const cv::Mat colour = cv::imread((dir / (std::string(name) + ".color.png")).string());
-    const cv::Mat depth = cv::imread((dir / (std::string(name) + ".depth.png")).string(), cv::IMREAD_UNCHANGED);
+    const cv::Mat depth =
+        cv::imread((dir / (std::string(name) + ".depth.png")).string(), cv::IMREAD_UNCHANGED);
     RgbdFrame f;
     cv::cvtColor(colour, f.gray, cv::COLOR_BGR2GRAY);
     f.depth = depthToMetres(depth, 0.001);
@@ -61,11 +62,12 @@ int main(int argc, char** argv) {
         RgbdVisualOdometry vo;
         vo.process(load(dir, 0, unused));
         const auto r = vo.process(load(dir, other, unused));
-        const Eigen::Isometry3d err = (pose(dir, 0).inverse() * pose(dir, other)).inverse() * r.T_ref_cur;
-        std::printf("| accuracy | 0 -> %d | %s | %zu inliers of %zu matches | %.2f cm | %.3f deg |\n",
-                    other, r.success ? "tracked" : toString(r.failure), r.inliers, r.matches,
-                    100 * err.translation().norm(),
-                    Eigen::AngleAxisd(err.rotation()).angle() * 180 / M_PI);
+        const Eigen::Isometry3d err =
+            (pose(dir, 0).inverse() * pose(dir, other)).inverse() * r.T_ref_cur;
+        std::printf(
+            "| accuracy | 0 -> %d | %s | %zu inliers of %zu matches | %.2f cm | %.3f deg |\n",
+            other, r.success ? "tracked" : toString(r.failure), r.inliers, r.matches,
+            100 * err.translation().norm(), Eigen::AngleAxisd(err.rotation()).angle() * 180 / M_PI);
     }
     // Time: the five frames in a loop, as a sequence.
     const int frames[] = {0, 1, 2, 0, 1};
@@ -89,8 +91,10 @@ int main(int argc, char** argv) {
         }
     }
     const double total = (decode + orb + match + ransac) / n;
-    std::printf("| time | %d frames | decode %.2f | ORB %.2f | matching %.2f | RANSAC %.2f | total %.2f ms | ORB alone %.2f ms | VO step / ORB alone %.2f | whole / ORB alone %.2f |\n",
-                n, decode / n, orb / n, match / n, ransac / n, total, floor / n,
-                (orb + match + ransac) / floor, total / (floor / n));
+    std::printf(
+        "| time | %d frames | decode %.2f | ORB %.2f | matching %.2f | RANSAC %.2f | total %.2f ms "
+        "| ORB alone %.2f ms | VO step / ORB alone %.2f | whole / ORB alone %.2f |\n",
+        n, decode / n, orb / n, match / n, ransac / n, total, floor / n,
+        (orb + match + ransac) / floor, total / (floor / n));
     return 0;
 }

@@ -13,9 +13,8 @@ int importTum(const std::vector<std::string>& words, std::ostream& out, std::ost
     TCLAP::UnlabeledMultiArg<std::string> positional(
         "DIR_OUT", "DIR (the sequence: rgb.txt, depth.txt, groundtruth.txt) then OUT.rawlog", true,
         "DIR OUT", cmd);
-    TCLAP::ValueArg<std::string> intrinsics("", "intrinsics",
-                                            "fr1, fr2, fr3, default or fx,fy,cx,cy", false, "fr1",
-                                            "K", cmd);
+    TCLAP::ValueArg<std::string> intrinsics(
+        "", "intrinsics", "fr1, fr2, fr3, default or fx,fy,cx,cy", false, "fr1", "K", cmd);
     TCLAP::ValueArg<double> maxDt("", "max-dt", "RGB-depth association tolerance [s]", false, 0.02,
                                   "S", cmd);
     const auto outcome = config::parseCommandLine(cmd, words);
@@ -34,8 +33,8 @@ int importTum(const std::vector<std::string>& words, std::ostream& out, std::ost
     }
     o.maxTimeDifference = maxDt.getValue();
     const auto r = importTumRgbd(positional.getValue()[0], positional.getValue()[1], o);
-    out << r.frames << " RGB-D frames -> " << r.rawlog << " (" << r.unmatchedRgb
-        << " colour and " << r.unmatchedDepth << " depth images without a partner)\n";
+    out << r.frames << " RGB-D frames -> " << r.rawlog << " (" << r.unmatchedRgb << " colour and "
+        << r.unmatchedDepth << " depth images without a partner)\n";
     if (!r.groundTruth.empty()) {
         out << r.groundTruthPoses << " ground-truth poses -> " << r.groundTruth << "\n";
     }

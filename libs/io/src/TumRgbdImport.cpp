@@ -94,7 +94,8 @@ TumImportResult importTumRgbd(const std::string& sequenceDir, const std::string&
     r.unmatchedDepth = depth.size() - pairs.size();
     std::string stem = outRawlog;
     for (const std::string ext : {".gz", ".rawlog"}) {
-        if (stem.size() > ext.size() && stem.compare(stem.size() - ext.size(), ext.size(), ext) == 0) {
+        if (stem.size() > ext.size() &&
+            stem.compare(stem.size() - ext.size(), ext.size(), ext) == 0) {
             stem.resize(stem.size() - ext.size());
         }
     }
@@ -106,10 +107,13 @@ TumImportResult importTumRgbd(const std::string& sequenceDir, const std::string&
         r.groundTruthPoses = gt.size();
     }
 
-    RawlogWriter writer(outRawlog, {outRawlog.size() > 3 && outRawlog.substr(outRawlog.size() - 3) == ".gz" ? 1 : 0});
+    RawlogWriter writer(
+        outRawlog,
+        {outRawlog.size() > 3 && outRawlog.substr(outRawlog.size() - 3) == ".gz" ? 1 : 0});
     for (const auto& [i, j] : pairs) {
         const fs::path rgbFile = dir / rgb[i].file, depthFile = dir / depth[j].file;
-        if (!fs::exists(rgbFile)) throw std::runtime_error(rgbFile.string() + ": missing (listed in rgb.txt)");
+        if (!fs::exists(rgbFile))
+            throw std::runtime_error(rgbFile.string() + ": missing (listed in rgb.txt)");
         const cv::Mat d = cv::imread(depthFile.string(), cv::IMREAD_UNCHANGED);
         if (d.empty() || d.type() != CV_16UC1) {
             throw std::runtime_error(depthFile.string() + ": missing or not a 16-bit depth PNG");

@@ -76,8 +76,8 @@ TEST(TumRgbdImport, RealKinectFramesInTumLayout) {
     EXPECT_EQ(r.groundTruthPoses, 5u);
 
     io::RawlogSource source(r.rawlog);
-    const cv::Mat mm0 = cv::imread((k3dMatch / "seq-01/frame-000000.depth.png").string(),
-                                   cv::IMREAD_UNCHANGED);
+    const cv::Mat mm0 =
+        cv::imread((k3dMatch / "seq-01/frame-000000.depth.png").string(), cv::IMREAD_UNCHANGED);
     std::size_t n = 0;
     while (auto obs = source.next()) {
         auto s = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(obs);
@@ -88,7 +88,8 @@ TEST(TumRgbdImport, RealKinectFramesInTumLayout) {
         if (n == 0) {
             // Depth in metres survives the 1/5000 m units exactly.
             for (const auto& [y, x] : {std::pair{240, 320}, {100, 500}, {400, 50}}) {
-                EXPECT_NEAR(s->rangeImage(y, x) * s->rangeUnits, mm0.at<uint16_t>(y, x) / 1000.0, 1e-6);
+                EXPECT_NEAR(s->rangeImage(y, x) * s->rangeUnits, mm0.at<uint16_t>(y, x) / 1000.0,
+                            1e-6);
             }
         }
         ++n;
@@ -118,7 +119,8 @@ TEST(TumRgbdImport, SyntheticSequenceThroughTheApp) {
     rgb.close();
     depth.close();
     const std::string out = dir.file("sim.rawlog.gz");
-    std::vector<std::string> args = {"lodestone-import", "tum", seq.string(), out, "--intrinsics", "fr2"};
+    std::vector<std::string> args = {"lodestone-import", "tum", seq.string(), out,
+                                     "--intrinsics",     "fr2"};
     std::vector<const char*> argv;
     for (const auto& a : args) argv.push_back(a.c_str());
     std::ostringstream o, e;
@@ -147,5 +149,6 @@ TEST(TumRgbdImport, BadInputIsNamed) {
         EXPECT_NE(std::string(e.what()).find("rgb.txt: line 2"), std::string::npos) << e.what();
     }
     EXPECT_THROW(io::TumIntrinsics::parse("fr4"), std::invalid_argument);
-    EXPECT_THROW(io::importTumRgbd(dir.file("nowhere"), dir.file("o.rawlog"), {}), std::runtime_error);
+    EXPECT_THROW(io::importTumRgbd(dir.file("nowhere"), dir.file("o.rawlog"), {}),
+                 std::runtime_error);
 }

@@ -50,8 +50,8 @@ TEST(TumFromSimulator, RenderedSequenceImportsWithItsGroundTruth) {
         cv::imwrite((seq / "depth" / name).string(), tum);
         rgb << sc.startTime + t << " rgb/" << name << "\n";
         depth << sc.startTime + t + 0.003 << " depth/" << name << "\n";
-        gt.write(sc.startTime + t, mrpt::poses::CPose3D(s.position.x(), s.position.y(),
-                                                        s.position.z(), s.yaw, 0, 0));
+        gt.write(sc.startTime + t,
+                 mrpt::poses::CPose3D(s.position.x(), s.position.y(), s.position.z(), s.yaw, 0, 0));
     }
     rgb.close();
     depth.close();
@@ -71,5 +71,6 @@ TEST(TumFromSimulator, RenderedSequenceImportsWithItsGroundTruth) {
     }
     const auto truth = io::readTumTrajectory(r.groundTruth);
     ASSERT_EQ(truth.size(), 10u);
-    EXPECT_NEAR(truth[3].pose.yaw(), sim::sensorInWorld(source.truePose(1.5), 0.1, 0, 0.45, 0).yaw, 1e-6);
+    EXPECT_NEAR(truth[3].pose.yaw(), sim::sensorInWorld(source.truePose(1.5), 0.1, 0, 0.45, 0).yaw,
+                1e-6);
 }

@@ -22,7 +22,7 @@ struct TumImportOptions {
 };
 
 struct TumImportResult {
-    std::size_t frames{0};           ///< associated RGB-D pairs written
+    std::size_t frames{0};  ///< associated RGB-D pairs written
     std::size_t unmatchedRgb{0}, unmatchedDepth{0};
     std::size_t groundTruthPoses{0};  ///< 0 when the sequence has no groundtruth.txt
     std::string rawlog, groundTruth;
