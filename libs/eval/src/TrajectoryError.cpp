@@ -1,4 +1,5 @@
 #include <lodestone/eval/TrajectoryError.h>
+#include <lodestone/io/TimeAssociation.h>
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -24,26 +25,10 @@ double rms(const std::vector<double>& v) {
 std::vector<std::pair<std::size_t, std::size_t>> associate(const std::vector<io::TumPose>& est,
                                                            const std::vector<io::TumPose>& gt,
                                                            double maxDt) {
-    // Candidate pairs by time difference, best first; each side used once (TUM's associate.py).
-    std::vector<std::tuple<double, std::size_t, std::size_t>> candidates;
-    std::size_t lo = 0;
-    for (std::size_t i = 0; i < est.size(); ++i) {
-        while (lo < gt.size() && gt[lo].timestamp < est[i].timestamp - maxDt) ++lo;
-        for (std::size_t j = lo; j < gt.size() && gt[j].timestamp <= est[i].timestamp + maxDt;
-             ++j) {
-            candidates.emplace_back(std::abs(gt[j].timestamp - est[i].timestamp), i, j);
-        }
-    }
-    std::sort(candidates.begin(), candidates.end());
-    std::vector<char> usedE(est.size(), 0), usedG(gt.size(), 0);
-    std::vector<std::pair<std::size_t, std::size_t>> out;
-    for (const auto& [dt, i, j] : candidates) {
-        if (usedE[i] || usedG[j]) continue;
-        usedE[i] = usedG[j] = 1;
-        out.emplace_back(i, j);
-    }
-    std::sort(out.begin(), out.end());
-    return out;
+    std::vector<double> a, b;
+    for (const auto& p : est) a.push_back(p.timestamp);
+    for (const auto& p : gt) b.push_back(p.timestamp);
+    return io::associateByTime(a, b, maxDt);
 }
 
 AteResult absoluteTrajectoryError(const std::vector<io::TumPose>& est,

@@ -1,4 +1,5 @@
 #include <lodestone/inspect/MagnetometerToImu.h>
+#include <lodestone/io/RawlogPaths.h>
 #include <lodestone/io/RawlogReader.h>
 #include <lodestone/io/RawlogWriter.h>
 #include <lodestone/obs/CObservationWheelDrop.h>
@@ -8,18 +9,11 @@
 
 namespace lodestone::inspect {
 
-namespace {
-bool endsWith(const std::string& s, const std::string& suffix) {
-    return s.size() >= suffix.size() &&
-           s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-}  // namespace
-
 MagnetometerToImuResult magnetometersToImu(const std::string& inPath, const std::string& outPath,
                                            lodestone::obs::MagneticUnit imuUnit) {
     using lodestone::obs::CObservationMagnetometer;
     io::RawlogReader reader(inPath);
-    io::RawlogWriter writer(outPath, {endsWith(outPath, ".gz") ? 6 : 0});
+    io::RawlogWriter writer(outPath, {io::isGzipPath(outPath) ? 6 : 0});
     MagnetometerToImuResult result;
     const auto convert =
         [&](const mrpt::obs::CObservation::Ptr& obs) -> mrpt::obs::CObservation::Ptr {

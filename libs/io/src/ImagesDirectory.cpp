@@ -1,4 +1,5 @@
 #include <lodestone/io/ImagesDirectory.h>
+#include <lodestone/io/RawlogPaths.h>
 
 #include <filesystem>
 
@@ -8,13 +9,7 @@ namespace fs = std::filesystem;
 
 std::string findImagesDirectory(const std::string& rawlogPath) {
     const fs::path path(rawlogPath);
-    std::string base = path.filename().string();
-    for (const std::string ext : {".gz", ".rawlog"}) {
-        if (base.size() > ext.size() &&
-            base.compare(base.size() - ext.size(), ext.size(), ext) == 0) {
-            base.resize(base.size() - ext.size());
-        }
-    }
+    const std::string base = rawlogStem(path.filename().string());
     const fs::path dir = path.parent_path();
     const fs::path candidates[] = {dir / (base + "_Images"), dir / (base + "_images"),
                                    dir / (base + "_IMAGES"), dir / "Images"};

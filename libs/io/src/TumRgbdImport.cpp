@@ -1,4 +1,6 @@
+#include <lodestone/io/RawlogPaths.h>
 #include <lodestone/io/RawlogWriter.h>
+#include <lodestone/io/TimeAssociation.h>
 #include <lodestone/io/TumRgbdImport.h>
 #include <lodestone/io/TumTrajectory.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
@@ -9,7 +11,6 @@
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
-#include <tuple>
 
 namespace lodestone::io {
 
@@ -41,28 +42,6 @@ std::vector<Stamped> readList(const fs::path& path) {
     return out;
 }
 
-// Nearest-time pairs within the tolerance, each side used once (TUM's associate.py).
-std::vector<std::pair<std::size_t, std::size_t>> associateLists(const std::vector<Stamped>& a,
-                                                                const std::vector<Stamped>& b,
-                                                                double maxDt) {
-    std::vector<std::tuple<double, std::size_t, std::size_t>> c;
-    for (std::size_t i = 0; i < a.size(); ++i) {
-        for (std::size_t j = 0; j < b.size(); ++j) {
-            const double d = std::abs(a[i].t - b[j].t);
-            if (d <= maxDt) c.emplace_back(d, i, j);
-        }
-    }
-    std::sort(c.begin(), c.end());
-    std::vector<char> ua(a.size(), 0), ub(b.size(), 0);
-    std::vector<std::pair<std::size_t, std::size_t>> out;
-    for (const auto& [d, i, j] : c) {
-        if (ua[i] || ub[j]) continue;
-        ua[i] = ub[j] = 1;
-        out.emplace_back(i, j);
-    }
-    std::sort(out.begin(), out.end());
-    return out;
-}
 }  // namespace
 
 TumIntrinsics TumIntrinsics::parse(const std::string& text) {
@@ -86,7 +65,14 @@ TumImportResult importTumRgbd(const std::string& sequenceDir, const std::string&
     const fs::path dir = fs::absolute(sequenceDir);
     const auto rgb = readList(dir / "rgb.txt");
     const auto depth = readList(dir / "depth.txt");
-    const auto pairs = associateLists(rgb, depth, o.maxTimeDifference);
+    std::vector<double> rgbTimes, depthTimes;
+    for (const auto& e : rgb) rgbTimes.push_back(e.t);
+    for (const auto& e : depth) depthTimes.push_back(e.t);
+    if (!std::is_sorted(rgbTimes.begin(), rgbTimes.end()) ||
+        !std::is_sorted(depthTimes.begin(), depthTimes.end())) {
+        throw std::runtime_error(dir.string() + ": rgb.txt / depth.txt are not in time order");
+    }
+    const auto pairs = associateByTime(rgbTimes, depthTimes, o.maxTimeDifference);
 
     TumImportResult r;
     r.rawlog = outRawlog;
@@ -107,9 +93,7 @@ TumImportResult importTumRgbd(const std::string& sequenceDir, const std::string&
         r.groundTruthPoses = gt.size();
     }
 
-    RawlogWriter writer(
-        outRawlog,
-        {outRawlog.size() > 3 && outRawlog.substr(outRawlog.size() - 3) == ".gz" ? 1 : 0});
+    RawlogWriter writer(outRawlog, {isGzipPath(outRawlog) ? 1 : 0});
     for (const auto& [i, j] : pairs) {
         const fs::path rgbFile = dir / rgb[i].file, depthFile = dir / depth[j].file;
         if (!fs::exists(rgbFile))

@@ -1,4 +1,5 @@
 #include <lodestone/io/ImagesDirectory.h>
+#include <lodestone/io/RawlogPaths.h>
 #include <lodestone/io/RawlogWriter.h>
 #include <lodestone/io/TumTrajectory.h>
 #include <lodestone/sim/ScenarioRecorder.h>
@@ -13,19 +14,6 @@
 namespace lodestone::sim {
 
 namespace {
-bool endsWith(const std::string& s, const std::string& suffix) {
-    return s.size() >= suffix.size() &&
-           s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
-std::string stemOf(const std::string& rawlog) {
-    std::string base = rawlog;
-    for (const std::string ext : {".gz", ".rawlog"}) {
-        if (endsWith(base, ext)) base.resize(base.size() - ext.size());
-    }
-    return base;
-}
-
 mrpt::poses::CPose3D toPose3D(const RobotPose& p) { return {p.x, p.y, p.z, p.yaw, 0, 0}; }
 
 // Moves a frame's colour image out of the observation into a PNG in `dir`. Depth stays in the
@@ -45,7 +33,7 @@ void externalize(mrpt::obs::CObservation3DRangeScan& scan, const std::string& di
 RecordingSummary recordScenario(SimulatorSource& source, const std::string& outRawlog,
                                 const std::function<void(double)>& progress) {
     RecordingSummary r;
-    const std::string stem = stemOf(outRawlog);
+    const std::string stem = io::rawlogStem(outRawlog);
     r.rawlog = outRawlog;
     r.groundTruth = stem + ".gt.tum";
     r.events = stem + ".events.txt";
@@ -74,7 +62,7 @@ RecordingSummary recordScenario(SimulatorSource& source, const std::string& outR
         }
     }
 
-    io::RawlogWriter writer(outRawlog, {endsWith(outRawlog, ".gz") ? 1 : 0});
+    io::RawlogWriter writer(outRawlog, {io::isGzipPath(outRawlog) ? 1 : 0});
     io::TumTrajectoryWriter gt(r.groundTruth);
     double lastReported = -1;
     while (auto obs = source.next()) {
