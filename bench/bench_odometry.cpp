@@ -90,27 +90,7 @@ int main(int argc, char** argv) {
                         methods[m].c_str(), ate.rmse, rpeS.translationRmse,
                         100 * rpeM.translationRmse, drift);
         }
-        // VO alone on stretches it tracked throughout: 1 m pairs with every frame between tracked.
-        std::vector<io::TumPose> voEst, voGt;
-        double best = 0;
-        for (std::size_t i = 0; i < gt.size(); ++i) {
-            if (!tracked[i]) {
-                // A break: evaluate the run so far and start a new one.
-                if (voEst.size() > 10) {
-                    const auto r =
-                        eval::relativePoseError(voEst, voGt, eval::RpeInterval::Metres, 1.0);
-                    best = std::max(best, 0.0);
-                    (void)r;
-                }
-                voEst.clear();
-                voGt.clear();
-                continue;
-            }
-            voEst.push_back(est[1][i]);
-            voGt.push_back(gt[i]);
-        }
-        (void)best;
-        // Simpler and honest: RPE per metre of VO over pairs whose whole interval was tracked.
+        // VO alone where it tracked: RPE per metre over 1 m pairs with every frame between tracked.
         std::vector<double> errs;
         {
             std::vector<double> travelled(gt.size(), 0);
@@ -118,15 +98,14 @@ int main(int argc, char** argv) {
                 travelled[k] = travelled[k - 1] + std::hypot(gt[k].pose.x() - gt[k - 1].pose.x(),
                                                              gt[k].pose.y() - gt[k - 1].pose.y());
             }
-            std::size_t j = 0, lastBreak = 0;
+            std::size_t j = 0;
             for (std::size_t i = 0; i < gt.size(); ++i) {
-                if (!tracked[i]) lastBreak = i;
                 j = std::max(j, i);
                 while (j < gt.size() && travelled[j] - travelled[i] < 1.0) ++j;
                 if (j >= gt.size()) break;
                 bool all = true;
                 for (std::size_t k = i + 1; k <= j && all; ++k) all = tracked[k];
-                if (!all || lastBreak > i) continue;
+                if (!all) continue;
                 const auto dE = est[1][j].pose - est[1][i].pose, dG = gt[j].pose - gt[i].pose;
                 errs.push_back(std::hypot(dE.x() - dG.x(), dE.y() - dG.y()));
             }
