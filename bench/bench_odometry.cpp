@@ -3,11 +3,12 @@
 //   1. per method: ATE RMSE [m], RPE per second [m], RPE per metre [%], final drift [m];
 //   2. VO: frames tracked / failed / LOST, RPE per metre over stretches VO tracked throughout,
 //      and time per frame split into decode (observation -> frame), ORB, matching, RANSAC.
-//   bench_odometry SCENARIO.ini [WIDTHxHEIGHT@HZ] [SECONDS]
+//   bench_odometry SCENARIO.ini [WIDTHxHEIGHT@HZ|-] [SECONDS] [ODOMETRY.ini]
 #include <lodestone/eval/TrajectoryError.h>
 #include <lodestone/odometry/FusedOdometry.h>
 #include <lodestone/odometry/RgbdObservationFrame.h>
 #include <lodestone/sim/SimulatorSource.h>
+#include <mrpt/config/CConfigFile.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 
 #include <chrono>
@@ -18,12 +19,12 @@ using namespace lodestone;
 
 int main(int argc, char** argv) {
     if (argc < 2) {
-        std::cerr << "usage: bench_odometry SCENARIO.ini [WIDTHxHEIGHT@HZ] [SECONDS]\n";
+        std::cerr << "usage: bench_odometry SCENARIO.ini [WIDTHxHEIGHT@HZ|-] [SECONDS] [ODOMETRY.ini]\n";
         return 2;
     }
     try {
         sim::Scenario sc = sim::Scenario::load(argv[1]);
-        if (argc > 2) {
+        if (argc > 2 && std::string(argv[2]) != "-") {
             int w = 0, h = 0;
             double hz = 0;
             if (std::sscanf(argv[2], "%dx%d@%lf", &w, &h, &hz) != 3)
@@ -34,6 +35,7 @@ int main(int argc, char** argv) {
         const double limit = argc > 3 ? std::atof(argv[3]) : 1e9;
         sim::SimulatorSource source(sc, sc.seed);
         odometry::FusedOdometry::Params params;
+        if (argc > 4) params.loadFromConfigFile(mrpt::config::CConfigFile(argv[4]), "odometry_fusion");
         params.wheels.wheelBase = sc.motion.wheelBase;
         params.wheels.wheelRadius = sc.motion.wheelRadius;
         params.wheels.ticksPerRev = sc.encoders.ticksPerRev;
