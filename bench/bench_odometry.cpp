@@ -7,6 +7,7 @@
 #include <lodestone/eval/TrajectoryError.h>
 #include <lodestone/odometry/FusedOdometry.h>
 #include <lodestone/odometry/RgbdObservationFrame.h>
+#include <lodestone/sim/RgbdRenderer.h>
 #include <lodestone/sim/SimulatorSource.h>
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
@@ -19,7 +20,8 @@ using namespace lodestone;
 
 int main(int argc, char** argv) {
     if (argc < 2) {
-        std::cerr << "usage: bench_odometry SCENARIO.ini [WIDTHxHEIGHT@HZ|-] [SECONDS] [ODOMETRY.ini]\n";
+        std::cerr
+            << "usage: bench_odometry SCENARIO.ini [WIDTHxHEIGHT@HZ|-] [SECONDS] [ODOMETRY.ini]\n";
         return 2;
     }
     try {
@@ -35,7 +37,8 @@ int main(int argc, char** argv) {
         const double limit = argc > 3 ? std::atof(argv[3]) : 1e9;
         sim::SimulatorSource source(sc, sc.seed);
         odometry::FusedOdometry::Params params;
-        if (argc > 4) params.loadFromConfigFile(mrpt::config::CConfigFile(argv[4]), "odometry_fusion");
+        if (argc > 4)
+            params.loadFromConfigFile(mrpt::config::CConfigFile(argv[4]), "odometry_fusion");
         params.wheels.wheelBase = sc.motion.wheelBase;
         params.wheels.wheelRadius = sc.motion.wheelRadius;
         params.wheels.ticksPerRev = sc.encoders.ticksPerRev;
@@ -44,7 +47,10 @@ int main(int argc, char** argv) {
 
         std::vector<std::vector<io::TumPose>> est(methods.size());
         std::vector<io::TumPose> gt;
-        std::vector<char> tracked;
+        std::vector<char> tracked, texturedView;
+        // What the camera sees, from the world's ground truth: half the columns or more on
+        // textured walls makes a "textured" frame.
+        const sim::RgbdRenderer truthRenderer(source.world(), sc.camera, 1);
         std::size_t ok = 0, failed = 0, lost = 0;
         double decodeMs = 0, orbMs = 0, matchMs = 0, ransacMs = 0;
         const auto take = [&](const std::vector<odometry::FusedOdometry::Estimate>& es) {
@@ -57,6 +63,9 @@ int main(int argc, char** argv) {
                 const auto t = source.truePose(e.timestamp - sc.startTime);
                 gt.push_back({e.timestamp, mrpt::poses::CPose3D(t.x, t.y, 0, t.yaw, 0, 0)});
                 tracked.push_back(e.visual.success);
+                const auto& cm = sc.camera.pose;
+                const auto cs = sim::sensorInWorld(t, cm.x, cm.y, cm.z, cm.yaw);
+                texturedView.push_back(truthRenderer.texturedFraction(cs.position, cs.yaw) >= 0.5);
                 ok += e.visual.success;
                 lost += e.visual.state == vision::VoState::Lost;
                 failed += !e.visual.success && e.visual.state != vision::VoState::Lost;
@@ -92,8 +101,9 @@ int main(int argc, char** argv) {
                         methods[m].c_str(), ate.rmse, rpeS.translationRmse,
                         100 * rpeM.translationRmse, drift);
         }
-        // VO alone where it tracked: RPE per metre over 1 m pairs with every frame between tracked.
-        std::vector<double> errs;
+        // VO alone where it tracked: RPE per metre over 1 m pairs with every frame between tracked
+        // (and, second figure, every frame between also looking at textured walls).
+        std::vector<double> errs, texturedErrs;
         {
             std::vector<double> travelled(gt.size(), 0);
             for (std::size_t k = 1; k < gt.size(); ++k) {
@@ -105,22 +115,30 @@ int main(int argc, char** argv) {
                 j = std::max(j, i);
                 while (j < gt.size() && travelled[j] - travelled[i] < 1.0) ++j;
                 if (j >= gt.size()) break;
-                bool all = true;
-                for (std::size_t k = i + 1; k <= j && all; ++k) all = tracked[k];
+                bool all = true, textured = texturedView[i];
+                for (std::size_t k = i + 1; k <= j && all; ++k) {
+                    all = tracked[k];
+                    textured = textured && texturedView[k];
+                }
                 if (!all) continue;
                 const auto dE = est[1][j].pose - est[1][i].pose, dG = gt[j].pose - gt[i].pose;
                 errs.push_back(std::hypot(dE.x() - dG.x(), dE.y() - dG.y()));
+                if (textured) texturedErrs.push_back(errs.back());
             }
         }
-        double sq = 0;
-        for (double e : errs) sq += e * e;
-        const double voRpe = errs.empty() ? std::nan("") : std::sqrt(sq / errs.size());
+        const auto rmsOf = [](const std::vector<double>& v) {
+            double sq = 0;
+            for (double e : v) sq += e * e;
+            return v.empty() ? std::nan("") : std::sqrt(sq / v.size());
+        };
+        const double voRpe = rmsOf(errs), texturedRpe = rmsOf(texturedErrs);
         std::fprintf(stderr,
-                     "VO | %s | %dx%d@%.0f | %zu | %zu | %zu | %.2f %% (%zu pairs) | %.2f | %.2f | "
-                     "%.2f | %.2f | %.2f |\n",
+                     "VO | %s | %dx%d@%.0f | %zu | %zu | %zu | %.2f %% (%zu pairs) | %.2f %% (%zu "
+                     "pairs) | %.2f | %.2f | %.2f | %.2f | %.2f |\n",
                      sc.name.c_str(), sc.camera.width, sc.camera.height, sc.camera.rate, ok, failed,
-                     lost, 100 * voRpe, errs.size(), decodeMs / n, orbMs / n, matchMs / n,
-                     ransacMs / n, (decodeMs + orbMs + matchMs + ransacMs) / n);
+                     lost, 100 * voRpe, errs.size(), 100 * texturedRpe, texturedErrs.size(),
+                     decodeMs / n, orbMs / n, matchMs / n, ransacMs / n,
+                     (decodeMs + orbMs + matchMs + ransacMs) / n);
     } catch (const std::exception& e) {
         std::cerr << "bench_odometry: " << e.what() << "\n";
         return 1;

@@ -26,8 +26,8 @@ done
 echo
 echo "### Visual odometry on the same runs (time per frame on one core, ms)"
 echo
-echo "| scenario | camera | tracked | failed | LOST | VO RPE where tracked [% of 1 m] | decode | ORB | matching | RANSAC | total |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|"
+echo "| scenario | camera | tracked | failed | LOST | VO RPE where tracked [% of 1 m] | ... and the view textured | decode | ORB | matching | RANSAC | total |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
 sed -n 's/^VO //p' "$vo_rows"
 data="$root/../shared/data/rgbd/3dmatch"
 if [ -d "$data" ]; then

@@ -83,6 +83,20 @@ void RgbdRenderer::render(const Eigen::Vector3d& pos, double yaw, Random& rng, c
     }
 }
 
+double RgbdRenderer::texturedFraction(const Eigen::Vector3d& pos, double yaw) const {
+    const Eigen::Vector2d forward(std::cos(yaw), std::sin(yaw)),
+        left(-std::sin(yaw), std::cos(yaw));
+    int textured = 0;
+    for (int c = 0; c < camera_.width; ++c) {
+        const Eigen::Vector2d h = forward + ((camera_.cx - c) / camera_.fx) * left;
+        const auto wall = world_.floorPlan().castRay(pos.head<2>(), h, 1e-9, camera_.maxRange);
+        if (!wall) continue;
+        const int surface = world_.floorPlan().walls()[wall->wall].surface;
+        textured += world_.wallStyle(surface) != SurfaceStyle::Plain;
+    }
+    return static_cast<double>(textured) / camera_.width;
+}
+
 double RgbdRenderer::idealDepth(const Eigen::Vector3d& pos, double yaw, int row, int col) const {
     const Eigen::Vector2d forward(std::cos(yaw), std::sin(yaw)),
         left(-std::sin(yaw), std::cos(yaw));

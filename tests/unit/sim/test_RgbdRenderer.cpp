@@ -123,3 +123,15 @@ TEST(SurfaceTextureImage, APhotoIsTiledAtItsWidth) {
         SurfaceTexture::generate(SurfaceSpec::parse("image:/nonexistent.png:1"), 1, 1, 50, rng),
         std::runtime_error);
 }
+
+TEST_F(RgbdRendererTest, TexturedFractionSaysWhatTheCameraFaces) {
+    const RgbdRenderer renderer(*world_, camera_, 1);
+    // Facing the posters wall at x = 8 from 4 m: every column ends on it.
+    EXPECT_DOUBLE_EQ(renderer.texturedFraction({4.0, 0.0, 1.2}, 0.0), 1.0);
+    // Facing the plain wall at x = -2: none does.
+    EXPECT_DOUBLE_EQ(renderer.texturedFraction({4.0, 0.0, 1.2}, M_PI), 0.0);
+    // Looking at the corner: part of each.
+    const double corner = renderer.texturedFraction({6.0, 1.5, 1.2}, M_PI / 4);
+    EXPECT_GT(corner, 0.1);
+    EXPECT_LT(corner, 0.9);
+}

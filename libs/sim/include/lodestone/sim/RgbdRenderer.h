@@ -23,6 +23,10 @@ class RgbdRenderer {
     void render(const Eigen::Vector3d& position, double yaw, Random& rng, cv::Mat3b& rgb,
                 cv::Mat_<uint16_t>& depth) const;
 
+    /** The share of image columns whose wall, within the depth range, is textured (not plain
+     * paint): what the camera has to work with, from the ground truth of the world. */
+    double texturedFraction(const Eigen::Vector3d& position, double yaw) const;
+
     /** Noise-free depth [m] along the optical axis for one pixel, NaN if nothing is seen
      * within the range limits (for tests). */
     double idealDepth(const Eigen::Vector3d& position, double yaw, int row, int col) const;
