@@ -132,9 +132,9 @@ FusedOdometry::Estimate FusedOdometry::resolve(const Pending& p) {
     Estimate e;
     e.timestamp = p.t;
     e.visual = p.vo;
-    // VO's reference is this frame's, or (when it re-initialized here) this frame itself.
-    oldestReference_ = p.vo.success ? p.vo.referenceTimestamp : p.t;
-    if (!p.vo.success && p.vo.referenceTimestamp > 0) oldestReference_ = p.vo.referenceTimestamp;
+    // VO's reference from now on is this frame's reference, or this frame when VO (re)started
+    // on it (no reference then): older frames are never needed again.
+    oldestReference_ = p.vo.referenceTimestamp > 0 ? p.vo.referenceTimestamp : p.t;
     const Eigen::Vector2d travel = travelAt(p.t);
     if (!last_frame_time_) {
         for (auto& f : fusions_) f->reset({});
@@ -148,7 +148,9 @@ FusedOdometry::Estimate FusedOdometry::resolve(const Pending& p) {
         for (std::size_t m = 0; m < fusions_.size(); ++m) {
             OdometryStep s = step;
             if (visualMotion) {
-                // Re-base: VO says where the robot is relative to it at the reference frame.
+                // Re-base: VO says where the robot is relative to where it was at the reference
+                // frame; express that from this method's pose at the previous frame. (Kalman's
+                // visual track takes the same step: an approximation when frames failed.)
                 const auto ref = recent_[m].find(p.vo.referenceTimestamp);
                 if (ref != recent_[m].end()) {
                     mrpt::poses::CPosePDFGaussian v = robotMotion;
