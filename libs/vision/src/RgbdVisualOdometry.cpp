@@ -46,10 +46,11 @@ void RgbdVisualOdometry::Params::loadFromConfigFile(const mrpt::config::CConfigF
     // One INI section for the whole odometry: the parts read their own keys from it (without
     // checking for strangers); here every key of the section must belong to someone.
     config::IniSection s(source, section, config::sourceName(source));
-    for (const char* k : {"orb_features", "orb_scale_factor", "orb_levels", "orb_fast_threshold",
-                          "min_depth", "max_depth", "match_max_distance", "match_ratio",
-                          "match_cross_check", "ransac_iterations", "ransac_threshold",
-                          "ransac_depth_scale", "min_inliers", "min_inlier_ratio"}) {
+    for (const char* k :
+         {"orb_features", "orb_scale_factor", "orb_levels", "orb_fast_threshold", "min_depth",
+          "max_depth", "match_max_distance", "match_ratio", "match_cross_check",
+          "ransac_iterations", "ransac_threshold", "ransac_depth_scale", "min_inliers",
+          "min_inlier_ratio", "point_noise", "point_depth_noise"}) {
         s.getString(k, "");  // known keys (parsed below by their owners)
     }
     lostAfter = s.getInt("lost_after", lostAfter);

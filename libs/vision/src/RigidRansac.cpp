@@ -3,6 +3,7 @@
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
+#include <Eigen/SVD>
 #include <cmath>
 #include <random>
 
@@ -16,6 +17,9 @@ void RigidRansac::Params::loadFromConfigFile(const mrpt::config::CConfigFileBase
     depthScale = s.getDouble("ransac_depth_scale", depthScale);
     minInliers = s.getInt("min_inliers", minInliers);
     minInlierRatio = s.getDouble("min_inlier_ratio", minInlierRatio);
+    pointNoise = s.getDouble("point_noise", pointNoise);
+    depthNoise = s.getDouble("point_depth_noise", depthNoise);
+    if (pointNoise <= 0) s.fail("point_noise", "must be > 0");
     if (iterations < 1) s.fail("ransac_iterations", "must be >= 1");
     if (threshold <= 0) s.fail("ransac_threshold", "must be > 0");
     if (minInliers < 3) s.fail("min_inliers", "must be >= 3");
@@ -26,12 +30,30 @@ void RigidRansac::Params::dumpToTextStream(std::ostream& out) const {
         << "ransac_threshold   = " << threshold << "  [m]\n"
         << "ransac_depth_scale = " << depthScale << "  [1/m]\n"
         << "min_inliers        = " << minInliers << "\n"
-        << "min_inlier_ratio   = " << minInlierRatio << "\n";
+        << "min_inlier_ratio   = " << minInlierRatio << "\n"
+        << "point_noise        = " << pointNoise << "  [m]\n"
+        << "point_depth_noise  = " << depthNoise << "  [1/m]\n";
 }
 
 Eigen::Isometry3d alignRigid(const Eigen::Matrix3Xd& src, const Eigen::Matrix3Xd& dst) {
     Eigen::Isometry3d T;
     T.matrix() = Eigen::umeyama(src, dst, false);
+    return T;
+}
+
+Eigen::Isometry3d alignRigidWeighted(const Eigen::Matrix3Xd& src, const Eigen::Matrix3Xd& dst,
+                                     const Eigen::VectorXd& weights) {
+    // Paper 001's SVD solution with a weight per pair: weighted centroids, W = sum w q' q^T.
+    const double total = weights.sum();
+    const Eigen::Vector3d cs = (src * weights) / total, cd = (dst * weights) / total;
+    const Eigen::Matrix3Xd qs = src.colwise() - cs, qd = dst.colwise() - cd;
+    const Eigen::Matrix3d W = qs * weights.asDiagonal() * qd.transpose();
+    const Eigen::JacobiSVD<Eigen::Matrix3d> svd(W, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    Eigen::Matrix3d D = Eigen::Matrix3d::Identity();
+    D(2, 2) = (svd.matrixV() * svd.matrixU().transpose()).determinant() < 0 ? -1 : 1;  // no mirror
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = svd.matrixV() * D * svd.matrixU().transpose();
+    T.translation() = cd - T.linear() * cs;
     return T;
 }
 
@@ -76,14 +98,24 @@ RigidEstimate RigidRansac::estimate(const Eigen::Matrix3Xd& src, const Eigen::Ma
         }
     }
     if (best.inliers.size() < 3) return best;
+    // Each pair weighted by its expected noise: depth noise grows with z^2 in both points.
+    const auto weightOf = [&](int i) {
+        const auto sigma = [&](double z) {
+            return params_.pointNoise + params_.depthNoise * z * z;
+        };
+        const double s1 = sigma(src(2, i)), s2 = sigma(dst(2, i));
+        return 1.0 / (s1 * s1 + s2 * s2);
+    };
     // Refit on every inlier, then take the inliers of the refit (twice is enough in practice).
     for (int pass = 0; pass < 2; ++pass) {
         Eigen::Matrix3Xd si(3, best.inliers.size()), di(3, best.inliers.size());
+        Eigen::VectorXd wi(static_cast<Eigen::Index>(best.inliers.size()));
         for (std::size_t k = 0; k < best.inliers.size(); ++k) {
             si.col(static_cast<Eigen::Index>(k)) = src.col(best.inliers[k]);
             di.col(static_cast<Eigen::Index>(k)) = dst.col(best.inliers[k]);
+            wi[static_cast<Eigen::Index>(k)] = weightOf(best.inliers[k]);
         }
-        best.transform = alignRigid(si, di);
+        best.transform = alignRigidWeighted(si, di, wi);
         auto in = inliersOf(best.transform, src, dst);
         if (in.size() < 3) break;
         best.inliers = std::move(in);
@@ -92,18 +124,21 @@ RigidEstimate RigidRansac::estimate(const Eigen::Matrix3Xd& src, const Eigen::Ma
     // dr/dxi = [ -[T src_i]x  I ].
     const auto m = static_cast<Eigen::Index>(best.inliers.size());
     Eigen::Matrix<double, 6, 6> JtJ = Eigen::Matrix<double, 6, 6>::Zero();
-    double ssr = 0;
+    double ssr = 0, weighted = 0;
     for (const int i : best.inliers) {
         const Eigen::Vector3d p = best.transform * src.col(i);
+        const double w = weightOf(i);
         ssr += (p - dst.col(i)).squaredNorm();
+        weighted += w * (p - dst.col(i)).squaredNorm();
         Eigen::Matrix<double, 3, 6> J;
         J << 0, p.z(), -p.y(), 1, 0, 0,  //
             -p.z(), 0, p.x(), 0, 1, 0,   //
             p.y(), -p.x(), 0, 0, 0, 1;
-        JtJ += J.transpose() * J;
+        JtJ += w * J.transpose() * J;
     }
     best.rmse = std::sqrt(ssr / static_cast<double>(m));
-    const double sigma2 = m > 2 ? ssr / static_cast<double>(3 * m - 6) : ssr;
+    // The weights' scale, re-estimated from the residuals (1 when the noise model is right).
+    const double sigma2 = m > 2 ? weighted / static_cast<double>(3 * m - 6) : weighted;
     const Eigen::FullPivLU<Eigen::Matrix<double, 6, 6>> lu(JtJ);
     best.covariance = lu.isInvertible() ? Eigen::Matrix<double, 6, 6>(sigma2 * lu.inverse())
                                         : Eigen::Matrix<double, 6, 6>::Identity();

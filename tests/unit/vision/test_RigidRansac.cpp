@@ -73,3 +73,34 @@ TEST(RigidRansac, PureNoiseGivesNoEstimate) {
     EXPECT_FALSE(ransac.estimate(src, dst, 1).success);
     EXPECT_FALSE(ransac.estimate(src.leftCols(2), dst.leftCols(2), 1).success);  // too few
 }
+
+TEST(RigidRansac, WeightingByDepthNoiseBeatsPlainLeastSquares) {
+    // Noise growing with depth^2, as structured light has it: far points are much worse.
+    double plainErr = 0, weightedErr = 0;
+    for (unsigned seed = 1; seed <= 20; ++seed) {
+        std::mt19937 rng(seed);
+        std::uniform_real_distribution<double> u(-1.5, 1.5), z(0.8, 5.0);
+        std::normal_distribution<double> g(0, 1);
+        const int n = 150;
+        Eigen::Matrix3Xd src(3, n), dst(3, n);
+        Eigen::VectorXd w(n);
+        const auto T = knownMotion();
+        for (int i = 0; i < n; ++i) {
+            src.col(i) = Eigen::Vector3d(u(rng), u(rng), z(rng));
+            dst.col(i) = T * src.col(i);
+            const double sigma = 0.002 + 1.425e-3 * dst(2, i) * dst(2, i);
+            dst.col(i) += sigma * Eigen::Vector3d(g(rng), g(rng), g(rng));
+            w[i] = 1.0 / (sigma * sigma);
+        }
+        plainErr += (knownMotion().inverse() * alignRigid(src, dst)).translation().norm();
+        weightedErr +=
+            (knownMotion().inverse() * alignRigidWeighted(src, dst, w)).translation().norm();
+    }
+    EXPECT_LT(weightedErr, 0.8 * plainErr);
+    // Equal weights are plain least squares.
+    Eigen::Matrix3Xd src, dst;
+    makePairs(20, 0, 0.01, src, dst);
+    const auto a = alignRigid(src, dst);
+    const auto b = alignRigidWeighted(src, dst, Eigen::VectorXd::Constant(20, 3.0));
+    EXPECT_LT((a.matrix() - b.matrix()).norm(), 1e-9);
+}

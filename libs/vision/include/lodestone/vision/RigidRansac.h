@@ -25,7 +25,14 @@ struct RigidEstimate {
 /** SVD alignment of all given pairs (no outlier handling). Needs >= 3 non-collinear pairs. */
 Eigen::Isometry3d alignRigid(const Eigen::Matrix3Xd& src, const Eigen::Matrix3Xd& dst);
 
-/** RANSAC over minimal 3-pair samples, then a refit on all inliers (and a final inlier pass).
+/** The same with a weight per pair (weighted least squares: weighted centroids and
+ * W = sum w_i q'_i q_i^T, reflection fixed). */
+Eigen::Isometry3d alignRigidWeighted(const Eigen::Matrix3Xd& src, const Eigen::Matrix3Xd& dst,
+                                     const Eigen::VectorXd& weights);
+
+/** RANSAC over minimal 3-pair samples, then a refit on all inliers weighted by their expected
+ * noise (sigma = pointNoise + depthNoise z^2 in each point; structured-light depth), and a final
+ * inlier pass.
  * A pair is an inlier when |R src + t - dst| < threshold + depthScale * z_dst^2 (depth noise of
  * structured light grows with z^2). Deterministic for a given seed. */
 class RigidRansac {
@@ -36,6 +43,8 @@ class RigidRansac {
         double depthScale{0.006};     ///< added inlier distance per z^2 [1/m]
         int minInliers{15};           ///< fewer: no estimate
         double minInlierRatio{0.25};  ///< inliers / pairs below this: no estimate
+        double pointNoise{0.01};      ///< 3D point noise at zero depth, for the weights [m]
+        double depthNoise{1.425e-3};  ///< its growth with depth: + depthNoise z^2 [1/m]
 
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                                 const std::string& section) override;
