@@ -8,6 +8,10 @@ namespace lodestone::vision {
 void DescriptorMatcher::Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                                                    const std::string& section) {
     config::IniSection s(source, section, config::sourceName(source));
+    read(s);
+}
+
+void DescriptorMatcher::Params::read(config::IniSection& s) {
     maxDistance = s.getInt("match_max_distance", maxDistance);
     ratio = s.getDouble("match_ratio", ratio);
     crossCheck = s.getBool("match_cross_check", crossCheck);

@@ -9,6 +9,10 @@ namespace lodestone::vision {
 void OrbExtractor::Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                                               const std::string& section) {
     config::IniSection s(source, section, config::sourceName(source));
+    read(s);
+}
+
+void OrbExtractor::Params::read(config::IniSection& s) {
     features = s.getInt("orb_features", features);
     scaleFactor = s.getDouble("orb_scale_factor", scaleFactor);
     levels = s.getInt("orb_levels", levels);

@@ -43,16 +43,12 @@ const char* toString(VoFailure f) {
 
 void RgbdVisualOdometry::Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                                                     const std::string& section) {
-    // One INI section for the whole odometry: the parts read their own keys from it (without
-    // checking for strangers); here every key of the section must belong to someone.
+    // One INI section for the whole odometry: each part reads its own keys from it, and then
+    // every key of the section must have belonged to someone.
     config::IniSection s(source, section, config::sourceName(source));
-    for (const char* k :
-         {"orb_features", "orb_scale_factor", "orb_levels", "orb_fast_threshold", "min_depth",
-          "max_depth", "match_max_distance", "match_ratio", "match_cross_check",
-          "ransac_iterations", "ransac_threshold", "ransac_depth_scale", "min_inliers",
-          "min_inlier_ratio", "point_noise", "point_depth_noise"}) {
-        s.getString(k, "");  // known keys (parsed below by their owners)
-    }
+    orb.read(s);
+    matcher.read(s);
+    ransac.read(s);
     lostAfter = s.getInt("lost_after", lostAfter);
     maxTranslation = s.getDouble("max_translation", maxTranslation);
     maxRotation = s.getDouble("max_rotation_deg", maxRotation * 180 / M_PI) * M_PI / 180;
@@ -61,9 +57,6 @@ void RgbdVisualOdometry::Params::loadFromConfigFile(const mrpt::config::CConfigF
     keyframeAngle = s.getDouble("keyframe_angle_deg", keyframeAngle * 180 / M_PI) * M_PI / 180;
     if (lostAfter < 1) s.fail("lost_after", "must be >= 1");
     s.finish();
-    orb.loadFromConfigFile(source, section);
-    matcher.loadFromConfigFile(source, section);
-    ransac.loadFromConfigFile(source, section);
 }
 
 void RgbdVisualOdometry::Params::dumpToTextStream(std::ostream& out) const {

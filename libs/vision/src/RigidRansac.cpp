@@ -12,6 +12,10 @@ namespace lodestone::vision {
 void RigidRansac::Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                                              const std::string& section) {
     config::IniSection s(source, section, config::sourceName(source));
+    read(s);
+}
+
+void RigidRansac::Params::read(config::IniSection& s) {
     iterations = s.getInt("ransac_iterations", iterations);
     threshold = s.getDouble("ransac_threshold", threshold);
     depthScale = s.getDouble("ransac_depth_scale", depthScale);

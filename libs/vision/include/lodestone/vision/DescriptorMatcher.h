@@ -5,6 +5,10 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+namespace lodestone::config {
+class IniSection;
+}
+
 namespace lodestone::vision {
 
 /** Brute-force Hamming matching of binary descriptors (OpenCV's BFMatcher) with the gates that
@@ -19,6 +23,8 @@ class DescriptorMatcher {
 
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                                 const std::string& section) override;
+        /** Reads this part's keys from a section shared with others (which checks strangers). */
+        void read(config::IniSection& section);
         void dumpToTextStream(std::ostream& out) const override;
     };
 

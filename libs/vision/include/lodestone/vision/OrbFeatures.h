@@ -8,6 +8,10 @@
 #include <opencv2/features2d.hpp>
 #include <vector>
 
+namespace lodestone::config {
+class IniSection;
+}
+
 namespace lodestone::vision {
 
 /** ORB features of one frame that have a depth, with their 3D points. */
@@ -34,6 +38,8 @@ class OrbExtractor {
 
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                                 const std::string& section) override;
+        /** Reads this part's keys from a section shared with others (which checks strangers). */
+        void read(config::IniSection& section);
         void dumpToTextStream(std::ostream& out) const override;
     };
 

@@ -7,6 +7,10 @@
 #include <cstdint>
 #include <vector>
 
+namespace lodestone::config {
+class IniSection;
+}
+
 namespace lodestone::vision {
 
 /** The rigid motion aligning two matched 3D point sets: dst_i ≈ R src_i + t (paper 001:
@@ -48,6 +52,8 @@ class RigidRansac {
 
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                                 const std::string& section) override;
+        /** Reads this part's keys from a section shared with others (which checks strangers). */
+        void read(config::IniSection& section);
         void dumpToTextStream(std::ostream& out) const override;
     };
 
