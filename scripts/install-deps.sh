@@ -7,6 +7,7 @@ packages=(
     build-essential cmake ninja-build ccache pkg-config git
     libmrpt-dev mrpt-apps          # MRPT 2.5: obs, io, graphslam, hwdrivers; rawlog-edit for tests
     libopencv-dev libeigen3-dev libnanoflann-dev zlib1g-dev
+    libceres-dev                   # pose-graph optimization (sparse, robust losses)
     libgtest-dev libgmock-dev
 )
 

@@ -26,7 +26,8 @@ mrpt::poses::CPosePDFGaussian CovarianceWeightedFusion::combine(
 }
 
 const mrpt::poses::CPosePDFGaussian& CovarianceWeightedFusion::step(const OdometryStep& s) {
-    pose_ += s.visual ? combine(s.wheel, *s.visual) : s.wheel;
+    increment_ = s.visual ? combine(s.wheel, *s.visual) : s.wheel;
+    pose_ += increment_;
     return pose_;
 }
 

@@ -136,7 +136,8 @@ FusedOdometry::Estimate FusedOdometry::resolve(const Pending& p) {
     // on it (no reference then): older frames are never needed again.
     oldestReference_ = p.vo.referenceTimestamp > 0 ? p.vo.referenceTimestamp : p.t;
     const Eigen::Vector2d travel = travelAt(p.t);
-    if (!last_frame_time_) {
+    const bool first = !last_frame_time_;
+    if (first) {
         for (auto& f : fusions_) f->reset({});
     } else {
         OdometryStep step;
@@ -163,6 +164,7 @@ FusedOdometry::Estimate FusedOdometry::resolve(const Pending& p) {
     }
     for (std::size_t m = 0; m < fusions_.size(); ++m) {
         e.poses.push_back(fusions_[m]->pose());
+        e.increments.push_back(first ? mrpt::poses::CPosePDFGaussian() : fusions_[m]->lastIncrement());
         recent_[m][p.t] = fusions_[m]->pose().mean;
         // Only frames VO may still use as its reference are kept.
         while (!recent_[m].empty() && recent_[m].begin()->first < oldestReference_) {

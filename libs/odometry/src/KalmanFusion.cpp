@@ -61,7 +61,12 @@ const mrpt::poses::CPosePDFGaussian& KalmanFusion::step(const OdometryStep& s) {
         cov_.block<2, 2>(0, 2 * a) = P;
         fused[a] = x[0];
     }
+    const mrpt::poses::CPose2D before = pose_.mean;
     pose_.mean = mrpt::poses::CPose2D(fused.x(), fused.y(), fused.z());
+    // The filter keeps no increment covariance of its own; the wheels' is the honest stand-in
+    // (the blend leans on them, weight C).
+    increment_.mean = pose_.mean - before;
+    increment_.cov = s.wheel.cov;
     pose_.cov.setZero();
     for (int a = 0; a < 3; ++a) pose_.cov(a, a) = cov_(0, 2 * a);
     return pose_;

@@ -7,16 +7,23 @@
 namespace lodestone::odometry {
 
 namespace {
+constexpr double kUnknownMotionVariance = 1.0;  // [m^2, rad^2]: a step VO could not see
+
 // One source alone: the wheels, or VO (standing still while it has nothing).
 class SingleSourceFusion : public PlanarFusion {
   public:
     explicit SingleSourceFusion(bool visual) : visual_(visual) {}
     const mrpt::poses::CPosePDFGaussian& step(const OdometryStep& s) override {
         if (!visual_) {
-            pose_ += s.wheel;
+            increment_ = s.wheel;
         } else if (s.visual) {
-            pose_ += *s.visual;
+            increment_ = *s.visual;
+        } else {
+            // Standing still for lack of a measurement: no motion, but no confidence either.
+            increment_ = mrpt::poses::CPosePDFGaussian();
+            increment_.cov.setDiagonal(3, kUnknownMotionVariance);
         }
+        pose_ += increment_;
         return pose_;
     }
     const mrpt::poses::CPosePDFGaussian& pose() const override { return pose_; }

@@ -46,6 +46,9 @@ class FusedOdometry {
     struct Estimate {
         double timestamp{0};                               ///< [s]
         std::vector<mrpt::poses::CPosePDFGaussian> poses;  ///< one per method, in order
+        /** Per method: the motion since the previous frame with its covariance (zero on the
+         * first frame). Composing them gives `poses`; a pose graph takes these. */
+        std::vector<mrpt::poses::CPosePDFGaussian> increments;
         vision::VoResult visual;
     };
 

@@ -26,6 +26,12 @@ class PlanarFusion {
     virtual const mrpt::poses::CPosePDFGaussian& pose() const = 0;
     virtual void reset(const mrpt::poses::CPosePDFGaussian& start) = 0;
     virtual std::string name() const = 0;
+    /** The motion the last step() applied, in the frame of the pose before it, with its
+     * covariance: what a pose graph takes as the odometry between two of its nodes. */
+    const mrpt::poses::CPosePDFGaussian& lastIncrement() const { return increment_; }
+
+  protected:
+    mrpt::poses::CPosePDFGaussian increment_;
 };
 
 /** Creates a fusion by name: "wheel" (wheels only), "visual" (VO only: no motion while it

@@ -1,0 +1,30 @@
+#pragma once
+
+#include <mrpt/graphs/CNetworkOfPoses.h>
+
+#include <string>
+
+namespace lodestone::graphslam {
+
+/** The graph every Lodestone decider works on: MRPT's 3D network of poses with information
+ * matrices (MRPT order x, y, z, yaw, pitch, roll). Ground robots keep z, pitch and roll at zero
+ * and the optimizer may solve it on SE(2) (see PoseGraphSolver). */
+using Graph = mrpt::graphs::CNetworkOfPoses3DInf;
+using TNodeID = mrpt::graphs::TNodeID;
+using Constraint = Graph::constraint_t;  // mrpt::poses::CPose3DPDFGaussianInf
+
+/** A loop-closure edge and what became of it. The engine keeps one per closure an edge decider
+ * proposed; the optimizer may later reject it (then it is gone from the graph). */
+struct LoopClosure {
+    TNodeID from{0}, to{0};
+    Constraint constraint;
+    std::string source;       ///< the matcher that proposed it (its class name)
+    bool rejected{false};     ///< removed by the optimizer
+    double rejectionChi2{0};  ///< its squared Mahalanobis residual when removed
+};
+
+/** Removes the edge from->to whose mean is `c.mean` (there may be several between two nodes).
+ * Returns false if there is none. */
+bool eraseEdge(Graph& graph, TNodeID from, TNodeID to, const Constraint& c);
+
+}  // namespace lodestone::graphslam

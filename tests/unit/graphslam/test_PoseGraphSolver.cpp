@@ -1,0 +1,171 @@
+#include <lodestone/graphslam/PoseGraphSolver.h>
+#include <lodestone/graphslam/SyntheticGraph.h>
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+using namespace lodestone::graphslam;
+
+namespace {
+
+void addClosures(SyntheticGraph& s) {
+    for (const auto& lc : s.closures) s.graph.insertEdge(lc.from, lc.to, lc.constraint);
+}
+
+SyntheticGraph::Params noiseFree() {
+    SyntheticGraph::Params p;
+    p.odometrySigmaXY = p.closureSigmaXY = 1e-9;  // drawn noise ~0, claimed 1 cm below
+    p.odometrySigmaYaw = p.closureSigmaYaw = 1e-9;
+    return p;
+}
+
+// Noise-free edges claiming centimetre accuracy, node poses scrambled: the optimum is the truth.
+SyntheticGraph scrambledExactGraph(bool threeD) {
+    SyntheticGraph s = SyntheticGraph::make(noiseFree());
+    for (auto& [ends, c] : s.graph.edges) c.cov_inv = planarInformation(0.01, 0.005);
+    for (auto& lc : s.closures) lc.constraint.cov_inv = planarInformation(0.02, 0.01);
+    std::mt19937 rng(3);
+    std::normal_distribution<double> n(0, 1);
+    for (auto& [id, pose] : s.graph.nodes) {
+        if (id == 0) continue;
+        pose = mrpt::poses::CPose3D(pose.x() + 0.3 * n(rng), pose.y() + 0.3 * n(rng),
+                                    threeD ? 0.1 * n(rng) : 0, pose.yaw() + 0.2 * n(rng),
+                                    threeD ? 0.05 * n(rng) : 0, threeD ? 0.05 * n(rng) : 0);
+    }
+    return s;
+}
+
+double maxZPitchRoll(const Graph& g) {
+    double m = 0;
+    for (const auto& [id, p] : g.nodes)
+        m = std::max({m, std::abs(p.z()), std::abs(p.pitch()), std::abs(p.roll())});
+    return m;
+}
+
+}  // namespace
+
+TEST(PoseGraphSolver, PlanarRecoversTheTruthFromScrambledPosesWithExactEdges) {
+    SyntheticGraph s = scrambledExactGraph(false);
+    ASSERT_GT(positionRmse(s.graph, s.truth), 0.2);
+    PoseGraphSolver solver({});
+    const auto r = solver.solve(s.graph, s.closures);
+    EXPECT_TRUE(r.converged);
+    EXPECT_TRUE(r.rejected.empty());
+    EXPECT_LT(positionRmse(s.graph, s.truth), 1e-5);
+    EXPECT_EQ(r.variableNodes + r.fixedNodes, s.graph.nodes.size());
+    EXPECT_EQ(r.fixedNodes, 1u);
+}
+
+TEST(PoseGraphSolver, Se3RecoversTheTruthIncludingHeightAndTilt) {
+    SyntheticGraph s = scrambledExactGraph(true);
+    addClosures(s);
+    for (auto& lc : s.closures) lc.constraint = s.graph.edges.find({lc.from, lc.to})->second;
+    ASSERT_GT(maxZPitchRoll(s.graph), 0.1);
+    PoseGraphSolver::Options o;
+    o.planar = false;
+    o.rejectionChi2 = 22.46;
+    const auto r = PoseGraphSolver(o).solve(s.graph, s.closures);
+    EXPECT_TRUE(r.rejected.empty());
+    EXPECT_LT(positionRmse(s.graph, s.truth), 1e-4);
+    EXPECT_LT(maxZPitchRoll(s.graph), 1e-4);
+}
+
+TEST(PoseGraphSolver, PlanarKeepsHeightAndTiltOfTheNodes) {
+    SyntheticGraph s = scrambledExactGraph(true);
+    const double z7 = s.graph.nodes.at(7).z(), roll7 = s.graph.nodes.at(7).roll();
+    PoseGraphSolver({}).solve(s.graph, s.closures);
+    EXPECT_DOUBLE_EQ(s.graph.nodes.at(7).z(), z7);
+    EXPECT_NEAR(s.graph.nodes.at(7).roll(), roll7, 1e-12);
+    EXPECT_LT(positionRmse(s.graph, s.truth), 1e-5);
+}
+
+TEST(PoseGraphSolver, AnglesWrapAcrossPlusMinusPi) {
+    Graph g;
+    g.nodes[0] = mrpt::poses::CPose3D(0, 0, 0, M_PI - 0.01, 0, 0);
+    g.nodes[1] = mrpt::poses::CPose3D(0, 0, 0, -M_PI + 0.01, 0, 0);  // 0.02 rad further
+    Constraint c;
+    c.mean = mrpt::poses::CPose3D(0, 0, 0, 0.02, 0, 0);
+    c.cov_inv = planarInformation(0.01, 0.01);
+    g.insertEdge(0, 1, c);
+    PoseGraphSolver solver({});
+    EXPECT_LT(solver.squaredResidual(g, 0, 1, c), 1e-12);
+    PoseGraphSolver::Options o;
+    o.planar = false;
+    EXPECT_LT(PoseGraphSolver(o).squaredResidual(g, 0, 1, c), 1e-12);
+    c.mean = mrpt::poses::CPose3D(0, 0, 0, 0.03, 0, 0);  // 1 sigma off
+    EXPECT_NEAR(solver.squaredResidual(g, 0, 1, c), 1.0, 1e-9);
+}
+
+TEST(PoseGraphSolver, NoisyEdgesBeatDeadReckoningAndNoCorrectClosureIsRejected) {
+    for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+        SyntheticGraph::Params p;
+        p.seed = seed;
+        SyntheticGraph s = SyntheticGraph::make(p);
+        const double deadReckoning = positionRmse(s.graph, s.truth);
+        addClosures(s);
+        const auto r = PoseGraphSolver({}).solve(s.graph, s.closures);
+        const double optimized = positionRmse(s.graph, s.truth);
+        SCOPED_TRACE("seed " + std::to_string(seed));
+        EXPECT_TRUE(r.rejected.empty()) << "rejected " << r.rejected.size() << ", first chi2 "
+                                        << (r.rejected.empty() ? 0 : r.rejected[0].rejectionChi2);
+        EXPECT_LT(optimized, 0.5 * deadReckoning) << deadReckoning;
+    }
+}
+
+TEST(PoseGraphSolver, OneWrongClosureAmongManyIsRejected) {
+    SyntheticGraph s = SyntheticGraph::make({});
+    const double deadReckoning = positionRmse(s.graph, s.truth);
+    // A perceptual alias: a later node claimed 1.5 m and 20 degrees from where it is.
+    LoopClosure wrong = s.closures[s.closures.size() / 2];
+    wrong.constraint.mean = wrong.constraint.mean + mrpt::poses::CPose3D(1.5, 0.4, 0, 0.35, 0, 0);
+    s.closures.push_back(wrong);
+    addClosures(s);
+    const std::size_t edgesBefore = s.graph.edges.size();
+    const auto r = PoseGraphSolver({}).solve(s.graph, s.closures);
+    ASSERT_EQ(r.rejected.size(), 1u);
+    EXPECT_EQ(r.rejected[0].to, wrong.to);
+    EXPECT_EQ(r.rejected[0].constraint.mean, wrong.constraint.mean);
+    EXPECT_TRUE(s.closures.back().rejected);
+    EXPECT_EQ(s.graph.edges.size(), edgesBefore - 1);
+    EXPECT_LT(positionRmse(s.graph, s.truth), 0.5 * deadReckoning);
+}
+
+TEST(PoseGraphSolver, AWindowMovesOnlyItsNodes) {
+    SyntheticGraph s = scrambledExactGraph(false);
+    const Graph before = s.graph;
+    std::set<TNodeID> window;
+    for (TNodeID id = 40; id < 60; ++id) window.insert(id);
+    const auto r = PoseGraphSolver({}).solve(s.graph, s.closures, window);
+    EXPECT_EQ(r.variableNodes, window.size());
+    EXPECT_EQ(r.fixedNodes, 2u);  // 39 and 60, the window's neighbours
+    for (const auto& [id, pose] : s.graph.nodes) {
+        if (window.count(id)) continue;
+        EXPECT_EQ(pose, before.nodes.at(id)) << id;
+    }
+    EXPECT_NE(s.graph.nodes.at(50), before.nodes.at(50));
+}
+
+TEST(PoseGraphSolver, UnknownRobustLossIsAnError) {
+    PoseGraphSolver::Options o;
+    o.robustLoss = "tukey";
+    EXPECT_THROW(PoseGraphSolver{o}, std::invalid_argument);
+}
+
+TEST(PoseGraphSolver, SeveralWrongClosuresAreAllRejectedAndOnlyThem) {
+    SyntheticGraph s = SyntheticGraph::make({});
+    const std::size_t right = s.closures.size();
+    for (std::size_t k : {right / 5, right / 2, 4 * right / 5}) {
+        LoopClosure wrong = s.closures[k];
+        wrong.constraint.mean = wrong.constraint.mean + mrpt::poses::CPose3D(0.6, -0.8, 0, -0.2, 0, 0);
+        wrong.source = "alias";
+        s.closures.push_back(wrong);
+    }
+    addClosures(s);
+    const auto r = PoseGraphSolver({}).solve(s.graph, s.closures);
+    ASSERT_EQ(r.rejected.size(), 3u);
+    for (const auto& lc : r.rejected) {
+        EXPECT_EQ(lc.source, "alias");
+        EXPECT_GT(lc.rejectionChi2, 16.27);
+    }
+}
