@@ -10,7 +10,7 @@ mrpt::math::CMatrixDouble66 planarInformation(double sigmaXY, double sigmaYaw) {
     info.setZero();
     info(0, 0) = info(1, 1) = 1 / (sigmaXY * sigmaXY);
     info(3, 3) = 1 / (sigmaYaw * sigmaYaw);
-    info(2, 2) = info(4, 4) = info(5, 5) = 1e6;
+    info(2, 2) = info(4, 4) = info(5, 5) = kPlanarStiffness;
     return info;
 }
 

@@ -2,6 +2,7 @@
 #include <lodestone/io/RawlogReader.h>
 #include <mrpt/serialization/CArchive.h>
 
+#include <algorithm>
 #include <filesystem>
 
 #include "ZlibFileStream.h"
@@ -48,6 +49,11 @@ RawlogReader::RawlogReader(const std::string& path) : path_(path) {
 RawlogReader::~RawlogReader() = default;
 
 std::uint64_t RawlogReader::bytesRead() const { return impl_->stream.getPosition(); }
+
+double RawlogReader::fractionRead() const {
+    if (file_size_ == 0) return 1.0;
+    return std::min(1.0, static_cast<double>(impl_->stream.fileOffset()) / file_size_);
+}
 
 std::optional<RawlogEntry> RawlogReader::next() {
     if (failed_) return std::nullopt;

@@ -99,6 +99,11 @@ uint64_t ZlibFileStream::Seek(int64_t, mrpt::io::CStream::TSeekOrigin) {
     throw std::logic_error(path_ + ": ZlibFileStream does not seek");
 }
 
+uint64_t ZlibFileStream::fileOffset() const {
+    const auto off = gzoffset(asGz(file_));
+    return off < 0 ? 0 : static_cast<uint64_t>(off);
+}
+
 uint64_t ZlibFileStream::getTotalBytesCount() const {
     return std::numeric_limits<uint64_t>::max();  // unknown for a gzip stream
 }

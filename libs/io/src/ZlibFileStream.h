@@ -36,6 +36,8 @@ class ZlibFileStream : public mrpt::io::CStream {
     /** Closes the file; throws std::runtime_error if zlib reports a write error. */
     void close();
 
+    /** Bytes of the file on disk consumed so far (compressed bytes for gzip): for progress. */
+    uint64_t fileOffset() const;
     /** True when reading a gzip-compressed file (false: plain). */
     bool isCompressed() const { return compressed_; }
     /** The last zlib error text, or empty. */

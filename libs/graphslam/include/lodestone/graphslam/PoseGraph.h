@@ -1,6 +1,7 @@
 #pragma once
 
 #include <mrpt/graphs/CNetworkOfPoses.h>
+#include <mrpt/poses/CPosePDFGaussian.h>
 
 #include <string>
 
@@ -22,6 +23,12 @@ struct LoopClosure {
     bool rejected{false};     ///< removed by the optimizer
     double rejectionChi2{0};  ///< its squared Mahalanobis residual when removed
 };
+
+/** A planar motion with its covariance as a graph edge: the x, y, yaw information from the
+ * covariance (floored so a zero-motion, zero-covariance step stays invertible), z, pitch and roll
+ * held by a stiff `planarStiffness` information (the robot stays on the floor). */
+Constraint planarConstraint(const mrpt::poses::CPosePDFGaussian& motion);
+constexpr double kPlanarStiffness = 1e6;  ///< information of z [1/m^2], pitch and roll [1/rad^2]
 
 /** Removes the edge from->to whose mean is `c.mean` (there may be several between two nodes).
  * Returns false if there is none. */

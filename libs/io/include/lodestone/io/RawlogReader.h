@@ -38,6 +38,8 @@ class RawlogReader {
     const std::string& path() const { return path_; }
     /** Bytes of the uncompressed stream consumed so far. */
     std::uint64_t bytesRead() const;
+    /** How far through the file on disk the reader is, 0..1 (for progress bars). */
+    double fractionRead() const;
     /** Size of the file on disk [bytes]. */
     std::uint64_t fileSize() const { return file_size_; }
     bool isCompressed() const { return compressed_; }

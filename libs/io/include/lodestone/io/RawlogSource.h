@@ -41,6 +41,8 @@ class RawlogSource : public DataSource {
     std::string name() const override { return reader_.path(); }
 
     RawlogFormat format() const { return format_; }
+    /** How far through the file the reading is, 0..1. */
+    double fractionRead() const { return reader_.fractionRead(); }
     std::size_t entriesRead() const { return entries_read_; }
     std::size_t outOfOrder() const { return out_of_order_; }
     std::size_t skippedActions() const { return skipped_actions_; }

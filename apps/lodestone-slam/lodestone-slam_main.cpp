@@ -1,0 +1,10 @@
+// lodestone-slam: offline graph SLAM on a rawlog or a simulated scenario.
+#include <lodestone/slamapp/SlamApp.h>
+
+#include <unistd.h>
+
+#include <iostream>
+
+int main(int argc, char** argv) {
+    return lodestone::slamapp::runSlamApp(argc, argv, std::cout, std::cerr, isatty(STDERR_FILENO));
+}

@@ -1,0 +1,60 @@
+#pragma once
+
+#include <lodestone/graphslam/GraphOptimizer.h>
+#include <lodestone/graphslam/PoseGraphSolver.h>
+
+namespace lodestone::graphslam {
+
+/** The pose-graph optimizer: PoseGraphSolver (Ceres, sparse, robust loss on loop closures,
+ * removal of closures the optimized graph cannot agree with) on a schedule that keeps the
+ * per-node cost flat:
+ *  - after new loop closures, a local solve over the nodes within `local_window` node IDs of
+ *    their ends (the rest held fixed), so the current estimate follows at once;
+ *  - a full solve when closures arrived and the graph grew by `full_solve_growth` since the last
+ *    full solve (a geometric schedule: their total cost stays proportional to the run), and
+ *    always at the end.
+ * INI [CeresGSO]: mode = planar | se3, robust_loss, robust_scale, rejection_chi2 (0: the
+ * chi-square 99.9 % quantile for the mode's degrees of freedom), max_iterations, local_window,
+ * full_solve_growth. */
+class CeresGSO : public GraphOptimizer {
+  public:
+    struct Params {
+        PoseGraphSolver::Options solver;
+        int localWindow{40};          ///< [node IDs] either side of a closure's ends
+        double fullSolveGrowth{0.25};  ///< relative graph growth between full solves
+    };
+
+    CeresGSO();
+    void configure(const mrpt::config::CConfigFileBase& ini) override;
+    const Params& params() const { return params_; }
+
+    bool updateState(mrpt::obs::CActionCollection::Ptr action,
+                     mrpt::obs::CSensoryFrame::Ptr observations,
+                     mrpt::obs::CObservation::Ptr observation) override;
+    void addLoopClosures(const std::vector<LoopClosure>& closures) override;
+    void optimizeGraph() override;
+    void finish() override;
+    bool justFullyOptimizedGraph() const override { return just_full_; }
+    JsonObject describe() const override;
+
+    /** Totals over the run. */
+    struct Stats {
+        std::size_t localSolves{0}, fullSolves{0}, iterations{0};
+        double localSeconds{0}, fullSeconds{0};
+        std::size_t rejected{0};
+    };
+    const Stats& stats() const { return stats_; }
+
+  private:
+    void absorb(const PoseGraphSolver::Report& r, bool full);
+
+    Params params_;
+    std::unique_ptr<PoseGraphSolver> solver_;
+    std::vector<std::pair<TNodeID, TNodeID>> pending_;  // ends of closures not solved yet
+    std::size_t nodes_at_last_full_{0};
+    bool closures_since_full_{false};
+    bool just_full_{false};
+    Stats stats_;
+};
+
+}  // namespace lodestone::graphslam

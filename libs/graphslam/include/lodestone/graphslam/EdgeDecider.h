@@ -1,0 +1,33 @@
+#pragma once
+
+#include <lodestone/graphslam/SlamComponent.h>
+#include <mrpt/graphslam/interfaces/CEdgeRegistrationDecider.h>
+
+#include <map>
+#include <vector>
+
+namespace lodestone::graphslam {
+
+/** Base of Lodestone's edge registration deciders (loop closers): MRPT's
+ * CEdgeRegistrationDecider, with the loop-closure signal made explicit. A decider calls
+ * registerNewEdge(from, to, c) as in MRPT; the edge goes into the graph and is queued for the
+ * engine, which hands it to the optimizer. */
+class EdgeDecider : public mrpt::graphslam::deciders::CEdgeRegistrationDecider<Graph>,
+                    public SlamComponent {
+  public:
+    void loadParams(const std::string& source_fname) override;
+    /** Adds the edge to the graph and queues it as a loop closure from this decider. */
+    void registerNewEdge(const TNodeID& from, const TNodeID& to, const Constraint& c) override;
+    /** The loop closures registered since the last call (the engine empties the queue after
+     * every step). */
+    virtual std::vector<LoopClosure> takeNewLoopClosures();
+    /** MRPT's statistics: this decider's class name and "lc" (what CGraphSlamEngine counts). */
+    void getEdgesStats(std::map<std::string, int>* edge_type_to_num) const override;
+    std::size_t loopClosuresRegistered() const { return registered_; }
+
+  protected:
+    std::vector<LoopClosure> queued_;
+    std::size_t registered_{0};
+};
+
+}  // namespace lodestone::graphslam

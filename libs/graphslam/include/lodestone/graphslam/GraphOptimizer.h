@@ -1,0 +1,30 @@
+#pragma once
+
+#include <lodestone/graphslam/SlamComponent.h>
+#include <mrpt/graphslam/interfaces/CGraphSlamOptimizer.h>
+
+#include <set>
+#include <vector>
+
+namespace lodestone::graphslam {
+
+/** Base of Lodestone's graph optimizers: MRPT's CGraphSlamOptimizer plus the explicit
+ * loop-closure signal and an end-of-run solve. The optimizer owns the record of every loop
+ * closure it was given, including those it later rejected. */
+class GraphOptimizer : public mrpt::graphslam::optimizers::CGraphSlamOptimizer<Graph>,
+                       public SlamComponent {
+  public:
+    void loadParams(const std::string& source_fname) override;
+    /** Loop closures just added to the graph; the next updateState() decides how to solve. */
+    virtual void addLoopClosures(const std::vector<LoopClosure>& closures) = 0;
+    /** Solves everything the run still needs (at the end of the data). */
+    virtual void finish() = 0;
+    /** Re-solves the whole graph now (e.g. after a kidnapped segment was re-anchored). */
+    void optimizeGraph() override = 0;
+    const std::vector<LoopClosure>& loopClosures() const { return closures_; }
+
+  protected:
+    std::vector<LoopClosure> closures_;
+};
+
+}  // namespace lodestone::graphslam

@@ -1,0 +1,17 @@
+#pragma once
+
+#include <lodestone/graphslam/NodeStore.h>
+
+#include <string>
+
+namespace lodestone::graphslam {
+
+/** Writes the keyframe clouds, each moved by its node's (optimized) pose, as one coloured
+ * binary PLY point cloud (x y z float, red green blue uchar). Returns the number of points.
+ * Throws std::runtime_error naming `path` if it cannot be written. */
+std::size_t writeMapPly(const std::string& path, const Graph& graph, const NodeStore& nodes);
+
+/** Writes every node as a TUM trajectory line (its record's timestamp, its pose). */
+void writeNodeTrajectory(const std::string& path, const Graph& graph, const NodeStore& nodes);
+
+}  // namespace lodestone::graphslam

@@ -1,0 +1,27 @@
+#pragma once
+
+#include <lodestone/graphslam/SlamComponent.h>
+#include <mrpt/graphslam/interfaces/CNodeRegistrationDecider.h>
+
+#include <optional>
+
+namespace lodestone::graphslam {
+
+/** Base of Lodestone's node registration deciders: MRPT's CNodeRegistrationDecider (so it runs
+ * inside CGraphSlamEngine too) plus what our engine asks of it. Contract: at most one node per
+ * updateState(); node IDs 0, 1, 2, ... in order, each with a NodeRecord in the store. */
+class NodeDecider : public mrpt::graphslam::deciders::CNodeRegistrationDecider<Graph>,
+                    public SlamComponent {
+  public:
+    /** MRPT's way: the INI file by name. */
+    void loadParams(const std::string& source_fname) override;
+    /** The data ended: register what is still pending. Returns true if a node was added. */
+    virtual bool finish() = 0;
+    /** The ID registered by the last updateState() / finish() call, if it added one. */
+    std::optional<TNodeID> justRegistered() const { return just_registered_; }
+
+  protected:
+    std::optional<TNodeID> just_registered_;
+};
+
+}  // namespace lodestone::graphslam

@@ -1,0 +1,74 @@
+#pragma once
+
+#include <lodestone/graphslam/EdgeDecider.h>
+#include <lodestone/graphslam/GraphOptimizer.h>
+#include <lodestone/graphslam/NodeDecider.h>
+#include <mrpt/config/CConfigFileBase.h>
+
+#include <memory>
+#include <set>
+#include <vector>
+
+namespace lodestone::graphslam {
+
+/** Lodestone's small graph-SLAM engine. It drives one node decider, one edge decider and one
+ * optimizer observation by observation, as MRPT's CGraphSlamEngine does, but: node poses are
+ * only ever changed by the optimizer (no per-node Dijkstra re-estimate), loop closures reach the
+ * optimizer as an explicit list, and the optimizer's schedule is its own (CeresGSO: local then
+ * full solves).
+ *
+ * Kidnapped segments: the NRD starts a new segment after a kidnap, tied by a very weak edge.
+ * The first loop closure between an anchored segment and one that is not moves the whole
+ * unanchored segment rigidly onto the closure (so the solver starts near the answer), marks it
+ * anchored and solves the full graph. */
+class SlamEngine {
+  public:
+    SlamEngine(std::unique_ptr<NodeDecider> nrd, std::unique_ptr<EdgeDecider> erd,
+               std::unique_ptr<GraphOptimizer> gso);
+
+    /** Builds the deciders named in `[graphslam] node_decider / edge_decider / optimizer` and
+     * configures each from its own section. Unknown names, sections or keys throw
+     * config::ConfigError. */
+    static std::unique_ptr<SlamEngine> fromConfig(const mrpt::config::CConfigFileBase& ini);
+
+    /** One observation through NRD, ERD and optimizer. Returns true if a node was added. */
+    bool process(const mrpt::obs::CObservation::Ptr& obs);
+    /** End of data: pending odometry becomes a node, the ERD gets a last look, final solve. */
+    void finish();
+
+    const Graph& graph() const { return graph_; }
+    Graph& graph() { return graph_; }
+    const NodeStore& nodes() const { return nodes_; }
+    NodeDecider& nodeDecider() { return *nrd_; }
+    EdgeDecider& edgeDecider() { return *erd_; }
+    GraphOptimizer& optimizer() { return *gso_; }
+    /** Union of the deciders' required observation classes. */
+    std::set<std::string> requiredObservations() const;
+    mrpt::poses::CPose3D currentPose() const;
+
+    struct Stats {
+        std::size_t observations{0}, frames{0};
+        double nrdSeconds{0}, erdSeconds{0}, gsoSeconds{0};
+        std::vector<float> nodeMs;   ///< engine time spent per node (between registrations)
+        std::vector<float> frameMs;  ///< engine time per RGB-D observation
+        std::size_t reanchoredSegments{0};
+    };
+    const Stats& stats() const { return stats_; }
+    /** Engine statistics and every component's describe() for report.json. */
+    JsonObject describe() const;
+
+  private:
+    void afterNodeDecider(bool newNode);
+    void reanchor(const std::vector<LoopClosure>& closures);
+
+    Graph graph_;
+    NodeStore nodes_;
+    std::unique_ptr<NodeDecider> nrd_;
+    std::unique_ptr<EdgeDecider> erd_;
+    std::unique_ptr<GraphOptimizer> gso_;
+    std::set<int> anchored_{0};
+    Stats stats_;
+    double since_node_ms_{0};
+};
+
+}  // namespace lodestone::graphslam

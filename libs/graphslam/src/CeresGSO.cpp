@@ -1,0 +1,136 @@
+#include <lodestone/config/IniSection.h>
+#include <lodestone/graphslam/CeresGSO.h>
+
+#include <algorithm>
+
+namespace lodestone::graphslam {
+
+namespace {
+// chi-square quantiles at 99.9 % for 3 (planar) and 6 (SE(3)) degrees of freedom.
+constexpr double kChi2Planar = 16.266;
+constexpr double kChi2Se3 = 22.458;
+}  // namespace
+
+CeresGSO::CeresGSO() {
+    setClassName("CeresGSO");
+    solver_ = std::make_unique<PoseGraphSolver>(params_.solver);
+}
+
+void CeresGSO::configure(const mrpt::config::CConfigFileBase& ini) {
+    config::IniSection s(ini, "CeresGSO", config::sourceName(ini));
+    auto& o = params_.solver;
+    const std::string mode = s.getString("mode", o.planar ? "planar" : "se3");
+    if (mode != "planar" && mode != "se3") s.fail("mode", "must be planar or se3");
+    o.planar = mode == "planar";
+    o.robustLoss = s.getString("robust_loss", o.robustLoss);
+    o.robustScale = s.getDouble("robust_scale", o.robustScale);
+    const double chi2 = s.getDouble("rejection_chi2", 0);
+    o.rejectionChi2 = chi2 > 0 ? chi2 : (o.planar ? kChi2Planar : kChi2Se3);
+    o.maxIterations = s.getInt("max_iterations", o.maxIterations);
+    params_.localWindow = s.getInt("local_window", params_.localWindow);
+    params_.fullSolveGrowth = s.getDouble("full_solve_growth", params_.fullSolveGrowth);
+    if (o.robustLoss != "none" && o.robustLoss != "huber" && o.robustLoss != "cauchy") {
+        s.fail("robust_loss", "must be none, huber or cauchy");
+    }
+    if (!(o.robustScale > 0)) s.fail("robust_scale", "must be > 0");
+    if (chi2 < 0) s.fail("rejection_chi2", "must be >= 0");
+    if (o.maxIterations < 1) s.fail("max_iterations", "must be >= 1");
+    if (params_.localWindow < 1) s.fail("local_window", "must be >= 1");
+    if (!(params_.fullSolveGrowth > 0)) s.fail("full_solve_growth", "must be > 0");
+    s.finish();
+    solver_ = std::make_unique<PoseGraphSolver>(o);
+}
+
+void CeresGSO::addLoopClosures(const std::vector<LoopClosure>& closures) {
+    for (const auto& lc : closures) {
+        closures_.push_back(lc);
+        pending_.emplace_back(lc.from, lc.to);
+    }
+    if (!closures.empty()) closures_since_full_ = true;
+}
+
+bool CeresGSO::updateState(mrpt::obs::CActionCollection::Ptr, mrpt::obs::CSensoryFrame::Ptr,
+                           mrpt::obs::CObservation::Ptr) {
+    just_full_ = false;
+    if (pending_.empty()) return false;
+    const std::size_t n = m_graph->nodes.size();
+    if (closures_since_full_ &&
+        static_cast<double>(n) >= (1 + params_.fullSolveGrowth) * nodes_at_last_full_) {
+        optimizeGraph();
+        return true;
+    }
+    std::set<TNodeID> window;
+    const auto w = static_cast<TNodeID>(params_.localWindow);
+    for (const auto& [from, to] : pending_) {
+        for (TNodeID end : {from, to}) {
+            for (TNodeID id = end > w ? end - w : 0; id <= end + w; ++id) {
+                if (m_graph->nodes.count(id)) window.insert(id);
+            }
+        }
+    }
+    pending_.clear();
+    absorb(solver_->solve(*m_graph, closures_, window), false);
+    return true;
+}
+
+void CeresGSO::optimizeGraph() {
+    pending_.clear();
+    absorb(solver_->solve(*m_graph, closures_), true);
+    nodes_at_last_full_ = m_graph->nodes.size();
+    closures_since_full_ = false;
+    just_full_ = true;
+}
+
+void CeresGSO::finish() {
+    // An odometry chain is already at its optimum; anything with closures (or re-anchored
+    // segments) gets one last full solve.
+    if (!closures_.empty()) optimizeGraph();
+}
+
+void CeresGSO::absorb(const PoseGraphSolver::Report& r, bool full) {
+    (full ? stats_.fullSolves : stats_.localSolves) += 1;
+    (full ? stats_.fullSeconds : stats_.localSeconds) += r.seconds;
+    stats_.iterations += static_cast<std::size_t>(r.iterations);
+    stats_.rejected += r.rejected.size();
+    for (const auto& rej : r.rejected) {
+        MRPT_LOG_INFO_STREAM("rejected loop closure " << rej.from << " -> " << rej.to << " from "
+                                                      << rej.source << ": chi2 "
+                                                      << rej.rejectionChi2);
+    }
+}
+
+JsonObject CeresGSO::describe() const {
+    const auto& o = params_.solver;
+    JsonObject params;
+    params.set("mode", o.planar ? "planar" : "se3")
+        .set("robust_loss", o.robustLoss)
+        .set("robust_scale", o.robustScale)
+        .set("rejection_chi2", o.rejectionChi2)
+        .set("max_iterations", o.maxIterations)
+        .set("local_window", params_.localWindow)
+        .set("full_solve_growth", params_.fullSolveGrowth);
+    std::vector<JsonObject> rejected;
+    for (const auto& lc : closures_) {
+        if (!lc.rejected) continue;
+        rejected.push_back(JsonObject()
+                               .set("from", static_cast<long long>(lc.from))
+                               .set("to", static_cast<long long>(lc.to))
+                               .set("source", lc.source)
+                               .set("chi2", lc.rejectionChi2));
+    }
+    JsonObject stats;
+    stats.set("local_solves", stats_.localSolves)
+        .set("full_solves", stats_.fullSolves)
+        .set("iterations", stats_.iterations)
+        .set("local_seconds", stats_.localSeconds)
+        .set("full_seconds", stats_.fullSeconds)
+        .set("loop_closures", closures_.size())
+        .set("rejected", stats_.rejected);
+    return JsonObject()
+        .set("class", getClassName())
+        .set("params", params)
+        .set("stats", stats)
+        .set("rejected_loop_closures", rejected);
+}
+
+}  // namespace lodestone::graphslam

@@ -1,0 +1,82 @@
+#include <lodestone/config/IniSection.h>
+#include <lodestone/graphslam/CeresGSO.h>
+#include <lodestone/graphslam/CompositeERD.h>
+#include <lodestone/graphslam/DeciderRegistry.h>
+#include <lodestone/graphslam/FusedOdometryNRD.h>
+
+namespace lodestone::graphslam {
+
+namespace {
+
+template <typename Map>
+std::vector<std::string> namesOf(const Map& m) {
+    std::vector<std::string> out;
+    for (const auto& [name, f] : m) out.push_back(name);
+    return out;
+}
+
+template <typename Map>
+auto make(const Map& m, const std::string& name, const std::string& kind, const std::string& where) {
+    const auto it = m.find(name);
+    if (it != m.end()) {
+        auto made = it->second();
+        made->setClassName(name);
+        return made;
+    }
+    std::string known;
+    for (const auto& n : namesOf(m)) known += (known.empty() ? "" : ", ") + n;
+    // MRPT's own deciders drive CGraphSlamEngine's 2D scans; say so rather than "unknown".
+    const bool mrpt = name == "CFixedIntervalsNRD" || name == "CICPCriteriaNRD" ||
+                      name == "CEmptyNRD" || name == "CICPCriteriaERD" ||
+                      name == "CLoopCloserERD" || name == "CEmptyERD" || name == "CLevMarqGSO" ||
+                      name == "CEmptyGSO";
+    throw config::ConfigError(where + ": " +
+                              (name.empty() ? "no " + kind + " named"
+                                            : (mrpt ? "'" + name + "' is an MRPT " + kind +
+                                                          " for CGraphSlamEngine, not one "
+                                                          "lodestone-slam drives"
+                                                    : "unknown " + kind + " '" + name + "'")) +
+                              " (known: " + known + ")");
+}
+
+}  // namespace
+
+DeciderRegistry::DeciderRegistry() {
+    registerNodeDecider("FusedOdometryNRD", [] { return std::make_unique<FusedOdometryNRD>(); });
+    registerEdgeDecider("CompositeERD", [] { return std::make_unique<CompositeERD>(); });
+    registerOptimizer("CeresGSO", [] { return std::make_unique<CeresGSO>(); });
+}
+
+DeciderRegistry& DeciderRegistry::instance() {
+    static DeciderRegistry registry;
+    return registry;
+}
+
+void DeciderRegistry::registerNodeDecider(const std::string& name, NodeFactory f) {
+    nodes_[name] = std::move(f);
+}
+void DeciderRegistry::registerEdgeDecider(const std::string& name, EdgeFactory f) {
+    edges_[name] = std::move(f);
+}
+void DeciderRegistry::registerOptimizer(const std::string& name, OptimizerFactory f) {
+    optimizers_[name] = std::move(f);
+}
+
+std::unique_ptr<NodeDecider> DeciderRegistry::makeNodeDecider(const std::string& name,
+                                                              const std::string& where) const {
+    return make(nodes_, name, "node registration decider", where);
+}
+std::unique_ptr<EdgeDecider> DeciderRegistry::makeEdgeDecider(const std::string& name,
+                                                              const std::string& where) const {
+    return make(edges_, name, "edge registration decider", where);
+}
+std::unique_ptr<GraphOptimizer> DeciderRegistry::makeOptimizer(const std::string& name,
+                                                               const std::string& where) const {
+    return make(optimizers_, name, "graph optimizer", where);
+}
+
+std::vector<std::string> DeciderRegistry::nodeDeciders() const { return namesOf(nodes_); }
+std::vector<std::string> DeciderRegistry::edgeDeciders() const { return namesOf(edges_); }
+std::vector<std::string> DeciderRegistry::optimizers() const { return namesOf(optimizers_); }
+
+}  // namespace lodestone::graphslam

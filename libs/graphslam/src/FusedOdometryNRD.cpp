@@ -1,0 +1,202 @@
+#include <lodestone/config/IniSection.h>
+#include <lodestone/graphslam/FusedOdometryNRD.h>
+#include <lodestone/obs/CObservationWheelDrop.h>
+
+#include <cmath>
+
+namespace lodestone::graphslam {
+
+FusedOdometryNRD::FusedOdometryNRD() {
+    setClassName("FusedOdometryNRD");
+    odometry_ = std::make_unique<odometry::FusedOdometry>(params_.odometry);
+}
+
+void FusedOdometryNRD::configure(const mrpt::config::CConfigFileBase& ini) {
+    params_.odometry.loadFromConfigFile(ini, "odometry_fusion");
+    config::IniSection s(ini, "FusedOdometryNRD", config::sourceName(ini));
+    auto& p = params_;
+    p.nodeDistance = s.getDouble("node_distance", p.nodeDistance);
+    p.nodeAngle = s.getDouble("node_angle_deg", p.nodeAngle * 180 / M_PI) * M_PI / 180;
+    p.keyframeDistance = s.getDouble("keyframe_distance", p.keyframeDistance);
+    p.keyframeAngle = s.getDouble("keyframe_angle_deg", p.keyframeAngle * 180 / M_PI) * M_PI / 180;
+    p.mapPixelStep = s.getInt("map_pixel_step", p.mapPixelStep);
+    p.mapMaxDepth = s.getDouble("map_max_depth", p.mapMaxDepth);
+    p.kidnapEdgeSigma = s.getDouble("kidnap_edge_sigma", p.kidnapEdgeSigma);
+    if (!(p.nodeDistance > 0)) s.fail("node_distance", "must be > 0");
+    if (!(p.nodeAngle > 0)) s.fail("node_angle_deg", "must be > 0");
+    if (p.keyframeDistance < p.nodeDistance) s.fail("keyframe_distance", "must be >= node_distance");
+    if (p.mapPixelStep < 0) s.fail("map_pixel_step", "must be >= 0");
+    if (!(p.kidnapEdgeSigma > 0)) s.fail("kidnap_edge_sigma", "must be > 0");
+    s.finish();
+    odometry_ = std::make_unique<odometry::FusedOdometry>(params_.odometry);
+}
+
+void FusedOdometryNRD::setWheelGeometry(double wheelBase, double wheelRadius, double ticksPerRev) {
+    params_.odometry.wheels.wheelBase = wheelBase;
+    params_.odometry.wheels.wheelRadius = wheelRadius;
+    params_.odometry.wheels.ticksPerRev = ticksPerRev;
+    odometry_ = std::make_unique<odometry::FusedOdometry>(params_.odometry);
+}
+
+std::set<std::string> FusedOdometryNRD::requiredObservations() const {
+    // Frames give the node times, encoder samples resolve them (FusedOdometry), whatever the
+    // fusion method.
+    return {"CObservationOdometry", "CObservation3DRangeScan"};
+}
+
+bool FusedOdometryNRD::updateState(mrpt::obs::CActionCollection::Ptr /*action*/,
+                                   mrpt::obs::CSensoryFrame::Ptr observations,
+                                   mrpt::obs::CObservation::Ptr observation) {
+    just_registered_.reset();
+    if (observation) consume(observation);
+    if (observations) {
+        for (const auto& o : *observations) consume(o);
+    }
+    return registerPending();
+}
+
+bool FusedOdometryNRD::finish() {
+    just_registered_.reset();
+    for (const auto& e : odometry_->flush()) take(e);
+    return registerPending();
+}
+
+void FusedOdometryNRD::consume(const mrpt::obs::CObservation::Ptr& obs) {
+    if (auto drop = std::dynamic_pointer_cast<obs::CObservationWheelDrop>(obs)) {
+        onWheelDrop(drop->lifted());
+        return;
+    }
+    if (auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(obs)) {
+        ++frames_;
+        if (params_.mapPixelStep > 0) {
+            recent_frames_.push_back(scan);
+            while (recent_frames_.size() > 64) recent_frames_.pop_front();
+        }
+    }
+    for (const auto& e : odometry_->process(obs)) take(e);
+}
+
+void FusedOdometryNRD::onWheelDrop(bool lifted) {
+    if (lifted && !lifted_) {
+        ++kidnaps_;
+        // Close the segment where the robot was lifted; what odometry sees while carried is
+        // not robot motion.
+        lifted_ = true;
+        const auto& m = since_node_.mean;
+        close_segment_ = have_estimate_ && (m.x() != 0 || m.y() != 0 || m.phi() != 0);
+    } else if (!lifted && lifted_) {
+        lifted_ = false;
+        restart_ = true;
+        since_node_ = mrpt::poses::CPosePDFGaussian();
+    }
+}
+
+void FusedOdometryNRD::take(const odometry::FusedOdometry::Estimate& e) {
+    if (lifted_) {
+        ++frames_lifted_;
+        return;
+    }
+    const bool first = !have_estimate_;
+    have_estimate_ = true;
+    last_time_ = e.timestamp;
+    if (first) {
+        // The root: node 0 at the origin, where the odometry starts.
+        m_graph->nodes[m_graph->root] = mrpt::poses::CPose3D();
+        m_prev_registered_nodeID = m_graph->root;
+        if (nodes_) nodes_->add(m_graph->root, recordFor(e.timestamp, true));
+        ++keyframes_;
+        just_registered_ = m_graph->root;
+        return;
+    }
+    since_node_ += e.increments.front();
+    since_keyframe_ = since_keyframe_ + e.increments.front().mean;
+}
+
+bool FusedOdometryNRD::checkRegistrationCondition() {
+    if (!have_estimate_ || just_registered_) return false;
+    if (close_segment_) return true;
+    if (lifted_) return false;
+    if (restart_) return true;
+    const auto& m = since_node_.mean;
+    return std::hypot(m.x(), m.y()) >= params_.nodeDistance ||
+           std::abs(m.phi()) >= params_.nodeAngle;
+}
+
+FusedOdometryNRD::global_pose_t FusedOdometryNRD::getCurrentRobotPosEstimation() const {
+    global_pose_t pose;
+    if (m_prev_registered_nodeID != mrpt::graphs::INVALID_NODEID) {
+        pose = m_graph->nodes.at(m_prev_registered_nodeID);
+    }
+    const auto& m = since_node_.mean;
+    return global_pose_t(pose + mrpt::poses::CPose3D(m.x(), m.y(), 0, m.phi(), 0, 0));
+}
+
+bool FusedOdometryNRD::registerPending() {
+    if (!checkRegistrationCondition()) return just_registered_.has_value();
+    Constraint c = planarConstraint(since_node_);
+    close_segment_ = false;
+    const bool keyframe = restart_ ||
+                          std::hypot(since_keyframe_.x(), since_keyframe_.y()) >=
+                              params_.keyframeDistance ||
+                          std::abs(since_keyframe_.phi()) >= params_.keyframeAngle;
+    if (restart_) {
+        // Across a kidnap: no idea where the robot went.
+        const double w = 1 / (params_.kidnapEdgeSigma * params_.kidnapEdgeSigma);
+        for (int k : {0, 1, 3}) c.cov_inv(k, k) = w;
+        c.cov_inv(0, 1) = c.cov_inv(1, 0) = c.cov_inv(0, 3) = c.cov_inv(3, 0) = 0;
+        c.cov_inv(1, 3) = c.cov_inv(3, 1) = 0;
+        ++segment_;
+        restart_ = false;
+    }
+    m_since_prev_node_PDF = c;
+    registerNewNodeAtEnd();  // MRPT's: node at previous + m_since_prev_node_PDF, edge c
+    const TNodeID id = m_prev_registered_nodeID;
+    if (nodes_) nodes_->add(id, recordFor(last_time_, keyframe));
+    if (keyframe) {
+        since_keyframe_ = mrpt::poses::CPose2D();
+        ++keyframes_;
+    }
+    since_node_ = mrpt::poses::CPosePDFGaussian();
+    just_registered_ = id;
+    return true;
+}
+
+NodeRecord FusedOdometryNRD::recordFor(double timestamp, bool keyframe) const {
+    NodeRecord r;
+    r.timestamp = timestamp;
+    r.segment = segment_;
+    r.keyframe = keyframe;
+    if (keyframe && params_.mapPixelStep > 0) {
+        for (auto it = recent_frames_.rbegin(); it != recent_frames_.rend(); ++it) {
+            if (std::abs(mrpt::Clock::toDouble((*it)->timestamp) - timestamp) < 1e-6) {
+                r.cloud = std::make_shared<KeyframeCloud>(
+                    makeKeyframeCloud(**it, params_.mapPixelStep, params_.mapMaxDepth));
+                break;
+            }
+        }
+    }
+    return r;
+}
+
+JsonObject FusedOdometryNRD::describe() const {
+    JsonObject params;
+    params.set("node_distance", params_.nodeDistance)
+        .set("node_angle_deg", params_.nodeAngle * 180 / M_PI)
+        .set("keyframe_distance", params_.keyframeDistance)
+        .set("keyframe_angle_deg", params_.keyframeAngle * 180 / M_PI)
+        .set("map_pixel_step", params_.mapPixelStep)
+        .set("kidnap_edge_sigma", params_.kidnapEdgeSigma)
+        .set("odometry_method", params_.odometry.method)
+        .set("wheel_base", params_.odometry.wheels.wheelBase)
+        .set("wheel_radius", params_.odometry.wheels.wheelRadius)
+        .set("ticks_per_rev", params_.odometry.wheels.ticksPerRev);
+    JsonObject stats;
+    stats.set("rgbd_frames", frames_)
+        .set("frames_while_lifted", frames_lifted_)
+        .set("kidnaps", kidnaps_)
+        .set("keyframes", keyframes_)
+        .set("segments", segment_ + 1);
+    return JsonObject().set("class", getClassName()).set("params", params).set("stats", stats);
+}
+
+}  // namespace lodestone::graphslam

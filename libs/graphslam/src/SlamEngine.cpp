@@ -1,0 +1,159 @@
+#include <lodestone/config/IniSection.h>
+#include <lodestone/graphslam/DeciderRegistry.h>
+#include <lodestone/graphslam/SlamEngine.h>
+#include <mrpt/obs/CObservation3DRangeScan.h>
+
+#include <chrono>
+
+namespace lodestone::graphslam {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+}  // namespace
+
+SlamEngine::SlamEngine(std::unique_ptr<NodeDecider> nrd, std::unique_ptr<EdgeDecider> erd,
+                       std::unique_ptr<GraphOptimizer> gso)
+    : nrd_(std::move(nrd)), erd_(std::move(erd)), gso_(std::move(gso)) {
+    graph_.root = 0;
+    for (SlamComponent* c : std::initializer_list<SlamComponent*>{nrd_.get(), erd_.get(), gso_.get()}) {
+        c->setNodeStore(&nodes_);
+    }
+    nrd_->setGraphPtr(&graph_);
+    erd_->setGraphPtr(&graph_);
+    gso_->setGraphPtr(&graph_);
+}
+
+std::unique_ptr<SlamEngine> SlamEngine::fromConfig(const mrpt::config::CConfigFileBase& ini) {
+    config::IniSection s(ini, "graphslam", config::sourceName(ini));
+    const std::string nrdName = s.getString("node_decider", "FusedOdometryNRD");
+    const std::string erdName = s.getString("edge_decider", "CompositeERD");
+    const std::string gsoName = s.getString("optimizer", "CeresGSO");
+    s.finish();
+    const auto& reg = DeciderRegistry::instance();
+    auto nrd = reg.makeNodeDecider(nrdName, s.where("node_decider"));
+    auto erd = reg.makeEdgeDecider(erdName, s.where("edge_decider"));
+    auto gso = reg.makeOptimizer(gsoName, s.where("optimizer"));
+    nrd->configure(ini);
+    erd->configure(ini);
+    gso->configure(ini);
+    return std::make_unique<SlamEngine>(std::move(nrd), std::move(erd), std::move(gso));
+}
+
+std::set<std::string> SlamEngine::requiredObservations() const {
+    std::set<std::string> all = nrd_->requiredObservations();
+    for (const auto& o : erd_->requiredObservations()) all.insert(o);
+    for (const auto& o : gso_->requiredObservations()) all.insert(o);
+    return all;
+}
+
+mrpt::poses::CPose3D SlamEngine::currentPose() const { return nrd_->getCurrentRobotPosEstimation(); }
+
+bool SlamEngine::process(const mrpt::obs::CObservation::Ptr& obs) {
+    const auto t0 = Clock::now();
+    ++stats_.observations;
+    const bool newNode = nrd_->updateState(nullptr, nullptr, obs);
+    stats_.nrdSeconds += msSince(t0) / 1e3;
+    const auto t1 = Clock::now();
+    erd_->updateState(nullptr, nullptr, obs);
+    stats_.erdSeconds += msSince(t1) / 1e3;
+    afterNodeDecider(newNode);
+    const double ms = msSince(t0);
+    if (IS_CLASS(*obs, mrpt::obs::CObservation3DRangeScan)) {
+        ++stats_.frames;
+        stats_.frameMs.push_back(static_cast<float>(ms));
+    }
+    since_node_ms_ += ms;
+    if (newNode) {
+        stats_.nodeMs.push_back(static_cast<float>(since_node_ms_));
+        since_node_ms_ = 0;
+    }
+    return newNode;
+}
+
+void SlamEngine::afterNodeDecider(bool /*newNode*/) {
+    const auto t0 = Clock::now();
+    const auto closures = erd_->takeNewLoopClosures();
+    if (!closures.empty()) {
+        gso_->addLoopClosures(closures);
+        reanchor(closures);
+    }
+    gso_->updateState(nullptr, nullptr, nullptr);
+    stats_.gsoSeconds += msSince(t0) / 1e3;
+}
+
+void SlamEngine::reanchor(const std::vector<LoopClosure>& closures) {
+    bool moved = false;
+    for (const auto& lc : closures) {
+        if (!nodes_.has(lc.from) || !nodes_.has(lc.to)) continue;
+        const int sFrom = nodes_.at(lc.from).segment, sTo = nodes_.at(lc.to).segment;
+        const bool aFrom = anchored_.count(sFrom) > 0, aTo = anchored_.count(sTo) > 0;
+        if (aFrom == aTo) continue;
+        // T moves the unanchored segment so that pose(to) = pose(from) + z holds.
+        const mrpt::poses::CPose3D& pFrom = graph_.nodes.at(lc.from);
+        const mrpt::poses::CPose3D& pTo = graph_.nodes.at(lc.to);
+        const mrpt::poses::CPose3D& z = lc.constraint.mean;
+        const int segment = aFrom ? sTo : sFrom;
+        const mrpt::poses::CPose3D T =
+            aFrom ? (pFrom + z) + (-pTo) : (pTo + (-z)) + (-pFrom);
+        for (TNodeID id = 0; id < nodes_.size(); ++id) {
+            if (nodes_.at(id).segment == segment) graph_.nodes[id] = T + graph_.nodes.at(id);
+        }
+        anchored_.insert(segment);
+        ++stats_.reanchoredSegments;
+        moved = true;
+    }
+    if (moved) gso_->optimizeGraph();
+}
+
+void SlamEngine::finish() {
+    const auto t0 = Clock::now();
+    const bool newNode = nrd_->finish();
+    stats_.nrdSeconds += msSince(t0) / 1e3;
+    const auto t1 = Clock::now();
+    erd_->updateState(nullptr, nullptr, nullptr);
+    stats_.erdSeconds += msSince(t1) / 1e3;
+    afterNodeDecider(newNode);
+    const auto t2 = Clock::now();
+    gso_->finish();
+    stats_.gsoSeconds += msSince(t2) / 1e3;
+    if (newNode) stats_.nodeMs.push_back(static_cast<float>(since_node_ms_ + msSince(t0)));
+}
+
+JsonObject SlamEngine::describe() const {
+    std::size_t closures = 0, rejected = 0;
+    for (const auto& lc : gso_->loopClosures()) {
+        ++closures;
+        rejected += lc.rejected;
+    }
+    std::size_t keyframes = 0;
+    for (const auto& r : nodes_.records()) keyframes += r.keyframe;
+    std::map<std::string, int> edgeStats;
+    erd_->getEdgesStats(&edgeStats);
+    JsonObject perDecider;
+    for (const auto& [k, v] : edgeStats) perDecider.set(k, v);
+    JsonObject counts;
+    counts.set("nodes", graph_.nodes.size())
+        .set("edges", graph_.edges.size())
+        .set("keyframes", keyframes)
+        .set("loop_closures", closures)
+        .set("loop_closures_rejected", rejected)
+        .set("loop_closures_by_decider", perDecider)
+        .set("observations", stats_.observations)
+        .set("rgbd_frames", stats_.frames)
+        .set("reanchored_segments", stats_.reanchoredSegments);
+    JsonObject timing;
+    timing.set("node_decider_s", stats_.nrdSeconds)
+        .set("edge_decider_s", stats_.erdSeconds)
+        .set("optimizer_s", stats_.gsoSeconds);
+    return JsonObject()
+        .set("counts", counts)
+        .set("stage_seconds", timing)
+        .set("node_decider", nrd_->describe())
+        .set("edge_decider", erd_->describe())
+        .set("optimizer", gso_->describe());
+}
+
+}  // namespace lodestone::graphslam

@@ -1,0 +1,39 @@
+#pragma once
+
+#include <limits>
+#include <optional>
+#include <ostream>
+#include <string>
+
+namespace lodestone::slamapp {
+
+/** What one `lodestone-slam` run is asked to do. */
+struct SlamRunOptions {
+    std::string rawlog;       ///< input rawlog, or
+    std::string scenario;     ///< a simulator scenario INI run directly
+    std::string config;       ///< the SLAM INI ([graphslam] and the deciders' sections)
+    std::string outDir;
+    std::string groundTruth;  ///< TUM file for the ATE (with --sim: the simulator's own)
+    double maxSeconds{std::numeric_limits<double>::infinity()};  ///< of data, from its start
+    bool quiet{false};
+    bool terminal{false};  ///< draw the progress bar in place
+};
+
+/** What came out, for callers and tests (report.json holds it all). */
+struct SlamRunResult {
+    int exitCode{0};                ///< 0 ok; 1 bad input or a fault in the data
+    std::optional<double> ateRmse;  ///< [m] when ground truth was available
+    std::size_t nodes{0}, loopClosures{0};
+    std::string error;  ///< what stopped the run early, if anything
+};
+
+/** Runs the engine over the rawlog or the simulated scenario and writes, in `outDir`:
+ * trajectory.tum (every node), graph.graph (MRPT text format), map.ply (keyframe clouds),
+ * report.json (parameters, counts, timings, ATE), graph.png and, with ground truth,
+ * trajectory.png (and ground_truth.tum for --sim). Configuration mistakes and a rawlog that
+ * lacks the observations the deciders need stop before any work; a fault in the data stops the
+ * run there, and everything processed until then is still optimized and written. Messages go to
+ * `err`, the summary to `out`. */
+SlamRunResult runSlam(const SlamRunOptions& options, std::ostream& out, std::ostream& err);
+
+}  // namespace lodestone::slamapp

@@ -1,0 +1,52 @@
+#include <lodestone/config/CommandLine.h>
+#include <lodestone/slamapp/SlamApp.h>
+#include <lodestone/slamapp/SlamRun.h>
+
+namespace lodestone::slamapp {
+
+int runSlamApp(int argc, const char* const* argv, std::ostream& out, std::ostream& err,
+               bool terminal) {
+    TCLAP::CmdLine cmd(
+        "Offline graph SLAM (RGB-D + wheel odometry + magnetometers) on a rawlog or a simulated "
+        "scenario",
+        ' ', "");
+    TCLAP::ValueArg<std::string> rawlog("r", "rawlog", "input rawlog (.rawlog or .rawlog.gz)", false,
+                                        "", "FILE", cmd);
+    TCLAP::ValueArg<std::string> sim("s", "sim", "run the simulator on this scenario instead",
+                                     false, "", "SCENARIO.ini", cmd);
+    TCLAP::ValueArg<std::string> config("c", "config", "SLAM configuration (config_ini/*.ini)",
+                                        true, "", "INI", cmd);
+    TCLAP::ValueArg<std::string> outDir("o", "out", "output directory (created)", true, "", "DIR",
+                                        cmd);
+    TCLAP::ValueArg<std::string> gt("g", "ground-truth", "TUM ground truth for the ATE", false, "",
+                                    "GT.tum", cmd);
+    TCLAP::ValueArg<double> maxSeconds("", "max-seconds", "process only this much data [s]", false,
+                                       0, "S", cmd);
+    TCLAP::SwitchArg quiet("q", "quiet", "no progress output", cmd);
+    const auto outcome = config::parseCommandLine(cmd, std::vector<std::string>(argv, argv + argc));
+    if (outcome.kind == config::ParseOutcome::Kind::HelpShown) return 0;
+    std::string usage = outcome.error;
+    if (usage.empty() && rawlog.isSet() == sim.isSet()) usage = "give exactly one of --rawlog and --sim";
+    if (usage.empty() && sim.isSet() && gt.isSet()) {
+        usage = "--ground-truth is for --rawlog; --sim uses the simulator's own ground truth";
+    }
+    if (usage.empty() && maxSeconds.isSet() && !(maxSeconds.getValue() > 0)) {
+        usage = "--max-seconds must be > 0";
+    }
+    if (!usage.empty()) {
+        err << "lodestone-slam: " << usage << " (see lodestone-slam --help)\n";
+        return 2;
+    }
+    SlamRunOptions o;
+    o.rawlog = rawlog.getValue();
+    o.scenario = sim.getValue();
+    o.config = config.getValue();
+    o.outDir = outDir.getValue();
+    o.groundTruth = gt.getValue();
+    if (maxSeconds.isSet()) o.maxSeconds = maxSeconds.getValue();
+    o.quiet = quiet.getValue();
+    o.terminal = terminal;
+    return runSlam(o, out, err).exitCode;
+}
+
+}  // namespace lodestone::slamapp

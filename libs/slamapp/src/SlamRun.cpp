@@ -1,0 +1,298 @@
+#include <lodestone/config/IniSection.h>
+#include <lodestone/eval/TrajectoryError.h>
+#include <lodestone/eval/TrajectoryPlot.h>
+#include <lodestone/graphslam/DeciderRegistry.h>
+#include <lodestone/graphslam/FusedOdometryNRD.h>
+#include <lodestone/graphslam/MapExport.h>
+#include <lodestone/graphslam/SlamEngine.h>
+#include <lodestone/io/RawlogSource.h>
+#include <lodestone/io/TumTrajectory.h>
+#include <lodestone/obs/registerAllClasses.h>
+#include <lodestone/sim/SimulatorSource.h>
+#include <lodestone/slamapp/GraphPlot.h>
+#include <lodestone/slamapp/ProgressBar.h>
+#include <lodestone/slamapp/SlamRun.h>
+#include <mrpt/config/CConfigFile.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+
+namespace lodestone::slamapp {
+
+namespace {
+
+namespace fs = std::filesystem;
+using graphslam::JsonObject;
+
+/** Input problems found before any work: the message is the whole story. */
+struct InputError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+// How far into a rawlog to look for the observation classes the deciders need: every sensor
+// of a recording shows up within its first seconds.
+constexpr std::size_t kPrescanObservations = 3000;
+
+std::set<std::string> allowedSections() {
+    std::set<std::string> s{"graphslam", "wheel_odometry", "visual_odometry", "odometry_fusion"};
+    const auto& reg = graphslam::DeciderRegistry::instance();
+    for (const auto& names : {reg.nodeDeciders(), reg.edgeDeciders(), reg.optimizers()}) {
+        s.insert(names.begin(), names.end());
+    }
+    return s;
+}
+
+std::string join(const std::set<std::string>& items) {
+    std::string out;
+    for (const auto& i : items) out += (out.empty() ? "" : ", ") + i;
+    return out;
+}
+
+void checkRawlogHasObservations(const std::string& path, const std::set<std::string>& required) {
+    io::RawlogSource source(path);
+    std::set<std::string> missing = required;
+    std::size_t seen = 0;
+    while (!missing.empty() && seen < kPrescanObservations) {
+        const auto obs = source.next();
+        if (!obs) break;
+        ++seen;
+        missing.erase(obs->GetRuntimeClass()->className);
+    }
+    if (!missing.empty()) {
+        throw InputError(path + ": no " + join(missing) + " among its first " +
+                         std::to_string(seen) + " observations; the configured deciders need " +
+                         join(required));
+    }
+}
+
+struct Percentiles {
+    double p50{0}, p99{0}, max{0}, mean{0};
+};
+Percentiles percentiles(std::vector<float> v) {
+    Percentiles p;
+    if (v.empty()) return p;
+    std::sort(v.begin(), v.end());
+    const auto at = [&](double q) {
+        return static_cast<double>(v[std::min(v.size() - 1, static_cast<std::size_t>(q * v.size()))]);
+    };
+    p.p50 = at(0.5);
+    p.p99 = at(0.99);
+    p.max = v.back();
+    double sum = 0;
+    for (float x : v) sum += x;
+    p.mean = sum / v.size();
+    return p;
+}
+
+/** Mean engine time per node in each tenth of the run: flat means no growth with the graph. */
+std::vector<double> decileMeans(const std::vector<float>& v) {
+    std::vector<double> out;
+    if (v.size() < 10) return out;
+    for (int d = 0; d < 10; ++d) {
+        const std::size_t a = v.size() * d / 10, b = v.size() * (d + 1) / 10;
+        double sum = 0;
+        for (std::size_t i = a; i < b; ++i) sum += v[i];
+        out.push_back(sum / std::max<std::size_t>(1, b - a));
+    }
+    return out;
+}
+
+JsonObject timingJson(const graphslam::SlamEngine::Stats& s, double wall, double data) {
+    const auto frames = percentiles(s.frameMs), nodes = percentiles(s.nodeMs);
+    return JsonObject()
+        .set("wall_s", wall)
+        .set("data_s", data)
+        .set("real_time_factor", wall > 0 ? data / wall : 0.0)
+        .set("frame_ms", JsonObject()
+                             .set("mean", frames.mean)
+                             .set("p50", frames.p50)
+                             .set("p99", frames.p99)
+                             .set("max", frames.max))
+        .set("node_ms", JsonObject().set("mean", nodes.mean).set("p99", nodes.p99).set("max", nodes.max))
+        .set("node_ms_by_decile", decileMeans(s.nodeMs));
+}
+
+std::vector<io::TumPose> nodeTrajectory(const graphslam::SlamEngine& engine) {
+    std::vector<io::TumPose> out;
+    const auto& nodes = engine.nodes();
+    for (graphslam::TNodeID id = 0; id < nodes.size(); ++id) {
+        if (engine.graph().nodes.count(id)) {
+            out.push_back({nodes.at(id).timestamp, engine.graph().nodes.at(id)});
+        }
+    }
+    return out;
+}
+
+}  // namespace
+
+SlamRunResult runSlam(const SlamRunOptions& options, std::ostream& out, std::ostream& err) {
+    SlamRunResult result;
+    lodestone::registerAllClasses();
+    std::unique_ptr<graphslam::SlamEngine> engine;
+    std::unique_ptr<io::DataSource> source;
+    sim::SimulatorSource* simulator = nullptr;
+    io::RawlogSource* rawlog = nullptr;
+    std::unique_ptr<io::TumTrajectoryWriter> simTruth;
+    const fs::path dir(options.outDir);
+    // --- Everything that can be wrong with the inputs, before any work --------------------------
+    try {
+        if (!fs::exists(options.config)) throw InputError("cannot open configuration file '" + options.config + "'");
+        const mrpt::config::CConfigFile ini(options.config);
+        config::checkSections(ini, allowedSections(), options.config);
+        engine = graphslam::SlamEngine::fromConfig(ini);
+        if (!options.scenario.empty()) {
+            const auto scenario = sim::Scenario::load(options.scenario);
+            auto sim = std::make_unique<sim::SimulatorSource>(scenario, scenario.seed);
+            if (auto* nrd = dynamic_cast<graphslam::FusedOdometryNRD*>(&engine->nodeDecider())) {
+                // The simulated robot's wheels are the scenario's, whatever the INI says.
+                nrd->setWheelGeometry(scenario.motion.wheelBase, scenario.motion.wheelRadius,
+                                      scenario.encoders.ticksPerRev);
+            }
+            simulator = sim.get();
+            source = std::move(sim);
+        } else {
+            if (!fs::exists(options.rawlog)) throw InputError("cannot open rawlog '" + options.rawlog + "'");
+            checkRawlogHasObservations(options.rawlog, engine->requiredObservations());
+            auto rl = std::make_unique<io::RawlogSource>(options.rawlog);
+            rawlog = rl.get();
+            source = std::move(rl);
+        }
+        if (!options.groundTruth.empty() && !fs::exists(options.groundTruth)) {
+            throw InputError("cannot open ground truth '" + options.groundTruth + "'");
+        }
+        std::error_code ec;
+        fs::create_directories(dir, ec);
+        if (ec || !fs::is_directory(dir)) {
+            throw InputError("cannot create output directory '" + options.outDir + "': " + ec.message());
+        }
+        if (simulator) simTruth = std::make_unique<io::TumTrajectoryWriter>((dir / "ground_truth.tum").string());
+    } catch (const std::exception& e) {
+        err << "lodestone-slam: error: " << e.what() << "\n";
+        result.exitCode = 1;
+        result.error = e.what();
+        return result;
+    }
+
+    // --- The run ---------------------------------------------------------------------------------
+    ProgressBar progress(err, options.terminal, options.quiet);
+    const auto wall0 = std::chrono::steady_clock::now();
+    double t0 = NAN, dataSeconds = 0;
+    try {
+        while (auto obs = source->next()) {
+            const double t = mrpt::Clock::toDouble(obs->timestamp);
+            if (std::isnan(t0)) t0 = t;
+            if (t - t0 > options.maxSeconds) break;
+            dataSeconds = std::max(dataSeconds, t - t0);
+            if (simulator) {
+                const auto p = simulator->truePose(simulator->lastTime());
+                simTruth->write(t, mrpt::poses::CPose3D(p.x, p.y, p.z, p.yaw, 0, 0));
+            }
+            engine->process(obs);
+            const double fraction =
+                rawlog ? rawlog->fractionRead()
+                       : dataSeconds / std::min(simulator->duration(), options.maxSeconds);
+            progress.update(fraction, dataSeconds);
+        }
+    } catch (const std::exception& e) {
+        // A fault in the data: stop here, keep and write what was processed.
+        result.error = e.what();
+        result.exitCode = 1;
+        if (!options.quiet) err << "\n";
+        err << "lodestone-slam: error: " << e.what() << "\n"
+            << "lodestone-slam: writing what was processed before the fault\n";
+    }
+    try {
+        engine->finish();
+    } catch (const std::exception& e) {
+        err << "lodestone-slam: error while finishing: " << e.what() << "\n";
+        result.exitCode = 1;
+        if (result.error.empty()) result.error = e.what();
+    }
+    const double wall =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+    progress.finish(dataSeconds);
+    if (simTruth) simTruth.reset();  // flushes and closes
+
+    // --- Outputs -----------------------------------------------------------------------------------
+    try {
+        const auto& graph = engine->graph();
+        const auto& closures = engine->optimizer().loopClosures();
+        result.nodes = graph.nodes.size();
+        result.loopClosures = closures.size();
+        const std::string trajectory = (dir / "trajectory.tum").string();
+        graphslam::writeNodeTrajectory(trajectory, graph, engine->nodes());
+        graph.saveToTextFile((dir / "graph.graph").string());
+        const std::size_t mapPoints =
+            graphslam::writeMapPly((dir / "map.ply").string(), graph, engine->nodes());
+        cv::imwrite((dir / "graph.png").string(), plotGraph(graph, closures));
+
+        JsonObject report;
+        report.set("tool", "lodestone-slam");
+        JsonObject input;
+        input.set(options.scenario.empty() ? "rawlog" : "scenario",
+                  options.scenario.empty() ? options.rawlog : options.scenario)
+            .set("config", options.config)
+            .set("max_seconds", options.maxSeconds);
+        report.set("input", input);
+        report.set("engine", engine->describe());
+        report.set("timing", timingJson(engine->stats(), wall, dataSeconds));
+        report.set("map_points", mapPoints);
+
+        const std::string gtPath =
+            simulator ? (dir / "ground_truth.tum").string() : options.groundTruth;
+        if (!gtPath.empty()) {
+            const auto est = nodeTrajectory(*engine);
+            const auto gt = io::readTumTrajectory(gtPath);
+            const auto ate = eval::absoluteTrajectoryError(est, gt);
+            if (ate.pairs >= 3) {
+                result.ateRmse = ate.rmse;
+                report.set("ate", JsonObject()
+                                      .set("ground_truth", gtPath)
+                                      .set("pairs", ate.pairs)
+                                      .set("rmse_m", ate.rmse)
+                                      .set("mean_m", ate.mean)
+                                      .set("median_m", ate.median)
+                                      .set("max_m", ate.max));
+                cv::imwrite((dir / "trajectory.png").string(), eval::plotTrajectories(est, gt, ate));
+            } else {
+                err << "lodestone-slam: warning: only " << ate.pairs << " nodes match "
+                    << gtPath << " in time; no ATE\n";
+            }
+        }
+        if (!result.error.empty()) report.set("error", result.error);
+        std::ofstream json(dir / "report.json");
+        report.write(json);
+        json << "\n";
+        if (!json) throw std::runtime_error((dir / "report.json").string() + ": write failed");
+
+        std::size_t rejected = 0;
+        for (const auto& lc : closures) rejected += lc.rejected;
+        char line[256];
+        std::snprintf(line, sizeof line,
+                      "lodestone-slam: %zu nodes, %zu loop closures (%zu rejected), %zu frames, "
+                      "%.1f s of data in %.1f s (%.2fx real time)\n",
+                      result.nodes, result.loopClosures, rejected, engine->stats().frames,
+                      dataSeconds, wall, wall > 0 ? dataSeconds / wall : 0.0);
+        out << line;
+        if (result.ateRmse) {
+            std::snprintf(line, sizeof line, "ATE RMSE %.4f m over %zu nodes (ground truth %s)\n",
+                          *result.ateRmse, result.nodes, gtPath.c_str());
+            out << line;
+        }
+        out << "outputs in " << dir.string()
+            << ": trajectory.tum graph.graph map.ply report.json graph.png"
+            << (result.ateRmse ? " trajectory.png" : "") << (simulator ? " ground_truth.tum" : "")
+            << "\n";
+    } catch (const std::exception& e) {
+        err << "lodestone-slam: error writing outputs: " << e.what() << "\n";
+        result.exitCode = 1;
+        if (result.error.empty()) result.error = e.what();
+    }
+    return result;
+}
+
+}  // namespace lodestone::slamapp
