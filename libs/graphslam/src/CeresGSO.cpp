@@ -5,12 +5,6 @@
 
 namespace lodestone::graphslam {
 
-namespace {
-// chi-square quantiles at 99.9 % for 3 (planar) and 6 (SE(3)) degrees of freedom.
-constexpr double kChi2Planar = 16.266;
-constexpr double kChi2Se3 = 22.458;
-}  // namespace
-
 CeresGSO::CeresGSO() {
     setClassName("CeresGSO");
     solver_ = std::make_unique<PoseGraphSolver>(params_.solver);
@@ -18,26 +12,28 @@ CeresGSO::CeresGSO() {
 
 void CeresGSO::configure(const mrpt::config::CConfigFileBase& ini) {
     config::IniSection s(ini, "CeresGSO", config::sourceName(ini));
-    auto& o = params_.solver;
+    Params p = params_;  // all or nothing: a failed read leaves the optimizer as it was
+    auto& o = p.solver;
     const std::string mode = s.getString("mode", o.planar ? "planar" : "se3");
     if (mode != "planar" && mode != "se3") s.fail("mode", "must be planar or se3");
     o.planar = mode == "planar";
     o.robustLoss = s.getString("robust_loss", o.robustLoss);
     o.robustScale = s.getDouble("robust_scale", o.robustScale);
     const double chi2 = s.getDouble("rejection_chi2", 0);
-    o.rejectionChi2 = chi2 > 0 ? chi2 : (o.planar ? kChi2Planar : kChi2Se3);
+    o.rejectionChi2 = chi2 > 0 ? chi2 : (o.planar ? kChi2Planar999 : kChi2Se3999);
     o.maxIterations = s.getInt("max_iterations", o.maxIterations);
-    params_.localWindow = s.getInt("local_window", params_.localWindow);
-    params_.fullSolveGrowth = s.getDouble("full_solve_growth", params_.fullSolveGrowth);
+    p.localWindow = s.getInt("local_window", p.localWindow);
+    p.fullSolveGrowth = s.getDouble("full_solve_growth", p.fullSolveGrowth);
     if (o.robustLoss != "none" && o.robustLoss != "huber" && o.robustLoss != "cauchy") {
         s.fail("robust_loss", "must be none, huber or cauchy");
     }
     if (!(o.robustScale > 0)) s.fail("robust_scale", "must be > 0");
     if (chi2 < 0) s.fail("rejection_chi2", "must be >= 0");
     if (o.maxIterations < 1) s.fail("max_iterations", "must be >= 1");
-    if (params_.localWindow < 1) s.fail("local_window", "must be >= 1");
-    if (!(params_.fullSolveGrowth > 0)) s.fail("full_solve_growth", "must be > 0");
+    if (p.localWindow < 1) s.fail("local_window", "must be >= 1");
+    if (!(p.fullSolveGrowth > 0)) s.fail("full_solve_growth", "must be > 0");
     s.finish();
+    params_ = p;
     solver_ = std::make_unique<PoseGraphSolver>(o);
 }
 
@@ -68,8 +64,21 @@ bool CeresGSO::updateState(mrpt::obs::CActionCollection::Ptr, mrpt::obs::CSensor
             }
         }
     }
+    absorb(solver_->solve(*m_graph, closures_, window, false), false);
+    // A window cannot tell a wrong closure from a right one whose correction reaches beyond it:
+    // if a new closure still disagrees, the full graph decides.
+    for (const auto& lc : closures_) {
+        if (lc.rejected) continue;
+        const bool isNew = std::find(pending_.begin(), pending_.end(),
+                                     std::make_pair(lc.from, lc.to)) != pending_.end();
+        if (isNew && solver_->squaredResidual(*m_graph, lc.from, lc.to, lc.constraint) >
+                         params_.solver.rejectionChi2) {
+            ++stats_.escalations;
+            optimizeGraph();
+            return true;
+        }
+    }
     pending_.clear();
-    absorb(solver_->solve(*m_graph, closures_, window), false);
     return true;
 }
 
@@ -124,6 +133,7 @@ JsonObject CeresGSO::describe() const {
         .set("iterations", stats_.iterations)
         .set("local_seconds", stats_.localSeconds)
         .set("full_seconds", stats_.fullSeconds)
+        .set("escalations", stats_.escalations)
         .set("loop_closures", closures_.size())
         .set("rejected", stats_.rejected);
     return JsonObject()

@@ -12,9 +12,9 @@ FusedOdometryNRD::FusedOdometryNRD() {
 }
 
 void FusedOdometryNRD::configure(const mrpt::config::CConfigFileBase& ini) {
-    params_.odometry.loadFromConfigFile(ini, "odometry_fusion");
+    Params p = params_;  // all or nothing: a failed read leaves the decider as it was
+    p.odometry.loadFromConfigFile(ini, "odometry_fusion");
     config::IniSection s(ini, "FusedOdometryNRD", config::sourceName(ini));
-    auto& p = params_;
     p.nodeDistance = s.getDouble("node_distance", p.nodeDistance);
     p.nodeAngle = s.getDouble("node_angle_deg", p.nodeAngle * 180 / M_PI) * M_PI / 180;
     p.keyframeDistance = s.getDouble("keyframe_distance", p.keyframeDistance);
@@ -28,6 +28,7 @@ void FusedOdometryNRD::configure(const mrpt::config::CConfigFileBase& ini) {
     if (p.mapPixelStep < 0) s.fail("map_pixel_step", "must be >= 0");
     if (!(p.kidnapEdgeSigma > 0)) s.fail("kidnap_edge_sigma", "must be > 0");
     s.finish();
+    params_ = p;
     odometry_ = std::make_unique<odometry::FusedOdometry>(params_.odometry);
 }
 
@@ -63,7 +64,7 @@ bool FusedOdometryNRD::finish() {
 
 void FusedOdometryNRD::consume(const mrpt::obs::CObservation::Ptr& obs) {
     if (auto drop = std::dynamic_pointer_cast<obs::CObservationWheelDrop>(obs)) {
-        onWheelDrop(drop->lifted());
+        onWheelDrop(drop->lifted(), mrpt::Clock::toDouble(drop->timestamp));
         return;
     }
     if (auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(obs)) {
@@ -76,24 +77,43 @@ void FusedOdometryNRD::consume(const mrpt::obs::CObservation::Ptr& obs) {
     for (const auto& e : odometry_->process(obs)) take(e);
 }
 
-void FusedOdometryNRD::onWheelDrop(bool lifted) {
+void FusedOdometryNRD::onWheelDrop(bool lifted, double t) {
+    // Frames are resolved a little after they are taken (FusedOdometry waits for the next
+    // encoder sample), so the kidnap is an interval of frame times, not a state.
     if (lifted && !lifted_) {
-        ++kidnaps_;
-        // Close the segment where the robot was lifted; what odometry sees while carried is
-        // not robot motion.
         lifted_ = true;
-        const auto& m = since_node_.mean;
-        close_segment_ = have_estimate_ && (m.x() != 0 || m.y() != 0 || m.phi() != 0);
+        lift_time_ = t;
+        down_time_.reset();
+        ++kidnaps_;
     } else if (!lifted && lifted_) {
         lifted_ = false;
-        restart_ = true;
-        since_node_ = mrpt::poses::CPosePDFGaussian();
+        down_time_ = t;
     }
 }
 
 void FusedOdometryNRD::take(const odometry::FusedOdometry::Estimate& e) {
-    if (lifted_) {
+    const bool afterLift = lift_time_ && e.timestamp >= *lift_time_;
+    const bool beforeDown = !down_time_ || e.timestamp < *down_time_;
+    if (afterLift && beforeDown) {
+        // Carried: what odometry sees is not the robot driving. Close the segment where the
+        // robot was lifted, once.
         ++frames_lifted_;
+        const auto& m = since_node_.mean;
+        if (!segment_closed_ && have_estimate_ && (m.x() != 0 || m.y() != 0 || m.phi() != 0)) {
+            close_segment_ = true;
+        }
+        segment_closed_ = true;
+        return;
+    }
+    if (afterLift && down_time_) {
+        // The first frame after the put-down starts a new segment; its own increment spans
+        // the carry and is dropped.
+        lift_time_.reset();
+        down_time_.reset();
+        segment_closed_ = false;
+        restart_ = true;
+        since_node_ = mrpt::poses::CPosePDFGaussian();
+        last_time_ = e.timestamp;
         return;
     }
     const bool first = !have_estimate_;
@@ -114,9 +134,8 @@ void FusedOdometryNRD::take(const odometry::FusedOdometry::Estimate& e) {
 
 bool FusedOdometryNRD::checkRegistrationCondition() {
     if (!have_estimate_ || just_registered_) return false;
-    if (close_segment_) return true;
-    if (lifted_) return false;
-    if (restart_) return true;
+    if (close_segment_ || restart_) return true;
+    if (lift_time_) return false;  // carried, or waiting for the first frame after it
     const auto& m = since_node_.mean;
     return std::hypot(m.x(), m.y()) >= params_.nodeDistance ||
            std::abs(m.phi()) >= params_.nodeAngle;

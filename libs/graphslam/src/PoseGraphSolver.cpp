@@ -177,10 +177,11 @@ GraphProblem buildProblem(const Graph& graph, const std::vector<LoopClosure>& lo
                                  blocksOf(gp.states[from], gp.states[to], planar));
         ++gp.edges;
     }
-    // Fixed: nodes outside the window; when there are none, the lowest node ID (the gauge).
+    // Fixed: nodes outside the window and the graph's root (the gauge: the map frame is where
+    // the run started); without the root, the lowest node ID.
     bool anyFixed = false;
     for (auto& [id, st] : gp.states) {
-        if (moves(id)) continue;
+        if (moves(id) && id != graph.root) continue;
         anyFixed = true;
         holdConstant(problem, st, planar);
     }
@@ -194,7 +195,7 @@ GraphProblem buildProblem(const Graph& graph, const std::vector<LoopClosure>& lo
 }  // namespace
 
 PoseGraphSolver::Report PoseGraphSolver::solve(Graph& graph, std::vector<LoopClosure>& loopClosures,
-                                               const std::set<TNodeID>& window) const {
+                                               const std::set<TNodeID>& window, bool reject) const {
     const auto t0 = std::chrono::steady_clock::now();
     Report report;
     const bool planar = options_.planar;
@@ -202,6 +203,7 @@ PoseGraphSolver::Report PoseGraphSolver::solve(Graph& graph, std::vector<LoopClo
     ceres::Solver::Options so;
     so.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
     so.max_num_iterations = options_.maxIterations;
+    so.function_tolerance = options_.functionTolerance;
     so.num_threads = 1;
     so.logging_type = ceres::SILENT;
 
@@ -223,7 +225,7 @@ PoseGraphSolver::Report PoseGraphSolver::solve(Graph& graph, std::vector<LoopClo
             report.edges = gp.edges;
             report.variableNodes = report.fixedNodes = 0;
             for (const auto& [id, st] : gp.states) {
-                if (moves(id) && id != gp.gauge) {
+                if (moves(id) && id != gp.gauge && id != graph.root) {
                     graph.nodes[id] = poseOf(st, graph.nodes.at(id), planar);
                     ++report.variableNodes;
                 } else {
@@ -244,7 +246,7 @@ PoseGraphSolver::Report PoseGraphSolver::solve(Graph& graph, std::vector<LoopClo
         };
         runSolve("none");
         const auto [worstPlain, plainIdx] = worstClosure(true);
-        if (plainIdx == std::string::npos || worstPlain <= options_.rejectionChi2 ||
+        if (!reject || plainIdx == std::string::npos || worstPlain <= options_.rejectionChi2 ||
             round >= options_.maxRejectionsPerSolve) {
             break;
         }

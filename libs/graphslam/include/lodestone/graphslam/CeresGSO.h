@@ -9,7 +9,9 @@ namespace lodestone::graphslam {
  * removal of closures the optimized graph cannot agree with) on a schedule that keeps the
  * per-node cost flat:
  *  - after new loop closures, a local solve over the nodes within `local_window` node IDs of
- *    their ends (the rest held fixed), so the current estimate follows at once;
+ *    their ends (the rest held fixed), so the current estimate follows at once; if a new
+ *    closure still disagrees after it (beyond the rejection gate), a full solve instead, which
+ *    alone may reject closures;
  *  - a full solve when closures arrived and the graph grew by `full_solve_growth` since the last
  *    full solve (a geometric schedule: their total cost stays proportional to the run), and
  *    always at the end.
@@ -42,6 +44,7 @@ class CeresGSO : public GraphOptimizer {
         std::size_t localSolves{0}, fullSolves{0}, iterations{0};
         double localSeconds{0}, fullSeconds{0};
         std::size_t rejected{0};
+        std::size_t escalations{0};  ///< local solves a new closure still disagreed with
     };
     const Stats& stats() const { return stats_; }
 

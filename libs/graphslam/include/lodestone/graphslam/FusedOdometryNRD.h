@@ -55,7 +55,7 @@ class FusedOdometryNRD : public NodeDecider {
   private:
     void consume(const mrpt::obs::CObservation::Ptr& obs);
     void take(const odometry::FusedOdometry::Estimate& e);
-    void onWheelDrop(bool lifted);
+    void onWheelDrop(bool lifted, double t);
     bool registerPending();
     NodeRecord recordFor(double timestamp, bool keyframe) const;
 
@@ -65,7 +65,9 @@ class FusedOdometryNRD : public NodeDecider {
     mrpt::poses::CPose2D since_keyframe_;
     double last_time_{0};
     bool have_estimate_{false};
-    bool lifted_{false}, restart_{false}, close_segment_{false};
+    bool lifted_{false};
+    std::optional<double> lift_time_, down_time_;  // [s] of the kidnap being handled
+    bool segment_closed_{false}, close_segment_{false}, restart_{false};
     int segment_{0};
     std::deque<mrpt::obs::CObservation3DRangeScan::Ptr> recent_frames_;  // for keyframe clouds
     std::size_t frames_{0}, frames_lifted_{0}, kidnaps_{0}, keyframes_{0};

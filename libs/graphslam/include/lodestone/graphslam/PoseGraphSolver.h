@@ -21,14 +21,19 @@ namespace lodestone::graphslam {
  * Two parameterizations: `planar` (x, y, yaw per node; z, pitch and roll kept as they are and
  * only the x, y, yaw block of each information matrix used) for ground robots, and full SE(3)
  * (translation + unit quaternion). */
+/** chi-square quantiles at 99.9 % for 3 (planar) and 6 (SE(3)) degrees of freedom. */
+constexpr double kChi2Planar999 = 16.266;
+constexpr double kChi2Se3999 = 22.458;
+
 class PoseGraphSolver {
   public:
     struct Options {
         bool planar{true};
         std::string robustLoss{"cauchy"};  ///< none | huber | cauchy (on loop closures only)
         double robustScale{1.0};           ///< [sigmas] where the loss leaves quadratic
-        double rejectionChi2{16.27};       ///< chi2(3) at 99.9 %; use 22.46 for SE(3)
+        double rejectionChi2{kChi2Planar999};  ///< kChi2Se3999 for SE(3)
         int maxIterations{100};
+        double functionTolerance{1e-9};  ///< relative cost change that ends a solve
         int maxRejectionsPerSolve{10};
     };
 
@@ -46,9 +51,11 @@ class PoseGraphSolver {
     /** Optimizes `graph` in place. `loopClosures`: the closures currently in the graph (robust
      * loss, candidates for removal); rejected ones are marked there and erased from the graph.
      * `window`: the nodes to move (all edges touching one of them take part; their other ends
-     * stay fixed); empty = every node, with the lowest node ID held fixed as the gauge. */
+     * stay fixed); empty = every node. The graph root is always held fixed (the gauge).
+     * `reject` false: solve only, never remove a closure (a local window cannot judge a
+     * closure whose correction reaches beyond it). */
     Report solve(Graph& graph, std::vector<LoopClosure>& loopClosures,
-                 const std::set<TNodeID>& window = {}) const;
+                 const std::set<TNodeID>& window = {}, bool reject = true) const;
 
     /** Squared Mahalanobis residual of one edge at the graph's current node poses, in the
      * solver's parameterization. */

@@ -1,0 +1,77 @@
+#pragma once
+// Test doubles: a node decider that replays a list of odometry edges (one node per call) and a
+// loop closer that emits prepared closures once both their nodes exist.
+
+#include <lodestone/graphslam/EdgeDecider.h>
+#include <lodestone/graphslam/NodeDecider.h>
+
+#include <vector>
+
+namespace lodestone::test {
+
+class ScriptedNRD : public graphslam::NodeDecider {
+  public:
+    struct Step {
+        graphslam::Constraint edge;  ///< from the previous node
+        int segment{0};
+    };
+    explicit ScriptedNRD(std::vector<Step> steps) : steps_(std::move(steps)) {
+        setClassName("ScriptedNRD");
+    }
+    void configure(const mrpt::config::CConfigFileBase&) override {}
+    graphslam::JsonObject describe() const override { return graphslam::JsonObject().set("class", "ScriptedNRD"); }
+    bool updateState(mrpt::obs::CActionCollection::Ptr, mrpt::obs::CSensoryFrame::Ptr,
+                     mrpt::obs::CObservation::Ptr) override {
+        just_registered_.reset();
+        if (m_prev_registered_nodeID == mrpt::graphs::INVALID_NODEID) {
+            m_graph->nodes[0] = mrpt::poses::CPose3D();
+            m_prev_registered_nodeID = 0;
+            nodes_->add(0, {});
+        } else if (next_ < steps_.size()) {
+            m_since_prev_node_PDF = steps_[next_].edge;
+            registerNewNodeAtEnd();
+            graphslam::NodeRecord r;
+            r.timestamp = static_cast<double>(next_ + 1);
+            r.segment = steps_[next_].segment;
+            nodes_->add(m_prev_registered_nodeID, r);
+            ++next_;
+        } else {
+            return false;
+        }
+        just_registered_ = m_prev_registered_nodeID;
+        return true;
+    }
+    bool finish() override { return false; }
+
+  private:
+    std::vector<Step> steps_;
+    std::size_t next_{0};
+};
+
+class ScriptedLoopCloser : public graphslam::EdgeDecider {
+  public:
+    explicit ScriptedLoopCloser(std::vector<graphslam::LoopClosure> closures)
+        : closures_(std::move(closures)) {
+        setClassName("ScriptedLoopCloser");
+    }
+    void configure(const mrpt::config::CConfigFileBase&) override {}
+    graphslam::JsonObject describe() const override { return graphslam::JsonObject().set("class", "ScriptedLoopCloser"); }
+    bool updateState(mrpt::obs::CActionCollection::Ptr, mrpt::obs::CSensoryFrame::Ptr,
+                     mrpt::obs::CObservation::Ptr) override {
+        bool any = false;
+        for (auto& lc : closures_) {
+            if (lc.rejected) continue;  // used here as "already emitted"
+            if (m_graph->nodes.count(lc.from) && m_graph->nodes.count(lc.to)) {
+                registerNewEdge(lc.from, lc.to, lc.constraint);
+                lc.rejected = true;
+                any = true;
+            }
+        }
+        return any;
+    }
+
+  private:
+    std::vector<graphslam::LoopClosure> closures_;
+};
+
+}  // namespace lodestone::test

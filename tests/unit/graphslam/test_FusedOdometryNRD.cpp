@@ -1,0 +1,163 @@
+#include <lodestone/config/IniSection.h>
+#include <lodestone/graphslam/CeresGSO.h>
+#include <lodestone/graphslam/CompositeERD.h>
+#include <lodestone/graphslam/FusedOdometryNRD.h>
+#include <lodestone/graphslam/SlamEngine.h>
+#include <lodestone/obs/CObservationWheelDrop.h>
+#include <lodestone/sim/SimulatorSource.h>
+#include <mrpt/config/CConfigFileMemory.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+
+using namespace lodestone;
+
+namespace {
+
+constexpr double kSeconds = 12.0;
+
+/** The first seconds of the office scenario at QVGA, simulated once for all tests. */
+const std::vector<mrpt::obs::CObservation::Ptr>& officeObservations(sim::Scenario* scenarioOut = nullptr) {
+    static sim::Scenario scenario = [] {
+        auto sc = sim::Scenario::load(std::string(LODESTONE_CONFIG_INI_DIR) + "/office.ini");
+        sc.camera.resize(320, 240);
+        return sc;
+    }();
+    static const std::vector<mrpt::obs::CObservation::Ptr> obs = [] {
+        std::vector<mrpt::obs::CObservation::Ptr> v;
+        sim::SimulatorSource source(scenario, scenario.seed);
+        while (auto o = source.next()) {
+            if (source.lastTime() > kSeconds) break;
+            v.push_back(o);
+        }
+        return v;
+    }();
+    if (scenarioOut) *scenarioOut = scenario;
+    return obs;
+}
+
+std::unique_ptr<graphslam::SlamEngine> odometryEngine(const sim::Scenario& sc) {
+    auto nrd = std::make_unique<graphslam::FusedOdometryNRD>();
+    nrd->setWheelGeometry(sc.motion.wheelBase, sc.motion.wheelRadius, sc.encoders.ticksPerRev);
+    return std::make_unique<graphslam::SlamEngine>(std::move(nrd),
+                                                   std::make_unique<graphslam::CompositeERD>(),
+                                                   std::make_unique<graphslam::CeresGSO>());
+}
+
+}  // namespace
+
+TEST(FusedOdometryNRD, NodesSitOnTheFusedOdometryAtTheirTimes) {
+    sim::Scenario sc;
+    const auto& obs = officeObservations(&sc);
+    auto engine = odometryEngine(sc);
+    // The odometry alone, same parameters, same data.
+    auto params = dynamic_cast<graphslam::FusedOdometryNRD&>(engine->nodeDecider()).params().odometry;
+    odometry::FusedOdometry odo(params);
+    std::map<double, mrpt::poses::CPose2D> fused;
+    for (const auto& o : obs) {
+        engine->process(o);
+        for (const auto& e : odo.process(o)) fused[e.timestamp] = e.poses.front().mean;
+    }
+    engine->finish();
+    for (const auto& e : odo.flush()) fused[e.timestamp] = e.poses.front().mean;
+
+    const auto& nodes = engine->nodes();
+    ASSERT_GT(nodes.size(), 20u);
+    ASSERT_EQ(nodes.size(), engine->graph().nodes.size());
+    EXPECT_EQ(engine->graph().edges.size(), nodes.size() - 1);
+    const double t0 = fused.begin()->first;
+    const auto& origin = fused.begin()->second;
+    std::size_t keyframes = 0;
+    for (graphslam::TNodeID id = 0; id < nodes.size(); ++id) {
+        const auto& rec = nodes.at(id);
+        ASSERT_TRUE(fused.count(rec.timestamp)) << "node " << id << " at a time no frame has";
+        const auto expected = fused.at(rec.timestamp) - origin;
+        const auto& got = engine->graph().nodes.at(id);
+        EXPECT_NEAR(got.x(), expected.x(), 1e-6) << id;
+        EXPECT_NEAR(got.y(), expected.y(), 1e-6) << id;
+        EXPECT_NEAR(std::remainder(got.yaw() - expected.phi(), 2 * M_PI), 0, 1e-6) << id;
+        if (rec.keyframe) {
+            ++keyframes;
+            ASSERT_TRUE(rec.cloud);
+            EXPECT_GT(rec.cloud->points.size(), 100u);
+        } else {
+            EXPECT_FALSE(rec.cloud);
+        }
+        // Node spacing: the set distance or angle (the last node may be short).
+        if (id > 0 && id + 1 < nodes.size()) {
+            const auto d = got - engine->graph().nodes.at(id - 1);
+            EXPECT_TRUE(std::hypot(d.x(), d.y()) >= 0.10 - 1e-9 ||
+                        std::abs(d.yaw()) >= 10 * M_PI / 180 - 1e-9)
+                << id;
+        }
+    }
+    EXPECT_GE(nodes.at(0).timestamp, t0);
+    EXPECT_GT(keyframes, 2u);
+    EXPECT_LT(keyframes, nodes.size() / 2);
+}
+
+TEST(FusedOdometryNRD, AKidnapStartsASegmentOnAWeakEdge) {
+    sim::Scenario sc;
+    const auto& obs = officeObservations(&sc);
+    auto engine = odometryEngine(sc);
+    const double start = mrpt::Clock::toDouble(obs.front()->timestamp);
+    const double lift = start + 4.0, putDown = start + 6.0;
+    bool lifted = false, down = false;
+    for (const auto& o : obs) {
+        const double t = mrpt::Clock::toDouble(o->timestamp);
+        if (!lifted && t >= lift) {
+            auto drop = obs::CObservationWheelDrop::Create();
+            drop->leftDropped = drop->rightDropped = true;
+            drop->timestamp = o->timestamp;
+            engine->process(drop);
+            lifted = true;
+        }
+        if (!down && t >= putDown) {
+            auto drop = obs::CObservationWheelDrop::Create();
+            drop->timestamp = o->timestamp;
+            engine->process(drop);
+            down = true;
+        }
+        engine->process(o);
+    }
+    engine->finish();
+    const auto& nodes = engine->nodes();
+    graphslam::TNodeID firstOfSegment = 0;
+    for (graphslam::TNodeID id = 0; id < nodes.size(); ++id) {
+        const double t = nodes.at(id).timestamp;
+        EXPECT_FALSE(t > lift + 0.05 && t < putDown) << "node " << id << " while lifted";
+        if (!firstOfSegment && nodes.at(id).segment == 1) firstOfSegment = id;
+    }
+    ASSERT_GT(firstOfSegment, 0u);
+    EXPECT_GE(nodes.at(firstOfSegment).timestamp, putDown);
+    EXPECT_TRUE(nodes.at(firstOfSegment).keyframe);
+    EXPECT_EQ(nodes.at(nodes.size() - 1).segment, 1);
+    const auto& across = engine->graph().edges.find({firstOfSegment - 1, firstOfSegment})->second;
+    EXPECT_NEAR(across.cov_inv(0, 0), 1e-4, 1e-12);
+    EXPECT_NEAR(across.cov_inv(3, 3), 1e-4, 1e-12);
+    // The edge before it is ordinary odometry: confident.
+    const auto& before = engine->graph().edges.find({firstOfSegment - 2, firstOfSegment - 1})->second;
+    EXPECT_GT(before.cov_inv(0, 0), 1e2);
+}
+
+TEST(FusedOdometryNRD, ConfigurationMistakesNameTheKey) {
+    graphslam::FusedOdometryNRD nrd;
+    const auto errorOf = [&](const std::string& text) {
+        mrpt::config::CConfigFileMemory ini(text);
+        try {
+            nrd.configure(ini);
+        } catch (const config::ConfigError& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    EXPECT_NE(errorOf("[FusedOdometryNRD]\nnode_distanse = 0.2\n").find("node_distanse"),
+              std::string::npos);
+    EXPECT_NE(errorOf("[FusedOdometryNRD]\nkeyframe_distance = 0.05\n").find("keyframe_distance"),
+              std::string::npos);
+    EXPECT_NE(errorOf("[odometry_fusion]\nmethod = magic\n").find("method"), std::string::npos);
+    EXPECT_EQ(errorOf("[FusedOdometryNRD]\nnode_distance = 0.2\n"), "no error");
+    EXPECT_DOUBLE_EQ(nrd.params().nodeDistance, 0.2);
+}
