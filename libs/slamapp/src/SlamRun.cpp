@@ -60,7 +60,10 @@ void checkRawlogHasObservations(const std::string& path, const std::set<std::str
         const auto obs = source.next();
         if (!obs) break;
         ++seen;
-        missing.erase(obs->GetRuntimeClass()->className);
+        // MRPT names classes with their namespace; deciders ask by the bare class name.
+        const std::string name = obs->GetRuntimeClass()->className;
+        const auto colons = name.rfind("::");
+        missing.erase(colons == std::string::npos ? name : name.substr(colons + 2));
     }
     if (!missing.empty()) {
         throw InputError(path + ": no " + join(missing) + " among its first " +

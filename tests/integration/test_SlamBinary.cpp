@@ -1,0 +1,149 @@
+// lodestone-slam as a user runs it: on the simulator and on the bundled rawlog, its outputs
+// exist and parse, and bad input is refused before any work (or, for a corrupt rawlog, what
+// was processed is still written).
+#include <lodestone/io/TumTrajectory.h>
+#include <mrpt/graphs/CNetworkOfPoses.h>
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+#include "StockTools.h"
+#include "TestPaths.h"
+
+namespace {
+namespace fs = std::filesystem;
+const std::string kSlam = LODESTONE_SLAM_BINARY;
+const std::string kConfigDir = LODESTONE_CONFIG_INI_DIR;
+const std::string kOfficeRawlog = LODESTONE_OFFICE_RAWLOG;
+
+std::string readText(const std::string& path) {
+    std::ifstream in(path);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+double ateOf(const std::string& output) {
+    std::smatch m;
+    const std::regex re("ATE RMSE ([0-9.]+) m");
+    return std::regex_search(output, m, re) ? std::stod(m[1]) : -1;
+}
+
+/** Every output is there and says the same number of nodes. */
+void expectOutputsParse(const lodestone::test::TempDir& dir) {
+    for (const char* f : {"trajectory.tum", "graph.graph", "map.ply", "report.json", "graph.png"}) {
+        EXPECT_TRUE(fs::exists(dir.file(f))) << f;
+    }
+    const auto traj = lodestone::io::readTumTrajectory(dir.file("trajectory.tum"));
+    mrpt::graphs::CNetworkOfPoses3DInf graph;
+    graph.loadFromTextFile(dir.file("graph.graph"));
+    EXPECT_GT(traj.size(), 5u);
+    EXPECT_EQ(graph.nodes.size(), traj.size());
+    EXPECT_EQ(graph.edges.size(), traj.size() - 1);  // odometry only: a chain
+    const std::string report = readText(dir.file("report.json"));
+    EXPECT_NE(report.find("\"nodes\": " + std::to_string(traj.size())), std::string::npos) << report;
+    EXPECT_NE(report.find("\"node_ms_by_decile\""), std::string::npos);
+    // PLY: the header's vertex count matches the binary body (15 bytes a point).
+    const std::string ply = readText(dir.file("map.ply"));
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(ply, m, std::regex("element vertex ([0-9]+)\n")));
+    const std::size_t body = ply.size() - (ply.find("end_header\n") + 11);
+    EXPECT_EQ(body, std::stoul(m[1]) * 15);
+    EXPECT_GT(std::stoul(m[1]), 1000u);
+}
+}  // namespace
+
+TEST(SlamBinary, SimulatedOfficeOdometryOnly) {
+    lodestone::test::TempDir dir;
+    const auto r = lodestone::test::runCommand(
+        kSlam + " --sim " + kConfigDir + "/office.ini --config " + kConfigDir +
+        "/odometry_only.ini --max-seconds 8 --quiet --out " + dir.path().string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    expectOutputsParse(dir);
+    EXPECT_TRUE(fs::exists(dir.file("ground_truth.tum")));
+    EXPECT_TRUE(fs::exists(dir.file("trajectory.png")));
+    const double ate = ateOf(r.output);
+    EXPECT_GT(ate, 0) << r.output;
+    EXPECT_LT(ate, 0.02) << r.output;  // measured 0.004 m over the whole office run
+    EXPECT_NE(readText(dir.file("report.json")).find("\"rmse_m\""), std::string::npos);
+}
+
+TEST(SlamBinary, BundledRawlogWithGroundTruth) {
+    lodestone::test::TempDir dir;
+    const std::string gt = std::regex_replace(kOfficeRawlog, std::regex("rawlog.gz$"), "gt.tum");
+    const auto r = lodestone::test::runCommand(kSlam + " --rawlog " + kOfficeRawlog +
+                                               " --ground-truth " + gt + " --config " + kConfigDir +
+                                               "/slam.ini --out " + dir.path().string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    expectOutputsParse(dir);
+    const double ate = ateOf(r.output);
+    EXPECT_GT(ate, 0) << r.output;
+    EXPECT_LT(ate, 0.05) << r.output;
+    // Not a terminal: plain progress lines, no carriage returns.
+    EXPECT_EQ(r.output.find('\r'), std::string::npos);
+    EXPECT_NE(r.output.find("done "), std::string::npos) << r.output;
+}
+
+TEST(SlamBinary, ConfigurationMistakesStopBeforeAnyWork) {
+    lodestone::test::TempDir dir;
+    const auto runWith = [&](const std::string& ini) {
+        std::ofstream(dir.file("bad.ini")) << ini;
+        return lodestone::test::runCommand(kSlam + " --rawlog " + kOfficeRawlog + " --config " +
+                                           dir.file("bad.ini") + " --out " + dir.file("out"));
+    };
+    auto r = runWith("[graphslam]\nnode_decider = FusedOdometryNDR\n");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.output.find("node_decider"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("FusedOdometryNDR"), std::string::npos) << r.output;
+    r = runWith("[CeresGSO]\nrobust_los = huber\n");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.output.find("robust_los"), std::string::npos) << r.output;
+    r = runWith("[CeresGS0]\nmode = planar\n");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.output.find("CeresGS0"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir.file("out")));
+    r = lodestone::test::runCommand(kSlam + " --rawlog " + kOfficeRawlog + " --config " +
+                                    dir.file("missing.ini") + " --out " + dir.file("out"));
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.output.find("missing.ini"), std::string::npos) << r.output;
+}
+
+TEST(SlamBinary, ARawlogWithoutTheNeededObservationsIsRefused) {
+    const std::string laserOnly =
+        (lodestone::test::mrptDatasetsDir() / "2006-01ENE-21-SENA_Telecom Faculty_one_loop_only.rawlog")
+            .string();
+    if (!fs::exists(laserOnly)) GTEST_SKIP() << "MRPT's sample datasets are not installed";
+    lodestone::test::TempDir dir;
+    const auto r = lodestone::test::runCommand(kSlam + " --rawlog '" + laserOnly + "' --config " +
+                                               kConfigDir + "/slam.ini --out " + dir.file("out"));
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.output.find("no CObservation3DRangeScan"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir.file("out")));
+}
+
+TEST(SlamBinary, ACorruptRawlogStopsAtTheFaultAndKeepsWhatWasProcessed) {
+    lodestone::test::TempDir dir;
+    {
+        const std::string bytes = readText(kOfficeRawlog);
+        std::ofstream(dir.file("cut.rawlog.gz"), std::ios::binary)
+            .write(bytes.data(), static_cast<std::streamsize>(bytes.size() / 2));
+    }
+    const auto r = lodestone::test::runCommand(kSlam + " --rawlog " + dir.file("cut.rawlog.gz") +
+                                               " --config " + kConfigDir +
+                                               "/slam.ini --quiet --out " + dir.file("out"));
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("cut.rawlog.gz"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("writing what was processed"), std::string::npos) << r.output;
+    const auto traj = lodestone::io::readTumTrajectory(dir.file("out/trajectory.tum"));
+    EXPECT_GT(traj.size(), 5u);
+    EXPECT_NE(readText(dir.file("out/report.json")).find("\"error\""), std::string::npos);
+}
+
+TEST(SlamBinary, UsageErrors) {
+    EXPECT_EQ(lodestone::test::runCommand(kSlam).exitCode, 2);
+    const auto both = lodestone::test::runCommand(kSlam + " --rawlog a --sim b --config c --out d");
+    EXPECT_EQ(both.exitCode, 2);
+    EXPECT_NE(both.output.find("exactly one of --rawlog and --sim"), std::string::npos);
+    EXPECT_EQ(lodestone::test::runCommand(kSlam + " --help").exitCode, 0);
+}
