@@ -8,6 +8,7 @@
 #include <ceres/problem.h>
 #include <ceres/solver.h>
 
+#include <algorithm>
 #include <chrono>
 #include <limits>
 #include <map>
@@ -141,20 +142,56 @@ void holdConstant(ceres::Problem& problem, NodeState& s, bool planar) {
     }
 }
 
+using EdgeIt = Graph::edges_map_t::const_iterator;
+
+/** The edges a solve involves: all of them, or those touching the window. Edges are keyed by
+ * (from, to), so a window node's outgoing edges are one range; the edges coming into it are
+ * the odometry edge from its predecessor and loop closures (the caller's list), so no solve
+ * walks the whole graph. */
+std::vector<EdgeIt> edgesOf(const Graph& graph, const std::vector<LoopClosure>& loopClosures,
+                            const std::set<TNodeID>& window) {
+    std::vector<EdgeIt> out;
+    if (window.empty()) {
+        for (auto it = graph.edges.begin(); it != graph.edges.end(); ++it) out.push_back(it);
+        return out;
+    }
+    const auto outgoing = [&](TNodeID id, bool onlyIntoWindow) {
+        const auto end = graph.edges.lower_bound({id + 1, 0});
+        for (auto it = graph.edges.lower_bound({id, 0}); it != end; ++it) {
+            if (!onlyIntoWindow || window.count(it->first.second)) out.push_back(it);
+        }
+    };
+    for (const TNodeID id : window) {
+        outgoing(id, false);
+        if (id > 0 && !window.count(id - 1)) outgoing(id - 1, true);
+    }
+    for (const auto& lc : loopClosures) {
+        if (lc.rejected || window.count(lc.from) || !window.count(lc.to)) continue;
+        const auto range = graph.edges.equal_range({lc.from, lc.to});
+        for (auto it = range.first; it != range.second; ++it) {
+            if (it->second.mean == lc.constraint.mean) out.push_back(it);
+        }
+    }
+    std::sort(out.begin(), out.end(), [](EdgeIt a, EdgeIt b) { return &*a < &*b; });
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+}
+
 template <typename Moves>
 GraphProblem buildProblem(const Graph& graph, const std::vector<LoopClosure>& loopClosures,
-                          const Moves& moves, bool planar) {
-    std::multimap<std::pair<TNodeID, TNodeID>, std::size_t> closureIndex;
+                          const std::vector<EdgeIt>& edges, const Moves& moves, bool planar) {
+    std::map<std::pair<TNodeID, TNodeID>, std::vector<std::size_t>> closureIndex;
     for (std::size_t k = 0; k < loopClosures.size(); ++k) {
         const auto& lc = loopClosures[k];
-        if (!lc.rejected) closureIndex.emplace(std::make_pair(lc.from, lc.to), k);
+        if (!lc.rejected && (moves(lc.from) || moves(lc.to))) closureIndex[{lc.from, lc.to}].push_back(k);
     }
     GraphProblem gp;
     ceres::Problem::Options po;
     po.manifold_ownership = ceres::TAKE_OWNERSHIP;
     gp.problem = std::make_unique<ceres::Problem>(po);
     auto& problem = *gp.problem;
-    for (const auto& [ends, c] : graph.edges) {
+    for (const EdgeIt& e : edges) {
+        const auto& [ends, c] = *e;
         const auto [from, to] = ends;
         if (!moves(from) && !moves(to)) continue;
         if (!graph.nodes.count(from) || !graph.nodes.count(to)) continue;
@@ -164,9 +201,11 @@ GraphProblem buildProblem(const Graph& graph, const std::vector<LoopClosure>& lo
             if (!planar) problem.AddParameterBlock(st.q, 4, new ceres::EigenQuaternionManifold);
         }
         std::size_t closure = std::string::npos;
-        const auto range = closureIndex.equal_range(ends);
-        for (auto it = range.first; it != range.second; ++it) {
-            if (loopClosures[it->second].constraint.mean == c.mean) closure = it->second;
+        const auto found = closureIndex.find(ends);
+        if (found != closureIndex.end()) {
+            for (const std::size_t k : found->second) {
+                if (loopClosures[k].constraint.mean == c.mean) closure = k;
+            }
         }
         ceres::LossFunctionWrapper* loss = nullptr;
         if (closure != std::string::npos) {
@@ -208,7 +247,8 @@ PoseGraphSolver::Report PoseGraphSolver::solve(Graph& graph, std::vector<LoopClo
     so.logging_type = ceres::SILENT;
 
     for (int round = 0;; ++round) {
-        GraphProblem gp = buildProblem(graph, loopClosures, moves, planar);
+        GraphProblem gp =
+            buildProblem(graph, loopClosures, edgesOf(graph, loopClosures, window), moves, planar);
         if (gp.edges == 0) break;
         // Least squares judges: at its optimum a closure's squared Mahalanobis residual is
         // chi-square distributed, so the gate means what it says. A robust solve points at the

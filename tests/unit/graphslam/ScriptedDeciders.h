@@ -5,6 +5,7 @@
 #include <lodestone/graphslam/EdgeDecider.h>
 #include <lodestone/graphslam/NodeDecider.h>
 
+#include <algorithm>
 #include <vector>
 
 namespace lodestone::test {
@@ -53,25 +54,28 @@ class ScriptedLoopCloser : public graphslam::EdgeDecider {
     explicit ScriptedLoopCloser(std::vector<graphslam::LoopClosure> closures)
         : closures_(std::move(closures)) {
         setClassName("ScriptedLoopCloser");
+        // In the order their later node appears, so each step looks at the next one only.
+        std::stable_sort(closures_.begin(), closures_.end(), [](const auto& a, const auto& b) {
+            return std::max(a.from, a.to) < std::max(b.from, b.to);
+        });
     }
     void configure(const mrpt::config::CConfigFileBase&) override {}
     graphslam::JsonObject describe() const override { return graphslam::JsonObject().set("class", "ScriptedLoopCloser"); }
     bool updateState(mrpt::obs::CActionCollection::Ptr, mrpt::obs::CSensoryFrame::Ptr,
                      mrpt::obs::CObservation::Ptr) override {
         bool any = false;
-        for (auto& lc : closures_) {
-            if (lc.rejected) continue;  // used here as "already emitted"
-            if (m_graph->nodes.count(lc.from) && m_graph->nodes.count(lc.to)) {
-                registerNewEdge(lc.from, lc.to, lc.constraint);
-                lc.rejected = true;
-                any = true;
-            }
+        for (; next_ < closures_.size(); ++next_) {
+            const auto& lc = closures_[next_];
+            if (!m_graph->nodes.count(lc.from) || !m_graph->nodes.count(lc.to)) break;
+            registerNewEdge(lc.from, lc.to, lc.constraint);
+            any = true;
         }
         return any;
     }
 
   private:
     std::vector<graphslam::LoopClosure> closures_;
+    std::size_t next_{0};
 };
 
 }  // namespace lodestone::test
