@@ -3,10 +3,11 @@
 // decile of the run, to show it does not grow with the graph. MRPT's CGraphSlamEngine measured
 // 50-60 ms per node at 5 000 nodes on this machine (MRPT_NOTES.md).
 // Prints one markdown row per size:
-//   nodes | closures | local / full solves | escalations | local / full solve time [s] |
+//   closures to | nodes | closures | local / full solves | escalations | local / full solve time [s] |
 //   ms per node: mean, p99, by decile | final full solve [s] | position RMSE vs truth [m]
 //   (dead reckoning [m])
-//   bench_graph_scaling [NODES ...]   (default 1000 5000 10000)
+//   bench_graph_scaling first|previous [NODES ...]   (default 1000 5000 10000): closures to the
+//   first lap (every revisit of a place piles onto one set of nodes) or to the previous lap
 #include "ScriptedDeciders.h"
 
 #include <lodestone/graphslam/CeresGSO.h>
@@ -23,8 +24,13 @@
 using namespace lodestone;
 
 int main(int argc, char** argv) {
+    const std::string target = argc > 1 ? argv[1] : "";
+    if (target != "first" && target != "previous") {
+        std::fprintf(stderr, "usage: bench_graph_scaling first|previous [NODES ...]\n");
+        return 2;
+    }
     std::vector<int> sizes;
-    for (int i = 1; i < argc; ++i) sizes.push_back(std::atoi(argv[i]));
+    for (int i = 2; i < argc; ++i) sizes.push_back(std::atoi(argv[i]));
     if (sizes.empty()) sizes = {1000, 5000, 10000};
     for (const int n : sizes) {
         graphslam::SyntheticGraph::Params p;
@@ -32,6 +38,7 @@ int main(int argc, char** argv) {
         const int perLap = static_cast<int>(4 * p.side / p.step);
         p.laps = std::max(2, (n + perLap - 1) / perLap);
         p.closureEvery = 8;
+        p.closeToPreviousLap = target == "previous";
         auto s = graphslam::SyntheticGraph::make(p);
         std::vector<test::ScriptedNRD::Step> steps;
         for (std::size_t i = 0; i + 1 < s.truth.size() && static_cast<int>(i) + 1 < n; ++i) {
@@ -69,8 +76,8 @@ int main(int argc, char** argv) {
         mean /= ms.size();
         std::sort(ms.begin(), ms.end());
         std::vector<mrpt::poses::CPose3D> truth(s.truth.begin(), s.truth.begin() + engine.graph().nodes.size());
-        std::printf("| %zu | %zu | %zu / %zu | %zu | %.2f / %.2f | %.2f | %.2f | %s | %.2f | %.3f (%.3f) |\n",
-                    engine.graph().nodes.size(), closures.size(), gso.stats().localSolves,
+        std::printf("| %s | %zu | %zu | %zu / %zu | %zu | %.2f / %.2f | %.2f | %.2f | %s | %.2f | %.3f (%.3f) |\n",
+                    target.c_str(), engine.graph().nodes.size(), closures.size(), gso.stats().localSolves,
                     gso.stats().fullSolves, gso.stats().escalations, gso.stats().localSeconds,
                     gso.stats().fullSeconds, mean, ms[ms.size() * 99 / 100],
                     deciles.c_str(), finalSolve, graphslam::positionRmse(engine.graph(), truth),

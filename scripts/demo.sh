@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
-# Set-up command 1: installs what is missing, builds Release and runs the main job on embedded
-# defaults: inspects the bundled rawlog, then simulates the office scenario. Results go to
-# out/demo/. (When offline SLAM lands, the main job becomes lodestone-slam on a scenario.)
+# Set-up command 1: installs what is missing, builds Release and runs the main job,
+# lodestone-slam, on embedded defaults:
+#   1. the bundled rawlog rawlogs/office_qvga.rawlog.gz, against its ground truth;
+#   2. the office scenario simulated on the fly (640x480 at 30 Hz), against the simulator's truth.
+# Prints the ATE of each and where the outputs are (out/demo/).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 "$root/scripts/install-deps.sh"
@@ -10,20 +12,21 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 out="$root/out/demo"
 rm -rf "$out"
 mkdir -p "$out"
+slam="$root/build/apps/lodestone-slam/lodestone-slam"
 inspect="$root/build/apps/lodestone-inspect/lodestone-inspect"
-sim="$root/build/apps/lodestone-sim/lodestone-sim"
 sample="$root/rawlogs/office_qvga.rawlog.gz"
 
-"$inspect" summary "$sample" | tee "$out/summary.txt"
-"$inspect" export "$sample" --sensor MAG_LEFT --out "$out/MAG_LEFT" > /dev/null
-"$sim" --config "$root/config_ini/office.ini" --camera 320x240@15 \
-    --out "$out/office.rawlog.gz" --plot "$out/office.png"
-"$inspect" to-imu "$out/office.rawlog.gz" "$out/office_imu.rawlog.gz" > /dev/null
+"$inspect" summary "$sample" > "$out/summary.txt"
+echo "== lodestone-slam on the bundled rawlog $sample"
+"$slam" --rawlog "$sample" --ground-truth "${sample%.rawlog.gz}.gt.tum" \
+    --config "$root/config_ini/slam.ini" --out "$out/bundled"
+echo
+echo "== lodestone-slam on the office scenario, simulated on the fly"
+"$slam" --sim "$root/config_ini/office.ini" --config "$root/config_ini/slam.ini" \
+    --out "$out/office"
 echo
 echo "demo: results in $out"
-echo "  summary.txt            summary of the bundled rawlog rawlogs/office_qvga.rawlog.gz"
-echo "  MAG_LEFT/MAG_LEFT.csv  its left magnetometer series [uT]"
-echo "  office.rawlog.gz       a fresh simulated run of config_ini/office.ini (QVGA, 15 Hz),"
-echo "                         with office.gt.tum (ground truth) and office_Images/"
-echo "  office.png             the scenario: floor plan, path, magnetic field magnitude"
-echo "  office_imu.rawlog.gz   the same run for stock MRPT tools (RawLogViewer, rawlog-edit)"
+echo "  bundled/, office/  trajectory.tum (every node), graph.graph (MRPT), map.ply (keyframe"
+echo "                     clouds), report.json (counts, timings, ATE), graph.png, trajectory.png"
+echo "  office/ground_truth.tum  the simulator's truth"
+echo "  summary.txt        lodestone-inspect summary of the bundled rawlog"

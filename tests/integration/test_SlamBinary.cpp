@@ -147,3 +147,20 @@ TEST(SlamBinary, UsageErrors) {
     EXPECT_NE(both.output.find("exactly one of --rawlog and --sim"), std::string::npos);
     EXPECT_EQ(lodestone::test::runCommand(kSlam + " --help").exitCode, 0);
 }
+
+TEST(SlamBinary, MrptsGraphSlamToolReadsTheGraph) {
+    if (lodestone::test::runCommand("command -v graph-slam").exitCode != 0) {
+        GTEST_SKIP() << "MRPT's graph-slam (Debian mrpt-apps) is not installed";
+    }
+    lodestone::test::TempDir dir;
+    const auto r = lodestone::test::runCommand(kSlam + " --rawlog " + kOfficeRawlog + " --config " +
+                                               kConfigDir + "/slam.ini --quiet --out " +
+                                               dir.path().string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const auto nodes = lodestone::io::readTumTrajectory(dir.file("trajectory.tum")).size();
+    const auto info = lodestone::test::runCommand("graph-slam --info --3d -i " + dir.file("graph.graph"));
+    EXPECT_EQ(info.exitCode, 0) << info.output;
+    EXPECT_NE(info.output.find("Nodes count (in VERTEX2/3 entries) : " + std::to_string(nodes)),
+              std::string::npos)
+        << info.output;
+}

@@ -1,7 +1,10 @@
 #include <lodestone/config/IniSection.h>
 #include <lodestone/graphslam/FusedOdometryNRD.h>
+#include <lodestone/obs/CObservationMagnetometer.h>
 #include <lodestone/obs/CObservationWheelDrop.h>
+#include <lodestone/odometry/RgbdObservationFrame.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace lodestone::graphslam {
@@ -67,14 +70,27 @@ void FusedOdometryNRD::consume(const mrpt::obs::CObservation::Ptr& obs) {
         onWheelDrop(drop->lifted(), mrpt::Clock::toDouble(drop->timestamp));
         return;
     }
+    if (auto mag = std::dynamic_pointer_cast<obs::CObservationMagnetometer>(obs)) {
+        magnetic_.push_back({mrpt::Clock::toDouble(mag->timestamp), mag->sensorLabel, mag->field,
+                             mag->sensorPose});
+        return;
+    }
     if (auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(obs)) {
         ++frames_;
-        if (params_.mapPixelStep > 0) {
-            recent_frames_.push_back(scan);
-            while (recent_frames_.size() > 64) recent_frames_.pop_front();
+        recent_frames_.push_back(scan);
+    }
+    for (const auto& e : odometry_->process(obs)) {
+        if (e.visual.frameFeatures) recent_features_[e.timestamp] = e.visual.frameFeatures;
+        take(e);
+        // Frames up to this one are resolved: a node can no longer be placed at an older one.
+        while (!recent_frames_.empty() &&
+               mrpt::Clock::toDouble(recent_frames_.front()->timestamp) < e.timestamp) {
+            recent_frames_.pop_front();
+        }
+        while (!recent_features_.empty() && recent_features_.begin()->first < e.timestamp) {
+            recent_features_.erase(recent_features_.begin());
         }
     }
-    for (const auto& e : odometry_->process(obs)) take(e);
 }
 
 void FusedOdometryNRD::onWheelDrop(bool lifted, double t) {
@@ -107,7 +123,13 @@ void FusedOdometryNRD::take(const odometry::FusedOdometry::Estimate& e) {
     }
     if (afterLift && down_time_) {
         // The first frame after the put-down starts a new segment; its own increment spans
-        // the carry and is dropped.
+        // the carry and is dropped, as are the magnetometer readings of the carry.
+        magnetic_.erase(std::remove_if(magnetic_.begin(), magnetic_.end(),
+                                       [&](const MagneticSample& m) {
+                                           return m.timestamp >= *lift_time_ &&
+                                                  m.timestamp < *down_time_;
+                                       }),
+                        magnetic_.end());
         lift_time_.reset();
         down_time_.reset();
         segment_closed_ = false;
@@ -180,19 +202,29 @@ bool FusedOdometryNRD::registerPending() {
     return true;
 }
 
-NodeRecord FusedOdometryNRD::recordFor(double timestamp, bool keyframe) const {
+NodeRecord FusedOdometryNRD::recordFor(double timestamp, bool keyframe) {
     NodeRecord r;
     r.timestamp = timestamp;
     r.segment = segment_;
     r.keyframe = keyframe;
-    if (keyframe && params_.mapPixelStep > 0) {
-        for (auto it = recent_frames_.rbegin(); it != recent_frames_.rend(); ++it) {
-            if (std::abs(mrpt::Clock::toDouble((*it)->timestamp) - timestamp) < 1e-6) {
-                r.cloud = std::make_shared<KeyframeCloud>(
-                    makeKeyframeCloud(**it, params_.mapPixelStep, params_.mapMaxDepth));
-                break;
-            }
+    // Readings up to the node's time are its own; those taken while carried belong to nobody.
+    while (!magnetic_.empty() && magnetic_.front().timestamp <= timestamp) {
+        const auto& m = magnetic_.front();
+        const bool carried = lift_time_ && m.timestamp >= *lift_time_;
+        if (!carried) r.magnetic.push_back(m);
+        magnetic_.pop_front();
+    }
+    if (!keyframe) return r;
+    const auto f = recent_features_.find(timestamp);
+    if (f != recent_features_.end()) r.features = f->second;
+    for (const auto& frame : recent_frames_) {
+        if (std::abs(mrpt::Clock::toDouble(frame->timestamp) - timestamp) > 1e-6) continue;
+        r.cameraOnRobot = odometry::opticalFrameOnRobot(frame->sensorPose);
+        if (params_.mapPixelStep > 0) {
+            r.cloud = std::make_shared<KeyframeCloud>(
+                makeKeyframeCloud(*frame, params_.mapPixelStep, params_.mapMaxDepth));
         }
+        break;
     }
     return r;
 }

@@ -47,7 +47,7 @@ SyntheticGraph SyntheticGraph::make(const Params& p) {
     }
     if (p.closureEvery > 0) {
         for (std::size_t j = s.nodesPerLap; j < s.truth.size(); j += p.closureEvery) {
-            const std::size_t i = j % s.nodesPerLap;
+            const std::size_t i = p.closeToPreviousLap ? j - s.nodesPerLap : j % s.nodesPerLap;
             LoopClosure lc;
             lc.from = i;
             lc.to = j;

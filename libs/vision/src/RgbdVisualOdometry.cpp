@@ -89,6 +89,7 @@ VoResult RgbdVisualOdometry::process(const RgbdFrame& frame) {
     FrameFeatures current = extractor_.extract(frame);
     r.timing.orb = msSince(t0);
     r.features = current.size();
+    r.frameFeatures = std::make_shared<const FrameFeatures>(current);
 
     const auto fail = [&](VoFailure why) {
         r.failure = why;

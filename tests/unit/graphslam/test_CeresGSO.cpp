@@ -23,30 +23,35 @@ TEST(CeresGSO, ReadsItsSectionStrictly) {
 }
 
 namespace {
-/** A 3-lap graph optimized with all its closures but the last, which is returned. */
-LoopClosure optimizedExceptLast(SyntheticGraph& s, Graph& g, CeresGSO& gso) {
-    g = s.graph;
-    LoopClosure last = s.closures.back();
-    s.closures.pop_back();
-    for (const auto& lc : s.closures) g.insertEdge(lc.from, lc.to, lc.constraint);
+/** `gso` on `g` with a 10-node window and no growth-triggered full solves, after one full
+ * solve of what `g` holds with `closures`. */
+void startOn(Graph& g, CeresGSO& gso, const std::vector<LoopClosure>& closures) {
     mrpt::config::CConfigFileMemory ini("[CeresGSO]\nlocal_window = 10\nfull_solve_growth = 100\n");
     gso.configure(ini);
     gso.setGraphPtr(&g);
-    gso.addLoopClosures(s.closures);
+    gso.addLoopClosures(closures);
     gso.optimizeGraph();
-    return last;
+}
+
+/** Feeds `lc` as a new closure and lets the optimizer decide how to solve. */
+bool addClosure(Graph& g, CeresGSO& gso, const LoopClosure& lc) {
+    g.insertEdge(lc.from, lc.to, lc.constraint);
+    gso.addLoopClosures({lc});
+    return gso.updateState(nullptr, nullptr, nullptr);
 }
 }  // namespace
 
 TEST(CeresGSO, LocalSolvesMoveOnlyNodesNearTheClosure) {
+    // All closures but the last, optimized: the last one is then a small, local correction.
     SyntheticGraph s = SyntheticGraph::make({});
-    Graph g;
+    const LoopClosure lc = s.closures.back();
+    s.closures.pop_back();
+    Graph g = s.graph;
+    for (const auto& c : s.closures) g.insertEdge(c.from, c.to, c.constraint);
     CeresGSO gso;
-    const LoopClosure lc = optimizedExceptLast(s, g, gso);
+    startOn(g, gso, s.closures);
     const Graph before = g;
-    g.insertEdge(lc.from, lc.to, lc.constraint);
-    gso.addLoopClosures({lc});
-    EXPECT_TRUE(gso.updateState(nullptr, nullptr, nullptr));
+    EXPECT_TRUE(addClosure(g, gso, lc));
     EXPECT_FALSE(gso.justFullyOptimizedGraph());
     EXPECT_EQ(gso.stats().localSolves, 1u);
     EXPECT_EQ(gso.stats().escalations, 0u);
@@ -69,14 +74,8 @@ TEST(CeresGSO, AClosureTheWindowCannotAbsorbGoesToAFullSolve) {
     SyntheticGraph s = SyntheticGraph::make({});
     Graph g = s.graph;
     CeresGSO gso;
-    mrpt::config::CConfigFileMemory ini("[CeresGSO]\nlocal_window = 10\nfull_solve_growth = 100\n");
-    gso.configure(ini);
-    gso.setGraphPtr(&g);
-    gso.optimizeGraph();
-    const LoopClosure lc = s.closures.back();
-    g.insertEdge(lc.from, lc.to, lc.constraint);
-    gso.addLoopClosures({lc});
-    EXPECT_TRUE(gso.updateState(nullptr, nullptr, nullptr));
+    startOn(g, gso, {});
+    EXPECT_TRUE(addClosure(g, gso, s.closures.back()));
     EXPECT_TRUE(gso.justFullyOptimizedGraph());
     EXPECT_EQ(gso.stats().escalations, 1u);
     EXPECT_EQ(gso.stats().rejected, 0u);

@@ -82,8 +82,22 @@ TEST(FusedOdometryNRD, NodesSitOnTheFusedOdometryAtTheirTimes) {
             ++keyframes;
             ASSERT_TRUE(rec.cloud);
             EXPECT_GT(rec.cloud->points.size(), 100u);
+            ASSERT_TRUE(rec.features);
+            EXPECT_GT(rec.features->size(), 50u);
+            // The camera looks forward from above the base: optical z along robot x.
+            EXPECT_NEAR(rec.cameraOnRobot.linear()(0, 2), 1.0, 1e-6);
         } else {
             EXPECT_FALSE(rec.cloud);
+            EXPECT_FALSE(rec.features);
+        }
+        // Magnetometer readings: the ones since the previous node, two sensors at 100 Hz.
+        if (id > 0) {
+            const double from = nodes.at(id - 1).timestamp;
+            for (const auto& m : rec.magnetic) {
+                EXPECT_GE(m.timestamp, from);  // a reading at a node's very time may come after it
+                EXPECT_LE(m.timestamp, rec.timestamp);
+            }
+            EXPECT_NEAR(static_cast<double>(rec.magnetic.size()), 200 * (rec.timestamp - from), 4.0) << id;
         }
         // Node spacing: the set distance or angle (the last node may be short).
         if (id > 0 && id + 1 < nodes.size()) {
@@ -128,6 +142,9 @@ TEST(FusedOdometryNRD, AKidnapStartsASegmentOnAWeakEdge) {
     for (graphslam::TNodeID id = 0; id < nodes.size(); ++id) {
         const double t = nodes.at(id).timestamp;
         EXPECT_FALSE(t > lift + 0.05 && t < putDown) << "node " << id << " while lifted";
+        for (const auto& m : nodes.at(id).magnetic) {
+            EXPECT_FALSE(m.timestamp >= lift && m.timestamp < putDown) << "reading while carried";
+        }
         if (!firstOfSegment && nodes.at(id).segment == 1) firstOfSegment = id;
     }
     ASSERT_GT(firstOfSegment, 0u);

@@ -23,7 +23,7 @@ class CeresGSO : public GraphOptimizer {
     struct Params {
         PoseGraphSolver::Options solver;
         int localWindow{40};          ///< [node IDs] either side of a closure's ends
-        double fullSolveGrowth{0.25};  ///< relative graph growth between full solves
+        double fullSolveGrowth{1.0};  ///< relative graph growth between full solves
     };
 
     CeresGSO();

@@ -5,6 +5,7 @@
 #include <mrpt/obs/CObservation3DRangeScan.h>
 
 #include <deque>
+#include <map>
 #include <memory>
 
 namespace lodestone::graphslam {
@@ -18,6 +19,9 @@ namespace lodestone::graphslam {
  * Kidnapping (CObservationWheelDrop): while the robot is lifted its odometry is ignored; the
  * first node after it is put down starts a new segment, tied to the last node by a very weak
  * edge (`kidnap_edge_sigma`) until a loop closure re-anchors it (SlamEngine).
+ *
+ * Each node keeps the magnetometer readings since the previous one; each keyframe its ORB
+ * features (from the visual odometry's pass) and, for map.ply, a coloured cloud.
  *
  * INI: [FusedOdometryNRD] plus the odometry sections [wheel_odometry], [visual_odometry],
  * [odometry_fusion]. */
@@ -57,7 +61,7 @@ class FusedOdometryNRD : public NodeDecider {
     void take(const odometry::FusedOdometry::Estimate& e);
     void onWheelDrop(bool lifted, double t);
     bool registerPending();
-    NodeRecord recordFor(double timestamp, bool keyframe) const;
+    NodeRecord recordFor(double timestamp, bool keyframe);
 
     Params params_;
     std::unique_ptr<odometry::FusedOdometry> odometry_;
@@ -69,7 +73,9 @@ class FusedOdometryNRD : public NodeDecider {
     std::optional<double> lift_time_, down_time_;  // [s] of the kidnap being handled
     bool segment_closed_{false}, close_segment_{false}, restart_{false};
     int segment_{0};
-    std::deque<mrpt::obs::CObservation3DRangeScan::Ptr> recent_frames_;  // for keyframe clouds
+    std::deque<mrpt::obs::CObservation3DRangeScan::Ptr> recent_frames_;  // not yet resolved
+    std::deque<MagneticSample> magnetic_;  // since the last node
+    std::map<double, std::shared_ptr<const vision::FrameFeatures>> recent_features_;
     std::size_t frames_{0}, frames_lifted_{0}, kidnaps_{0}, keyframes_{0};
 };
 

@@ -2,12 +2,24 @@
 
 #include <lodestone/graphslam/KeyframeCloud.h>
 #include <lodestone/graphslam/PoseGraph.h>
+#include <lodestone/vision/OrbFeatures.h>
+
+#include <Eigen/Geometry>
 
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace lodestone::graphslam {
+
+/** One magnetometer reading as the nodes keep it (CObservationMagnetometer, flattened). */
+struct MagneticSample {
+    double timestamp{0};            ///< [s]
+    std::string sensorLabel;
+    mrpt::math::TVector3D field;    ///< in the sensor frame [uT]
+    mrpt::poses::CPose3D sensorPose;  ///< sensor on the robot
+};
 
 /** What the engine keeps per node beside its pose, for the edge deciders and the outputs. */
 struct NodeRecord {
@@ -17,6 +29,13 @@ struct NodeRecord {
     int segment{0};
     bool keyframe{false};  ///< an RGB-D keyframe (a subset of nodes, paper 000 §2.3)
     std::shared_ptr<const KeyframeCloud> cloud;  ///< keyframes only, when maps are kept
+    /** Keyframes: the ORB features of the node's frame (optical frame) and where that frame
+     * sits on the robot: what the visual loop closer matches. */
+    std::shared_ptr<const vision::FrameFeatures> features;
+    Eigen::Isometry3d cameraOnRobot{Eigen::Isometry3d::Identity()};
+    /** Magnetometer readings since the previous node, up to this node's time: what the
+     * magnetic matcher builds its sequences from (none while the robot was carried). */
+    std::vector<MagneticSample> magnetic;
 };
 
 /** Node records indexed by node ID (the NRD registers IDs 0, 1, 2, ... in order). */

@@ -11,7 +11,7 @@ namespace lodestone::graphslam {
  * around a `side` x `side` square with a node every `step` metres; odometry edges carry
  * Gaussian noise drawn from exactly the covariance they claim, and every node of a later lap
  * within `closureEvery` nodes gets a loop closure to the same place on the first lap (noise drawn
- * from its claimed covariance as well). Node poses start at the odometry's dead reckoning. */
+ * from its claimed covariance as well; or to the previous lap, see Params). Node poses start at the odometry's dead reckoning. */
 struct SyntheticGraph {
     struct Params {
         int laps{3};
@@ -22,6 +22,9 @@ struct SyntheticGraph {
         double closureSigmaXY{0.02};
         double closureSigmaYaw{0.005};
         int closureEvery{4};  ///< a closure on every n-th node of later laps (0: none)
+        /** Closures go to the same place on the first lap (every revisit piles onto it), or
+         * on the previous lap (each place keeps a bounded number of closures). */
+        bool closeToPreviousLap{false};
         std::uint64_t seed{1};
     };
 

@@ -7,6 +7,7 @@
 #include <mrpt/config/CLoadableOptions.h>
 
 #include <cmath>
+#include <memory>
 #include <optional>
 
 namespace lodestone::vision {
@@ -40,6 +41,9 @@ struct VoResult {
         Eigen::Matrix<double, 6, 6>::Identity()};  ///< see RigidEstimate
     double referenceTimestamp{0};  ///< [s] of the reference frame T_ref_cur is relative to
     std::size_t features{0}, matches{0}, inliers{0};
+    /** This frame's features (optical frame), for whoever keeps keyframes (the SLAM node
+     * decider, loop closers). */
+    std::shared_ptr<const FrameFeatures> frameFeatures;
     VoTiming timing;
 };
 
