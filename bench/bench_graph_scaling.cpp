@@ -3,7 +3,7 @@
 // decile of the run, to show it does not grow with the graph. MRPT's CGraphSlamEngine measured
 // 50-60 ms per node at 5 000 nodes on this machine (MRPT_NOTES.md).
 // Prints one markdown row per size:
-//   closures to | nodes | closures | local / full solves | escalations | local / full solve time [s] |
+//   closures to | nodes | closures | local / full solves | escalations | rejected | local / full solve time [s] |
 //   ms per node: mean, p99, by decile | final full solve [s] | position RMSE vs truth [m]
 //   (dead reckoning [m])
 //   bench_graph_scaling first|previous [NODES ...]   (default 1000 5000 10000): closures to the
@@ -76,9 +76,10 @@ int main(int argc, char** argv) {
         mean /= ms.size();
         std::sort(ms.begin(), ms.end());
         std::vector<mrpt::poses::CPose3D> truth(s.truth.begin(), s.truth.begin() + engine.graph().nodes.size());
-        std::printf("| %s | %zu | %zu | %zu / %zu | %zu | %.2f / %.2f | %.2f | %.2f | %s | %.2f | %.3f (%.3f) |\n",
+        std::printf("| %s | %zu | %zu | %zu / %zu | %zu | %zu | %.2f / %.2f | %.2f | %.2f | %s | %.2f | %.3f (%.3f) |\n",
                     target.c_str(), engine.graph().nodes.size(), closures.size(), gso.stats().localSolves,
-                    gso.stats().fullSolves, gso.stats().escalations, gso.stats().localSeconds,
+                    gso.stats().fullSolves, gso.stats().escalations, gso.stats().rejected,
+                    gso.stats().localSeconds,
                     gso.stats().fullSeconds, mean, ms[ms.size() * 99 / 100],
                     deciles.c_str(), finalSolve, graphslam::positionRmse(engine.graph(), truth),
                     deadReckoning);

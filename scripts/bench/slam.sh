@@ -26,7 +26,7 @@ done
 echo
 echo "### Engine + CeresGSO on synthetic graphs (laps of a 25 m square, a closure on every 8th node of every later lap, to the first or the previous lap)"
 echo
-echo "| closures to | nodes | loop closures | local / full solves | escalated | local / full solve time [s] | ms per node: mean | p99 | ms per node by decile | final solve [s] | position RMSE [m] (dead reckoning) |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|"
+echo "| closures to | nodes | loop closures | local / full solves | escalated | rejected | local / full solve time [s] | ms per node: mean | p99 | ms per node by decile | final solve [s] | position RMSE [m] (dead reckoning) |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
 "${pin[@]}" "$bin/bench_graph_scaling" previous 1000 5000 10000 20000
 "${pin[@]}" "$bin/bench_graph_scaling" first 1000 5000 10000 20000

@@ -1,0 +1,125 @@
+#include <lodestone/vision/Se3Covariance.h>
+#include <lodestone/vision/SubmapMatcher.h>
+
+#include <chrono>
+#include <cmath>
+
+namespace lodestone::vision {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+double angleOf(const Eigen::Isometry3d& T) { return Eigen::AngleAxisd(T.linear()).angle(); }
+
+/** Matched pairs as two point matrices. */
+void gather(const std::vector<cv::DMatch>& matches, const Eigen::Matrix3Xd& query,
+            const Eigen::Matrix3Xd& train, Eigen::Matrix3Xd& src, Eigen::Matrix3Xd& dst) {
+    src.resize(3, static_cast<Eigen::Index>(matches.size()));
+    dst.resize(3, static_cast<Eigen::Index>(matches.size()));
+    for (std::size_t k = 0; k < matches.size(); ++k) {
+        src.col(static_cast<Eigen::Index>(k)) = query.col(matches[k].queryIdx);
+        dst.col(static_cast<Eigen::Index>(k)) = train.col(matches[k].trainIdx);
+    }
+}
+}  // namespace
+
+SubmapMatcher::Params::Params() {
+    matcher.ratio = 0.8;  // many similar features in a submap: keep only distinctive matches
+    phase1.iterations = 400;
+    phase1.threshold = 0.08;  // points accumulated through odometry: looser than VO
+    phase1.depthScale = 0;    // robot / submap frames: z is height, not depth
+    phase1.minInliers = 20;
+    phase1.minInlierRatio = 0.2;
+    phase1.pointNoise = 0.03;
+    phase1.depthNoise = 0;
+    phase2.iterations = 300;
+    phase2.minInliers = 15;
+    phase2.minInlierRatio = 0.25;
+}
+
+SubmapMatcher::SubmapMatcher() : SubmapMatcher(Params{}) {}
+
+SubmapMatcher::SubmapMatcher(Params params)
+    : params_(std::move(params)),
+      matcher_(params_.matcher),
+      phase1_(params_.phase1),
+      phase2_(params_.phase2) {}
+
+SubmapMatcher::Result SubmapMatcher::match(const FeatureSubmap& submap, const FrameFeatures& query,
+                                           const Eigen::Isometry3d& queryCameraOnRobot,
+                                           std::uint64_t seed) const {
+    Result r;
+    const auto t0 = Clock::now();
+    if (submap.empty() || submap.size() < static_cast<std::size_t>(params_.phase1.minInliers) ||
+        query.size() < static_cast<std::size_t>(params_.phase1.minInliers)) {
+        r.failure = "too few features";
+        return r;
+    }
+    // Phase 1: keyframe (robot frame) -> submap frame.
+    const Eigen::Matrix3Xd queryRobot = queryCameraOnRobot * query.points.cast<double>();
+    const auto matches = matcher_.match(query.descriptors, submap.descriptors());
+    r.matches = matches.size();
+    if (matches.size() < static_cast<std::size_t>(params_.phase1.minInliers)) {
+        r.failure = "too few matches";
+        r.phase1Ms = msSince(t0);
+        return r;
+    }
+    Eigen::Matrix3Xd src, dst;
+    gather(matches, queryRobot, submap.points(), src, dst);
+    const RigidEstimate p1 = phase1_.estimate(src, dst, seed);
+    r.phase1Ms = msSince(t0);
+    if (!p1.success) {
+        r.failure = "phase 1 RANSAC";
+        return r;
+    }
+    r.inliers = p1.inliers.size();
+    r.submapToQuery = p1.transform;
+
+    // Phase 2: the nearest keyframe of the submap, node to node.
+    const auto t1 = Clock::now();
+    const FeatureSubmap::Member& m = submap.nearestMember(p1.transform);
+    r.node = m.node;
+    const Eigen::Isometry3d fromPhase1 = m.poseInSubmap.inverse() * p1.transform;
+    if (m.features && m.features->size() > 0) {
+        const auto m2 = matcher_.match(query.descriptors, m.features->descriptors);
+        r.phase2Matches = m2.size();
+        if (m2.size() >= static_cast<std::size_t>(params_.phase2.minInliers)) {
+            gather(m2, query.points.cast<double>(), m.features->points.cast<double>(), src, dst);
+            const RigidEstimate p2 = phase2_.estimate(src, dst, seed);
+            if (p2.success) {
+                // Optical to robot frames: T_mr_qr = C_m T_mo_qo C_q^-1.
+                const Eigen::Isometry3d T =
+                    m.cameraOnRobot * p2.transform * queryCameraOnRobot.inverse();
+                const Eigen::Isometry3d diff = fromPhase1.inverse() * T;
+                if (diff.translation().norm() <= params_.agreementDistance &&
+                    angleOf(diff) <= params_.agreementAngle) {
+                    r.phase2Inliers = p2.inliers.size();
+                    r.usedPhase2 = true;
+                    r.nodeToQuery = T;
+                    // RigidEstimate's covariance: left perturbation of p2.transform in the
+                    // member's optical frame; into its robot frame, then about T's own frame.
+                    const Eigen::Matrix<double, 6, 6> Ad = adjoint(m.cameraOnRobot);
+                    r.covariance = leftToRightCovariance(T, Ad * p2.covariance * Ad.transpose());
+                }
+            }
+        }
+    }
+    r.phase2Ms = msSince(t1);
+    if (!r.usedPhase2) {
+        if (!params_.phase1Fallback) {
+            r.failure = "phase 2";
+            return r;
+        }
+        r.nodeToQuery = fromPhase1;
+        const Eigen::Matrix<double, 6, 6> Ad = adjoint(m.poseInSubmap.inverse());
+        r.covariance = params_.fallbackInflation *
+                       leftToRightCovariance(fromPhase1, Ad * p1.covariance * Ad.transpose());
+    }
+    r.success = true;
+    return r;
+}
+
+}  // namespace lodestone::vision
