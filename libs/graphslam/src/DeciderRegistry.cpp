@@ -3,6 +3,7 @@
 #include <lodestone/graphslam/CompositeERD.h>
 #include <lodestone/graphslam/DeciderRegistry.h>
 #include <lodestone/graphslam/FusedOdometryNRD.h>
+#include <lodestone/graphslam/OrbSubmapERD.h>
 
 namespace lodestone::graphslam {
 
@@ -44,6 +45,7 @@ auto make(const Map& m, const std::string& name, const std::string& kind, const 
 DeciderRegistry::DeciderRegistry() {
     registerNodeDecider("FusedOdometryNRD", [] { return std::make_unique<FusedOdometryNRD>(); });
     registerEdgeDecider("CompositeERD", [] { return std::make_unique<CompositeERD>(); });
+    registerEdgeDecider("OrbSubmapERD", [] { return std::make_unique<OrbSubmapERD>(); });
     registerOptimizer("CeresGSO", [] { return std::make_unique<CeresGSO>(); });
 }
 

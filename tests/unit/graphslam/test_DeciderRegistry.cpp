@@ -36,8 +36,8 @@ TEST(DeciderRegistry, UnknownNamesAreClearErrors) {
     EXPECT_NE(e2.find("MRPT graph optimizer"), std::string::npos) << e2;
     const std::string e3 = errorOf("[graphslam]\nedge_decider =\n");
     EXPECT_NE(e3.find("no edge registration decider named"), std::string::npos) << e3;
-    const std::string e4 = errorOf("[CompositeERD]\nchildren = OrbSubmapERD\n");
-    EXPECT_NE(e4.find("unknown edge registration decider 'OrbSubmapERD'"), std::string::npos) << e4;
+    const std::string e4 = errorOf("[CompositeERD]\nchildren = NoSuchERD\n");
+    EXPECT_NE(e4.find("unknown edge registration decider 'NoSuchERD'"), std::string::npos) << e4;
     EXPECT_NE(e4.find("children"), std::string::npos) << e4;
     const std::string e5 = errorOf("[graphslam]\noptimiser = CeresGSO\n");
     EXPECT_NE(e5.find("optimiser"), std::string::npos) << e5;
