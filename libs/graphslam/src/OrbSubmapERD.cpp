@@ -1,6 +1,7 @@
 #include <lodestone/config/IniSection.h>
 #include <lodestone/graphslam/OrbSubmapERD.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -135,16 +136,26 @@ void OrbSubmapERD::query(TNodeID id, const NodeRecord& rec) {
         pose.translation(), radius, rec.features->descriptors, params_.nearCandidates,
         params_.similarCandidates, params_.minVotes,
         [&](std::size_t s) { return submap_end_travel_[s] <= reachable; });
-    stats_.retrievalMs += msSince(t0);
+    Query q;
+    q.node = id;
+    q.candidates = candidates.size();
+    q.retrievalMs = msSince(t0);
+    stats_.retrievalMs += q.retrievalMs;
 
-    const auto t1 = Clock::now();
     std::optional<std::pair<vision::SubmapMatcher::Result, std::size_t>> best;
     for (const auto& c : candidates) {
         ++stats_.candidatesTried;
+        const auto t1 = Clock::now();
         auto r = matcher_->match(catalog_->at(c.submap), *rec.features, rec.cameraOnRobot, id + 1);
+        const double ms = msSince(t1);
+        stats_.matchMs += ms;
+        q.slowestMatchMs = std::max(q.slowestMatchMs, ms);
+        q.bestMatches = std::max(q.bestMatches, r.matches);
+        q.bestInliers = std::max(q.bestInliers, r.inliers);
         if (r.success && (!best || r.inliers > best->first.inliers)) best = std::make_pair(r, c.submap);
     }
-    stats_.matchMs += msSince(t1);
+    q.accepted = best.has_value();
+    queries_.push_back(q);
     if (!best) return;
     const auto& [r, submap] = *best;
     const auto from = static_cast<TNodeID>(r.node);

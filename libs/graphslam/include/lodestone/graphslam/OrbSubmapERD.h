@@ -45,6 +45,14 @@ class OrbSubmapERD : public EdgeDecider {
         std::size_t inliers{0}, phase2Inliers{0};
         Eigen::Isometry3d relative{Eigen::Isometry3d::Identity()};  ///< `to` in `from`'s frame
     };
+    /** Every query (one per keyframe with candidates), for benchmarks. */
+    struct Query {
+        TNodeID node{0};
+        std::size_t candidates{0};
+        std::size_t bestMatches{0}, bestInliers{0};  ///< phase 1, over its candidates
+        bool accepted{false};
+        double retrievalMs{0}, slowestMatchMs{0};
+    };
     struct Stats {
         std::size_t keyframes{0}, submaps{0}, queries{0}, candidatesTried{0}, accepted{0},
             phase2Used{0};
@@ -61,6 +69,7 @@ class OrbSubmapERD : public EdgeDecider {
     JsonObject describe() const override;
 
     const std::vector<Record>& records() const { return records_; }
+    const std::vector<Query>& queries() const { return queries_; }
     const Stats& stats() const { return stats_; }
     const vision::SubmapCatalog& catalog() const { return *catalog_; }
 
@@ -85,6 +94,7 @@ class OrbSubmapERD : public EdgeDecider {
     TNodeID seen_{0};
     std::size_t nodes_since_refresh_{0};
     std::vector<Record> records_;
+    std::vector<Query> queries_;
     Stats stats_;
 };
 

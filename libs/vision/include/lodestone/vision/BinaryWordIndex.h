@@ -3,7 +3,6 @@
 #include <opencv2/core.hpp>
 
 #include <cstdint>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -19,7 +18,7 @@ class BinaryWordIndex {
   public:
     struct Params {
         int tables{4};
-        int bits{20};
+        int bits{20};  ///< key length, at most 24 (the tables are direct-addressed)
         int wordsPerPlace{300};  ///< descriptors indexed per place, the first ones given
         std::size_t maxBucket{2000};  ///< buckets fuller than this do not vote
         std::uint64_t seed{7};
@@ -39,10 +38,20 @@ class BinaryWordIndex {
   private:
     std::uint32_t key(const std::uint8_t* descriptor, int table) const;
 
+    /** One hash table, direct-addressed: head[key] starts a chain through the entry arrays
+     * (compact, so a look-up touches little memory however many places there are). */
+    struct Table {
+        std::vector<std::uint32_t> head;   // per key: first entry + 1 (0: empty)
+        std::vector<std::uint32_t> count;  // per key: entries in the chain
+        std::vector<std::uint32_t> place, next;  // per entry; next = following entry + 1
+    };
+
     Params params_;
     std::vector<std::vector<int>> bit_positions_;  // per table
-    std::vector<std::unordered_map<std::uint32_t, std::vector<std::uint32_t>>> tables_;
+    std::vector<Table> tables_;
     std::size_t places_{0};
+    std::uint32_t max_place_{0};
+    mutable std::vector<int> votes_;  // scratch, all zero between queries
 };
 
 }  // namespace lodestone::vision
