@@ -114,7 +114,12 @@ int main(int argc, char** argv) {
             const Eigen::Isometry3d d = trueRel.inverse() * r.relative;
             const double cm = 100 * std::hypot(d.translation().x(), d.translation().y());
             const double deg = std::abs(std::atan2(d.linear()(1, 0), d.linear()(0, 0))) * 180 / M_PI;
-            falseClosures += cm > 20 || deg > 5;
+            if (cm > 20 || deg > 5) {
+                ++falseClosures;
+                std::fprintf(stderr, "false closure %zu -> %zu: %.1f cm, %.2f deg, phase %d, %zu inliers\n",
+                             static_cast<std::size_t>(r.from), static_cast<std::size_t>(r.to), cm, deg,
+                             r.phase2 ? 2 : 1, r.phase2 ? r.phase2Inliers : r.inliers);
+            }
             if (r.phase2) {
                 ++phase2;
                 errCm.push_back(cm);

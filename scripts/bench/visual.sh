@@ -6,8 +6,8 @@
 #   2. the same runs from keyframes whose view is mostly plain wall;
 #   3. matching and retrieval time per candidate / query;
 #   4. candidate retrieval on synthetic catalogs of 100 to 10 000 submaps.
-# Usage: scripts/bench/visual.sh [SCENARIO ...]   (default: paper_loop, 640x480 at 30 Hz,
-#        379 s of data: about five minutes per run, two runs)
+# Usage: scripts/bench/visual.sh [SCENARIO ...]   (default: paper_loop and corridor, 640x480 at 30 Hz,
+#        379 s and 339 s of data: about five minutes per run, four runs)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 "$root/scripts/build.sh" > /dev/null
@@ -15,7 +15,7 @@ bin="$root/build/bench"
 pin=()
 command -v taskset > /dev/null && pin=(taskset -c 0)
 scenarios=("$@")
-[ ${#scenarios[@]} -gt 0 ] || scenarios=(paper_loop)
+[ ${#scenarios[@]} -gt 0 ] || scenarios=(paper_loop corridor)
 
 rows=$(mktemp)
 trap 'rm -f "$rows"' EXIT

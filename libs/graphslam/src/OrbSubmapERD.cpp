@@ -69,6 +69,8 @@ void OrbSubmapERD::configure(const mrpt::config::CConfigFileBase& ini) {
     auto& m = p.matcher;
     m.matcher.maxDistance = s.getInt("match_max_distance", m.matcher.maxDistance);
     m.matcher.ratio = s.getDouble("match_ratio", m.matcher.ratio);
+    m.phase1MaxFeatures = static_cast<std::size_t>(
+        s.getInt("phase1_max_features", static_cast<int>(m.phase1MaxFeatures)));
     m.phase1.threshold = s.getDouble("phase1_threshold", m.phase1.threshold);
     m.phase1.minInliers = s.getInt("phase1_min_inliers", m.phase1.minInliers);
     m.phase1.minInlierRatio = s.getDouble("phase1_min_inlier_ratio", m.phase1.minInlierRatio);
@@ -221,6 +223,7 @@ JsonObject OrbSubmapERD::describe() const {
         .set("near_candidates", params_.nearCandidates)
         .set("similar_candidates", params_.similarCandidates)
         .set("min_votes", params_.minVotes)
+        .set("phase1_max_features", params_.matcher.phase1MaxFeatures)
         .set("phase1_min_inliers", params_.matcher.phase1.minInliers)
         .set("phase2_min_inliers", params_.matcher.phase2.minInliers)
         .set("phase1_fallback", params_.matcher.phase1Fallback);

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 namespace lodestone::vision {
 
@@ -32,6 +33,7 @@ std::size_t FeatureSubmap::add(std::int64_t node, const Eigen::Isometry3d& poseI
                                const Eigen::Isometry3d& cameraOnRobot,
                                std::shared_ptr<const FrameFeatures> features) {
     members_.push_back({node, poseInSubmap, cameraOnRobot, features});
+    strongest_.clear();
     if (!features || features->size() == 0) return 0;
     // Eq. (1): the keyframe's points in the submap frame.
     const Eigen::Isometry3f T = (poseInSubmap * cameraOnRobot).cast<float>();
@@ -76,6 +78,16 @@ std::size_t FeatureSubmap::add(std::int64_t node, const Eigen::Isometry3d& poseI
         }
     }
     return merged;
+}
+
+const std::vector<int>& FeatureSubmap::strongestFirst() const {
+    if (strongest_.size() != points_.size()) {
+        strongest_.resize(points_.size());
+        std::iota(strongest_.begin(), strongest_.end(), 0);
+        std::stable_sort(strongest_.begin(), strongest_.end(),
+                         [&](int a, int b) { return sightings_[a] > sightings_[b]; });
+    }
+    return strongest_;
 }
 
 Eigen::Matrix3Xd FeatureSubmap::points() const {

@@ -38,10 +38,7 @@ std::size_t SubmapCatalog::add(std::shared_ptr<const FeatureSubmap> submap,
                                const Eigen::Vector3d& centre) {
     const std::size_t i = submaps_.size();
     // Index the features seen most often first: they are the stable ones.
-    const auto& seen = submap->sightings();
-    std::vector<int> order(seen.size());
-    std::iota(order.begin(), order.end(), 0);
-    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return seen[a] > seen[b]; });
+    const std::vector<int>& order = submap->strongestFirst();
     cv::Mat sorted(static_cast<int>(order.size()), 32, CV_8U);
     for (std::size_t k = 0; k < order.size(); ++k) {
         submap->descriptors().row(order[k]).copyTo(sorted.row(static_cast<int>(k)));

@@ -28,6 +28,7 @@ void gather(const std::vector<cv::DMatch>& matches, const Eigen::Matrix3Xd& quer
 
 SubmapMatcher::Params::Params() {
     matcher.ratio = 0.8;  // many similar features in a submap: keep only distinctive matches
+    matcher.crossCheck = false;  // the ratio test and RANSAC suffice; a second pass doubles the cost
     phase1.iterations = 400;
     phase1.threshold = 0.08;  // points accumulated through odometry: looser than VO
     phase1.depthScale = 0;    // robot / submap frames: z is height, not depth
@@ -60,7 +61,20 @@ SubmapMatcher::Result SubmapMatcher::match(const FeatureSubmap& submap, const Fr
     }
     // Phase 1: keyframe (robot frame) -> submap frame.
     const Eigen::Matrix3Xd queryRobot = queryCameraOnRobot * query.points.cast<double>();
-    const auto matches = matcher_.match(query.descriptors, submap.descriptors());
+    // The features seen most often first, at most phase1MaxFeatures of them: the stable ones,
+    // and a bounded matching cost however large the submap grew.
+    const std::vector<int>& order = submap.strongestFirst();
+    const std::size_t used = std::min(order.size(), params_.phase1MaxFeatures);
+    cv::Mat trainDescriptors(static_cast<int>(used), 32, CV_8U);
+    Eigen::Matrix3Xd trainPoints(3, static_cast<Eigen::Index>(used));
+    {
+        const Eigen::Matrix3Xd all = submap.points();
+        for (std::size_t k = 0; k < used; ++k) {
+            submap.descriptors().row(order[k]).copyTo(trainDescriptors.row(static_cast<int>(k)));
+            trainPoints.col(static_cast<Eigen::Index>(k)) = all.col(order[k]);
+        }
+    }
+    const auto matches = matcher_.match(query.descriptors, trainDescriptors);
     r.matches = matches.size();
     if (matches.size() < static_cast<std::size_t>(params_.phase1.minInliers)) {
         r.failure = "too few matches";
@@ -68,7 +82,7 @@ SubmapMatcher::Result SubmapMatcher::match(const FeatureSubmap& submap, const Fr
         return r;
     }
     Eigen::Matrix3Xd src, dst;
-    gather(matches, queryRobot, submap.points(), src, dst);
+    gather(matches, queryRobot, trainPoints, src, dst);
     const RigidEstimate p1 = phase1_.estimate(src, dst, seed);
     r.phase1Ms = msSince(t0);
     if (!p1.success) {

@@ -46,6 +46,9 @@ class FeatureSubmap {
     const cv::Mat& descriptors() const { return descriptors_; }
     /** How many keyframes saw point i. */
     const std::vector<int>& sightings() const { return sightings_; }
+    /** Point indices, most often seen first (ties in insertion order); cached until the next
+     * add(). */
+    const std::vector<int>& strongestFirst() const;
     const std::vector<Member>& members() const { return members_; }
     std::int64_t firstNode() const { return members_.front().node; }
     std::int64_t lastNode() const { return members_.back().node; }
@@ -59,6 +62,7 @@ class FeatureSubmap {
     std::vector<int> sightings_;
     cv::Mat descriptors_;
     std::vector<Member> members_;
+    mutable std::vector<int> strongest_;  // cache of strongestFirst()
 };
 
 }  // namespace lodestone::vision

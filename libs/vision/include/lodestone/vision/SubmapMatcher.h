@@ -22,6 +22,7 @@ class SubmapMatcher {
         DescriptorMatcher::Params matcher;
         RigidRansac::Params phase1;  ///< robot / submap frames: no depth-dependent terms
         RigidRansac::Params phase2;  ///< optical frames, as visual odometry
+        std::size_t phase1MaxFeatures{2000};  ///< submap features matched, most seen first
         bool phase1Fallback{true};
         double fallbackInflation{4.0};   ///< covariance factor of a phase-1 constraint
         double agreementDistance{0.3};   ///< [m] phase 2 must stay this close to phase 1 ...
