@@ -77,6 +77,8 @@ void OrbSubmapERD::configure(const mrpt::config::CConfigFileBase& ini) {
     m.phase2.minInliers = s.getInt("phase2_min_inliers", m.phase2.minInliers);
     m.phase2.minInlierRatio = s.getDouble("phase2_min_inlier_ratio", m.phase2.minInlierRatio);
     m.phase1Fallback = s.getBool("phase1_fallback", m.phase1Fallback);
+    m.fallbackMinInliers = static_cast<std::size_t>(
+        s.getInt("phase1_fallback_min_inliers", static_cast<int>(m.fallbackMinInliers)));
     p.minSigmaXY = s.getDouble("min_sigma_xy", p.minSigmaXY);
     p.minSigmaYaw = s.getDouble("min_sigma_yaw_deg", p.minSigmaYaw * 180 / M_PI) * M_PI / 180;
     if (p.submapMaxKeyframes < 1) s.fail("submap_max_keyframes", "must be >= 1");
@@ -226,7 +228,8 @@ JsonObject OrbSubmapERD::describe() const {
         .set("phase1_max_features", params_.matcher.phase1MaxFeatures)
         .set("phase1_min_inliers", params_.matcher.phase1.minInliers)
         .set("phase2_min_inliers", params_.matcher.phase2.minInliers)
-        .set("phase1_fallback", params_.matcher.phase1Fallback);
+        .set("phase1_fallback", params_.matcher.phase1Fallback)
+        .set("phase1_fallback_min_inliers", params_.matcher.fallbackMinInliers);
     JsonObject stats;
     stats.set("keyframes", stats_.keyframes)
         .set("submaps", stats_.submaps)

@@ -85,7 +85,8 @@ RigidEstimate RigidRansac::estimate(const Eigen::Matrix3Xd& src, const Eigen::Ma
     std::mt19937_64 rng(seed);
     std::uniform_int_distribution<Eigen::Index> pick(0, n - 1);
     Eigen::Matrix3Xd s(3, 3), d(3, 3);
-    for (int it = 0; it < params_.iterations; ++it) {
+    int needed = params_.iterations;  // lowered by the adaptive stop, when on
+    for (int it = 0; it < needed; ++it) {
         Eigen::Index idx[3] = {pick(rng), pick(rng), pick(rng)};
         if (idx[0] == idx[1] || idx[1] == idx[2] || idx[0] == idx[2]) continue;
         for (int k = 0; k < 3; ++k) {
@@ -99,6 +100,18 @@ RigidEstimate RigidRansac::estimate(const Eigen::Matrix3Xd& src, const Eigen::Ma
         if (in.size() > best.inliers.size()) {
             best.inliers = std::move(in);
             best.transform = T;
+            if (params_.confidence > 0) {
+                // Enough samples that one all-inlier sample was drawn with this confidence,
+                // given the best inlier ratio so far.
+                const double w = static_cast<double>(best.inliers.size()) / static_cast<double>(n);
+                const double allInlier = w * w * w;
+                if (allInlier >= 1.0) {
+                    needed = std::min(needed, it + 1);
+                } else if (allInlier > 0) {
+                    const double k = std::log(1 - params_.confidence) / std::log(1 - allInlier);
+                    needed = std::min(needed, static_cast<int>(std::ceil(k)) + 1);
+                }
+            }
         }
     }
     if (best.inliers.size() < 3) return best;

@@ -36,7 +36,9 @@ SubmapMatcher::Params::Params() {
     phase1.minInlierRatio = 0.2;
     phase1.pointNoise = 0.03;
     phase1.depthNoise = 0;
+    phase1.confidence = 0.999;
     phase2.iterations = 300;
+    phase2.confidence = 0.999;
     phase2.minInliers = 15;
     phase2.minInlierRatio = 0.25;
 }
@@ -123,7 +125,8 @@ SubmapMatcher::Result SubmapMatcher::match(const FeatureSubmap& submap, const Fr
     }
     r.phase2Ms = msSince(t1);
     if (!r.usedPhase2) {
-        if (!params_.phase1Fallback) {
+        // Without the node-level check, phase 1 alone must be stronger.
+        if (!params_.phase1Fallback || r.inliers < params_.fallbackMinInliers) {
             r.failure = "phase 2";
             return r;
         }

@@ -49,6 +49,9 @@ class RigidRansac {
         double minInlierRatio{0.25};  ///< inliers / pairs below this: no estimate
         double pointNoise{0.01};      ///< 3D point noise at zero depth, for the weights [m]
         double depthNoise{1.425e-3};  ///< its growth with depth: + depthNoise z^2 [1/m]
+        /** Adaptive stop: end once an all-inlier sample has been drawn with this probability,
+         * given the best inlier ratio so far (e.g. 0.999); 0: always `iterations`. */
+        double confidence{0};
 
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                                 const std::string& section) override;

@@ -15,7 +15,8 @@ namespace lodestone::vision {
  *  frame to optical frame: the node-to-node constraint, with a covariance from the inlier
  *  residuals. If phase 2 fails (too few features in the nearest keyframe alone: the very case
  *  submaps are for) or disagrees with phase 1, phase 1's pose relative to that keyframe is used
- *  with its covariance inflated, when `phase1Fallback` is on. */
+ *  with its covariance inflated, when `phase1Fallback` is on and phase 1 has at least
+ *  `fallbackMinInliers` inliers. Both RANSACs stop adaptively (99.9 % confidence). */
 class SubmapMatcher {
   public:
     struct Params {
@@ -24,6 +25,7 @@ class SubmapMatcher {
         RigidRansac::Params phase2;  ///< optical frames, as visual odometry
         std::size_t phase1MaxFeatures{2000};  ///< submap features matched, most seen first
         bool phase1Fallback{true};
+        std::size_t fallbackMinInliers{40};  ///< phase-1 inliers a fallback needs
         double fallbackInflation{4.0};   ///< covariance factor of a phase-1 constraint
         double agreementDistance{0.3};   ///< [m] phase 2 must stay this close to phase 1 ...
         double agreementAngle{0.17};     ///< [rad] ... and this
