@@ -16,7 +16,10 @@ class ScriptedNRD : public graphslam::NodeDecider {
         graphslam::Constraint edge;  ///< from the previous node
         int segment{0};
     };
-    explicit ScriptedNRD(std::vector<Step> steps) : steps_(std::move(steps)) {
+    /** `records`, when given, are the nodes' records (one per node, root first); otherwise
+     * each node gets its index as timestamp and its step's segment. */
+    explicit ScriptedNRD(std::vector<Step> steps, std::vector<graphslam::NodeRecord> records = {})
+        : steps_(std::move(steps)), records_(std::move(records)) {
         setClassName("ScriptedNRD");
     }
     void configure(const mrpt::config::CConfigFileBase&) override {}
@@ -27,14 +30,14 @@ class ScriptedNRD : public graphslam::NodeDecider {
         if (m_prev_registered_nodeID == mrpt::graphs::INVALID_NODEID) {
             m_graph->nodes[0] = mrpt::poses::CPose3D();
             m_prev_registered_nodeID = 0;
-            nodes_->add(0, {});
+            nodes_->add(0, records_.empty() ? graphslam::NodeRecord{} : records_.at(0));
         } else if (next_ < steps_.size()) {
             m_since_prev_node_PDF = steps_[next_].edge;
             registerNewNodeAtEnd();
             graphslam::NodeRecord r;
             r.timestamp = static_cast<double>(next_ + 1);
             r.segment = steps_[next_].segment;
-            nodes_->add(m_prev_registered_nodeID, r);
+            nodes_->add(m_prev_registered_nodeID, records_.empty() ? r : records_.at(next_ + 1));
             ++next_;
         } else {
             return false;
@@ -46,6 +49,7 @@ class ScriptedNRD : public graphslam::NodeDecider {
 
   private:
     std::vector<Step> steps_;
+    std::vector<graphslam::NodeRecord> records_;
     std::size_t next_{0};
 };
 
