@@ -153,6 +153,8 @@ void OrbSubmapERD::query(TNodeID id, const NodeRecord& rec) {
         auto r = matcher_->match(catalog_->at(c.submap), *rec.features, rec.cameraOnRobot, id + 1);
         const double ms = msSince(t1);
         stats_.matchMs += ms;
+        stats_.phase1Ms += r.phase1Ms;
+        stats_.phase2Ms += r.phase2Ms;
         q.slowestMatchMs = std::max(q.slowestMatchMs, ms);
         q.bestMatches = std::max(q.bestMatches, r.matches);
         q.bestInliers = std::max(q.bestInliers, r.inliers);
@@ -239,6 +241,8 @@ JsonObject OrbSubmapERD::describe() const {
         .set("phase2_used", stats_.phase2Used)
         .set("retrieval_ms_total", stats_.retrievalMs)
         .set("match_ms_total", stats_.matchMs)
+        .set("phase1_ms_total", stats_.phase1Ms)
+        .set("phase2_ms_total", stats_.phase2Ms)
         .set("submap_build_ms_total", stats_.buildMs);
     return JsonObject().set("class", getClassName()).set("params", params).set("stats", stats);
 }

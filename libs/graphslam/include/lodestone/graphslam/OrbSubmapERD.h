@@ -57,6 +57,7 @@ class OrbSubmapERD : public EdgeDecider {
         std::size_t keyframes{0}, submaps{0}, queries{0}, candidatesTried{0}, accepted{0},
             phase2Used{0};
         double retrievalMs{0}, matchMs{0}, buildMs{0};
+        double phase1Ms{0}, phase2Ms{0};  ///< parts of matchMs
     };
 
     OrbSubmapERD();
