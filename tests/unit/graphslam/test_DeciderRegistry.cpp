@@ -49,7 +49,9 @@ TEST(DeciderRegistry, ShippedConfigsLoadAndMatchTheDefaults) {
     // Each shipped INI and the loop closers it names: its values must be the code's defaults
     // (one source of truth, a test to keep it).
     const std::vector<std::pair<std::string, std::vector<std::string>>> shipped = {
-        {"odometry_only.ini", {}}, {"slam.ini", {}}, {"visual_only.ini", {"OrbSubmapERD"}}};
+        {"odometry_only.ini", {}},
+        {"slam.ini", {"OrbSubmapERD"}},
+        {"visual_only.ini", {"OrbSubmapERD"}}};
     const auto& reg = DeciderRegistry::instance();
     for (const auto& [name, children] : shipped) {
         SCOPED_TRACE(name);
