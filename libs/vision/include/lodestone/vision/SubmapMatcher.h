@@ -23,7 +23,7 @@ class SubmapMatcher {
         DescriptorMatcher::Params matcher;
         RigidRansac::Params phase1;  ///< robot / submap frames: no depth-dependent terms
         RigidRansac::Params phase2;  ///< optical frames, as visual odometry
-        std::size_t phase1MaxFeatures{2000};  ///< submap features matched, most seen first
+        std::size_t phase1MaxFeatures{1000};  ///< submap features matched, most seen first
         bool phase1Fallback{true};
         std::size_t fallbackMinInliers{40};  ///< phase-1 inliers a fallback needs
         double fallbackInflation{4.0};   ///< covariance factor of a phase-1 constraint
