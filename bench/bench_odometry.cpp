@@ -27,12 +27,7 @@ int main(int argc, char** argv) {
     try {
         sim::Scenario sc = sim::Scenario::load(argv[1]);
         if (argc > 2 && std::string(argv[2]) != "-") {
-            int w = 0, h = 0;
-            double hz = 0;
-            if (std::sscanf(argv[2], "%dx%d@%lf", &w, &h, &hz) != 3)
-                throw std::runtime_error("bad camera");
-            sc.camera.resize(w, h);
-            sc.camera.rate = hz;
+            if (!sc.camera.override(argv[2])) throw std::runtime_error("bad camera: expected WxH@HZ");
         }
         const double limit = argc > 3 ? std::atof(argv[3]) : 1e9;
         sim::SimulatorSource source(sc, sc.seed);

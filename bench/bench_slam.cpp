@@ -26,13 +26,8 @@ int main(int argc, char** argv) {
     }
     try {
         sim::Scenario sc = sim::Scenario::load(argv[1]);
-        std::string camera = "default";
         if (argc > 3 && std::string(argv[3]) != "-") {
-            int w = 0, h = 0;
-            double hz = 0;
-            if (std::sscanf(argv[3], "%dx%d@%lf", &w, &h, &hz) != 3) throw std::runtime_error("bad camera");
-            sc.camera.resize(w, h);
-            sc.camera.rate = hz;
+            if (!sc.camera.override(argv[3])) throw std::runtime_error("bad camera: expected WxH@HZ");
         }
         char cam[64];
         std::snprintf(cam, sizeof cam, "%dx%d@%.0f", sc.camera.width, sc.camera.height, sc.camera.rate);

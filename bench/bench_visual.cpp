@@ -50,11 +50,7 @@ int main(int argc, char** argv) {
     try {
         sim::Scenario sc = sim::Scenario::load(argv[1]);
         if (argc > 4 && std::string(argv[4]) != "-") {
-            int w = 0, h = 0;
-            double hz = 0;
-            if (std::sscanf(argv[4], "%dx%d@%lf", &w, &h, &hz) != 3) throw std::runtime_error("bad camera");
-            sc.camera.resize(w, h);
-            sc.camera.rate = hz;
+            if (!sc.camera.override(argv[4])) throw std::runtime_error("bad camera: expected WxH@HZ");
         }
         std::ifstream in(argv[2]);
         std::stringstream text;

@@ -192,10 +192,7 @@ void OrbSubmapERD::addToOpenSubmap(TNodeID id, const NodeRecord& rec) {
 void OrbSubmapERD::closeOpenSubmap() {
     if (!open_) return;
     if (!open_->empty() && open_->size() > 0) {
-        Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-        for (const auto& m : open_->members()) centre += m.poseInSubmap.translation();
-        centre /= static_cast<double>(open_->members().size());
-        catalog_->add(open_, poseOf(open_first_) * centre);
+        catalog_->add(open_, poseOf(open_first_) * open_->centre());
         submap_end_travel_.push_back(travel_[static_cast<std::size_t>(open_->lastNode())]);
         submap_first_.push_back(open_first_);
         ++stats_.submaps;
@@ -207,11 +204,7 @@ void OrbSubmapERD::refreshCentres() {
     // Optimization moves nodes; the submaps' centres follow their first node.
     nodes_since_refresh_ = 0;
     for (std::size_t s = 0; s < catalog_->size(); ++s) {
-        Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-        const auto& members = catalog_->at(s).members();
-        for (const auto& m : members) centre += m.poseInSubmap.translation();
-        centre /= static_cast<double>(members.size());
-        catalog_->setCentre(s, poseOf(submap_first_[s]) * centre);
+        catalog_->setCentre(s, poseOf(submap_first_[s]) * catalog_->at(s).centre());
     }
 }
 

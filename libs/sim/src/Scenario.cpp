@@ -1,6 +1,8 @@
 #include <lodestone/config/IniSection.h>
 #include <lodestone/sim/FloorPlan.h>
 #include <lodestone/sim/Scenario.h>
+
+#include <cstdio>
 #include <mrpt/config/CConfigFile.h>
 
 #include <cmath>
@@ -220,6 +222,19 @@ void CameraSpec::resize(int newWidth, int newHeight) {
     height = newHeight;
     cx = (width - 1) / 2.0;
     cy = (height - 1) / 2.0;
+}
+
+bool CameraSpec::override(const std::string& widthHeightRate) {
+    int w = 0, h = 0;
+    double hz = 0;
+    char tail = 0;
+    if (std::sscanf(widthHeightRate.c_str(), "%dx%d@%lf%c", &w, &h, &hz, &tail) != 3 || w < 16 ||
+        h < 16 || !(hz > 0)) {
+        return false;
+    }
+    resize(w, h);
+    rate = hz;
+    return true;
 }
 
 Scenario Scenario::load(const std::string& iniPath) {

@@ -48,17 +48,10 @@ int runSimApp(int argc, const char* const* argv, std::ostream& out, std::ostream
     }
     try {
         Scenario scenario = Scenario::load(config.getValue());
-        if (camera.isSet()) {
-            int w = 0, h = 0;
-            double hz = 0;
-            if (std::sscanf(camera.getValue().c_str(), "%dx%d@%lf", &w, &h, &hz) != 3 || w < 16 ||
-                h < 16 || hz <= 0) {
-                err << "lodestone-sim: --camera: expected WIDTHxHEIGHT@RATE, got '"
-                    << camera.getValue() << "'\n";
-                return 2;
-            }
-            scenario.camera.resize(w, h);
-            scenario.camera.rate = hz;
+        if (camera.isSet() && !scenario.camera.override(camera.getValue())) {
+            err << "lodestone-sim: --camera: expected WIDTHxHEIGHT@RATE, got '"
+                << camera.getValue() << "'\n";
+            return 2;
         }
         if (embedded.getValue()) scenario.camera.externalImages = false;
         const std::uint64_t s =

@@ -90,6 +90,12 @@ const std::vector<int>& FeatureSubmap::strongestFirst() const {
     return strongest_;
 }
 
+Eigen::Vector3d FeatureSubmap::centre() const {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (const auto& m : members_) c += m.poseInSubmap.translation();
+    return members_.empty() ? c : Eigen::Vector3d(c / static_cast<double>(members_.size()));
+}
+
 Eigen::Matrix3Xd FeatureSubmap::points() const {
     Eigen::Matrix3Xd m(3, static_cast<Eigen::Index>(points_.size()));
     for (std::size_t i = 0; i < points_.size(); ++i) m.col(static_cast<Eigen::Index>(i)) = points_[i].cast<double>();

@@ -100,3 +100,17 @@ TEST(Scenario, MissingFileIsNamed) {
         EXPECT_NE(std::string(e.what()).find("/nonexistent/scenario.ini"), std::string::npos);
     }
 }
+
+TEST(Scenario, CameraOverrideTakesWidthHeightAndRate) {
+    CameraSpec cam;
+    const int w = cam.width;
+    EXPECT_TRUE(cam.override("320x240@15"));
+    EXPECT_EQ(cam.width, 320);
+    EXPECT_EQ(cam.height, 240);
+    EXPECT_DOUBLE_EQ(cam.rate, 15);
+    for (const char* bad : {"320x240", "8x8@15", "320x240@0", "320x240@15fps", "big"}) {
+        CameraSpec c;
+        EXPECT_FALSE(c.override(bad)) << bad;
+        EXPECT_EQ(c.width, w) << bad;
+    }
+}

@@ -38,6 +38,9 @@ struct CameraSpec {
 
     /** Changes the image size, scaling the intrinsics with it (principal point centred). */
     void resize(int newWidth, int newHeight);
+    /** Applies "WIDTHxHEIGHT@RATE" (e.g. "320x240@15"); false, leaving the camera as it was,
+     * when the text is not that (or below 16x16, or a rate <= 0). */
+    bool override(const std::string& widthHeightRate);
 };
 
 struct MagnetometerSpec {

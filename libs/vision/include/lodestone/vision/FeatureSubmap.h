@@ -50,6 +50,8 @@ class FeatureSubmap {
      * add(). */
     const std::vector<int>& strongestFirst() const;
     const std::vector<Member>& members() const { return members_; }
+    /** The mean of its keyframes' robot positions, in the submap frame: where it "is". */
+    Eigen::Vector3d centre() const;
     std::int64_t firstNode() const { return members_.front().node; }
     std::int64_t lastNode() const { return members_.back().node; }
     /** The member whose robot pose is nearest to `pose` (position, plus 0.5 m per radian of
