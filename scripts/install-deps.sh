@@ -6,6 +6,7 @@ set -euo pipefail
 packages=(
     build-essential cmake ninja-build ccache pkg-config git
     libmrpt-dev mrpt-apps          # MRPT 2.5: obs, io, graphslam, hwdrivers; rawlog-edit for tests
+    mrpt-common                    # MRPT's sample datasets: the tests compare inspect with rawlog-edit on them
     libopencv-dev libeigen3-dev libnanoflann-dev zlib1g-dev
     libceres-dev                   # pose-graph optimization (sparse, robust losses)
     libgtest-dev libgmock-dev

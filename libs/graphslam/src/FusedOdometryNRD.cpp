@@ -43,9 +43,9 @@ void FusedOdometryNRD::setWheelGeometry(double wheelBase, double wheelRadius, do
 }
 
 std::set<std::string> FusedOdometryNRD::requiredObservations() const {
-    // Frames give the node times, encoder samples resolve them (FusedOdometry), whatever the
-    // fusion method.
-    return {"CObservationOdometry", "CObservation3DRangeScan"};
+    // Encoder ticks with RGB-D frames (frames give the node times, encoder samples resolve
+    // them), or pose-only odometry on its own (FusedOdometry); the latter needs no frames.
+    return {"CObservationOdometry"};
 }
 
 bool FusedOdometryNRD::updateState(mrpt::obs::CActionCollection::Ptr /*action*/,

@@ -1,5 +1,6 @@
 #include <lodestone/config/CommandLine.h>
 #include <lodestone/io/ImportApp.h>
+#include <lodestone/io/MagneticRecordingImport.h>
 #include <lodestone/io/TumRgbdImport.h>
 #include <lodestone/obs/registerAllClasses.h>
 
@@ -40,6 +41,82 @@ int importTum(const std::vector<std::string>& words, std::ostream& out, std::ost
     }
     return 0;
 }
+// The drift-model options shared by the magnetometer recordings (Kok & Solin's defaults).
+struct DriftArgs {
+    TCLAP::ValueArg<std::uint64_t> seed;
+    TCLAP::ValueArg<double> bias, sp2, sh2, rate;
+    explicit DriftArgs(TCLAP::CmdLine& cmd)
+        : seed("", "seed", "odometry noise seed", false, 1, "N", cmd),
+          bias("", "bias", "heading rate bias [rad/s]", false, 0.005, "RAD_S", cmd),
+          sp2("", "sp2", "position noise variance per odometry sample [m^2]", false, 1e-4, "M2",
+              cmd),
+          sh2("", "sh2", "heading noise variance per odometry sample [rad^2]", false, 1e-4, "RAD2",
+              cmd),
+          rate("", "odometry-rate", "odometry samples per second (0: one per magnetometer sample)",
+               false, 10, "HZ", cmd) {}
+    OdometryDriftModel model() {
+        OdometryDriftModel m;
+        m.seed = seed.getValue();
+        m.bias = bias.getValue();
+        m.sp2 = sp2.getValue();
+        m.sh2 = sh2.getValue();
+        m.rate = rate.getValue();
+        return m;
+    }
+};
+
+void printMagneticImport(const MagneticImportResult& r, std::ostream& out) {
+    out << r.magnetometerSamples << " magnetometer and " << r.odometrySamples
+        << " odometry samples (" << r.duration << " s, " << r.pathLength << " m) -> " << r.rawlog
+        << "\nground truth -> " << r.groundTruth << "\n";
+}
+
+int importMagnetic(const std::string& kind, const std::vector<std::string>& words,
+                   std::ostream& out, std::ostream& err) {
+    const bool aalto = kind == "aalto";
+    TCLAP::CmdLine cmd(aalto ? "Convert an Aalto invensense trial (N-time/loc/mag.csv) into a "
+                               "rawlog with synthesized odometry (+ OUT.gt.tum)"
+                             : "Convert a Kok & Solin walk CSV into a rawlog with synthesized "
+                               "odometry (+ OUT.gt.tum)",
+                       ' ', "");
+    TCLAP::UnlabeledMultiArg<std::string> positional(
+        "ARGS", aalto ? "DIR TRIAL OUT.rawlog" : "FILE.csv OUT.rawlog", true,
+        aalto ? "DIR TRIAL OUT" : "FILE OUT", cmd);
+    DriftArgs drift(cmd);
+    const auto outcome = config::parseCommandLine(cmd, words);
+    if (outcome.kind == config::ParseOutcome::Kind::HelpShown) return 0;
+    const auto usage = [&](const std::string& why) {
+        err << "lodestone-import " << kind << ": " << why << " (see lodestone-import " << kind
+            << " --help)\n";
+        return 2;
+    };
+    if (outcome.kind == config::ParseOutcome::Kind::UsageError) return usage(outcome.error);
+    const auto& args = positional.getValue();
+    if (args.size() != (aalto ? 3u : 2u)) {
+        return usage(aalto ? "expected DIR, TRIAL and OUT" : "expected FILE and OUT");
+    }
+    const auto model = drift.model();
+    if (!(model.sp2 >= 0) || !(model.sh2 >= 0) || !(model.rate >= 0)) {
+        return usage("--sp2, --sh2 and --odometry-rate must be >= 0");
+    }
+    MagneticRecording recording;
+    if (aalto) {
+        int trial = 0;
+        try {
+            std::size_t used = 0;
+            trial = std::stoi(args[1], &used);
+            if (used != args[1].size() || trial < 1) throw std::invalid_argument(args[1]);
+        } catch (const std::exception&) {
+            return usage("TRIAL '" + args[1] + "' is not a positive number");
+        }
+        recording = readAaltoTrial(args[0], trial);
+    } else {
+        recording = readKokWalk(args[0]);
+    }
+    printMagneticImport(writeMagneticRecording(recording, args.back(), model), out);
+    return 0;
+}
+
 }  // namespace
 
 int runImportApp(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
@@ -47,6 +124,10 @@ int runImportApp(int argc, const char* const* argv, std::ostream& out, std::ostr
     const std::string usage =
         "lodestone-import: datasets into rawlogs\n"
         "usage: lodestone-import tum DIR OUT.rawlog [--intrinsics fr1] [--max-dt 0.02]\n"
+        "       lodestone-import aalto DIR TRIAL OUT.rawlog [--seed 1] [--bias 0.005] [--sp2 "
+        "1e-4]\n"
+        "                              [--sh2 1e-4] [--odometry-rate 10]\n"
+        "       lodestone-import kok FILE.csv OUT.rawlog [same drift options]\n"
         "exit codes: 0 ok, 1 bad input, 2 usage\n";
     if (argc < 2) {
         err << usage;
@@ -61,6 +142,7 @@ int runImportApp(int argc, const char* const* argv, std::ostream& out, std::ostr
     words.insert(words.end(), argv + 2, argv + argc);
     try {
         if (command == "tum") return importTum(words, out, err);
+        if (command == "aalto" || command == "kok") return importMagnetic(command, words, out, err);
     } catch (const std::exception& e) {
         err << "lodestone-import " << command << ": error: " << e.what() << "\n";
         return 1;

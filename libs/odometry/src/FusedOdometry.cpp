@@ -20,6 +20,10 @@ void FusedOdometry::Params::loadFromConfigFile(const mrpt::config::CConfigFileBa
     kalmanMeasurementNoise = s.getDouble("kalman_measurement_noise", kalmanMeasurementNoise);
     encoderLabel = s.getString("encoder_label", encoderLabel);
     cameraLabel = s.getString("camera_label", cameraLabel);
+    posePositionNoise = s.getDouble("pose_position_noise", posePositionNoise);
+    poseHeadingNoise = s.getDouble("pose_heading_noise", poseHeadingNoise);
+    if (!(posePositionNoise > 0)) s.fail("pose_position_noise", "must be > 0");
+    if (!(poseHeadingNoise > 0)) s.fail("pose_heading_noise", "must be > 0");
     if (kalmanWeight <= 0 || kalmanWeight >= 1) s.fail("kalman_weight", "must be in (0, 1)");
     try {
         makePlanarFusion(method);
@@ -36,7 +40,9 @@ void FusedOdometry::Params::dumpToTextStream(std::ostream& out) const {
     visual.dumpToTextStream(out);
     out << "[odometry_fusion]\nmethod = " << method << "\nkalman_weight = " << kalmanWeight
         << "\nkalman_process_noise = " << kalmanProcessNoise
-        << "\nkalman_measurement_noise = " << kalmanMeasurementNoise << "\n";
+        << "\nkalman_measurement_noise = " << kalmanMeasurementNoise
+        << "\npose_position_noise = " << posePositionNoise
+        << "\npose_heading_noise = " << poseHeadingNoise << "\n";
 }
 
 FusedOdometry::FusedOdometry(const Params& params, std::vector<std::string> methods)
@@ -55,9 +61,12 @@ std::vector<FusedOdometry::Estimate> FusedOdometry::process(
     const mrpt::obs::CObservation::Ptr& obs) {
     std::vector<Estimate> out;
     if (auto odo = std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(obs)) {
-        if (!odo->hasEncodersInfo) return out;
         if (!params_.encoderLabel.empty() && odo->sensorLabel != params_.encoderLabel) return out;
         const double t = mrpt::Clock::toDouble(odo->timestamp);
+        if (!odo->hasEncodersInfo) {
+            out.push_back(fromPoseSample(t, odo->odometry));
+            return out;
+        }
         if (auto inc = wheels_.addTicks(odo->encoderLeftTicks, odo->encoderRightTicks)) {
             cum_left_ += inc->leftTravel;
             cum_right_ += inc->rightTravel;
@@ -71,6 +80,10 @@ std::vector<FusedOdometry::Estimate> FusedOdometry::process(
         }
     } else if (auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(obs)) {
         if (!params_.cameraLabel.empty() && scan->sensorLabel != params_.cameraLabel) return out;
+        if (pose_samples_ > 0) {
+            ++frames_ignored_;
+            return out;
+        }
         vision::RgbdFrame frame = frameFromObservation(*scan);
         Pending p{frame.timestamp, visual_.process(frame), opticalFrameOnRobot(scan->sensorPose)};
         scan->unload();
@@ -128,6 +141,25 @@ mrpt::poses::CPosePDFGaussian FusedOdometry::visualOnRobot(const Pending& p) con
     return m;
 }
 
+FusedOdometry::Estimate FusedOdometry::fromPoseSample(double t, const mrpt::poses::CPose2D& pose) {
+    Estimate e;
+    e.timestamp = t;
+    mrpt::poses::CPosePDFGaussian increment;  // zero on the first sample
+    if (last_pose_sample_) {
+        increment.mean = pose - *last_pose_sample_;
+        increment.cov.setZero();
+        increment.cov(0, 0) = increment.cov(1, 1) = params_.posePositionNoise;
+        increment.cov(2, 2) = params_.poseHeadingNoise;
+        pose_estimate_ += increment;
+    }
+    last_pose_sample_ = pose;
+    ++pose_samples_;
+    // No fusion: the source is already an odometry; every method reports it.
+    e.poses.assign(fusions_.size(), pose_estimate_);
+    e.increments.assign(fusions_.size(), increment);
+    return e;
+}
+
 FusedOdometry::Estimate FusedOdometry::resolve(const Pending& p) {
     Estimate e;
     e.timestamp = p.t;
@@ -164,7 +196,8 @@ FusedOdometry::Estimate FusedOdometry::resolve(const Pending& p) {
     }
     for (std::size_t m = 0; m < fusions_.size(); ++m) {
         e.poses.push_back(fusions_[m]->pose());
-        e.increments.push_back(first ? mrpt::poses::CPosePDFGaussian() : fusions_[m]->lastIncrement());
+        e.increments.push_back(first ? mrpt::poses::CPosePDFGaussian()
+                                     : fusions_[m]->lastIncrement());
         recent_[m][p.t] = fusions_[m]->pose().mean;
         // Only frames VO may still use as its reference are kept.
         while (!recent_[m].empty() && recent_[m].begin()->first < oldestReference_) {

@@ -4,6 +4,7 @@
 #include <lodestone/sim/SimulatorSource.h>
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/obs/CObservationOdometry.h>
 
 using namespace lodestone;
 
@@ -101,4 +102,37 @@ TEST(FusedOdometry, ShippedIniLoadsWithItsDefaults) {
     EXPECT_NEAR(p.visual.keyframeAngle, defaults.visual.keyframeAngle, 1e-3);
     EXPECT_DOUBLE_EQ(p.visual.ransac.threshold, defaults.visual.ransac.threshold);
     EXPECT_EQ(p.encoderLabel, "");
+    EXPECT_DOUBLE_EQ(p.posePositionNoise, defaults.posePositionNoise);
+    EXPECT_DOUBLE_EQ(p.poseHeadingNoise, defaults.poseHeadingNoise);
+}
+
+TEST(FusedOdometry, PoseOnlyOdometryGivesAnEstimatePerSampleWithTheConfiguredNoise) {
+    odometry::FusedOdometry::Params p;
+    p.posePositionNoise = 4e-4;
+    p.poseHeadingNoise = 1e-4;
+    odometry::FusedOdometry odo(p, {"wheel", "covariance"});
+    std::vector<odometry::FusedOdometry::Estimate> out;
+    for (int k = 0; k < 5; ++k) {
+        auto o = mrpt::obs::CObservationOdometry::Create();
+        o->timestamp = mrpt::Clock::fromDouble(10.0 + 0.1 * k);
+        o->odometry = mrpt::poses::CPose2D(0.1 * k, 0.02 * k * k, 0.1 * k);  // no encoders
+        for (auto& e : odo.process(o)) out.push_back(e);
+    }
+    ASSERT_EQ(out.size(), 5u);
+    EXPECT_EQ(odo.poseSamples(), 5u);
+    // Both methods report the source as it is: poses relative to the first sample.
+    for (std::size_t m = 0; m < 2; ++m) {
+        EXPECT_NEAR(out.back().poses[m].mean.x(), 0.4, 1e-12);
+        EXPECT_NEAR(out.back().poses[m].mean.y(), 0.32, 1e-12);
+        EXPECT_NEAR(out.back().poses[m].mean.phi(), 0.4, 1e-12);
+    }
+    const auto& inc = out[2].increments[0];
+    const auto expected =
+        mrpt::poses::CPose2D(0.2, 0.08, 0.2) - mrpt::poses::CPose2D(0.1, 0.02, 0.1);
+    EXPECT_NEAR(inc.mean.x(), expected.x(), 1e-12);
+    EXPECT_NEAR(inc.mean.phi(), 0.1, 1e-12);
+    EXPECT_DOUBLE_EQ(inc.cov(0, 0), 4e-4);
+    EXPECT_DOUBLE_EQ(inc.cov(2, 2), 1e-4);
+    // Uncertainty grows along the chain.
+    EXPECT_GT(out.back().poses[0].cov(1, 1), out[1].poses[0].cov(1, 1));
 }

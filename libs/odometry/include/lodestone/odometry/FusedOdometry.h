@@ -22,7 +22,14 @@ namespace lodestone::odometry {
  * timestamp, so a frame is resolved when the first encoder sample after it arrives. VO motion
  * (optical frame) is moved to the robot frame with the camera's sensorPose and projected on
  * SE(2). When VO matched against an older reference (frames in between failed), its motion is
- * re-based onto each method's own pose at that reference. */
+ * re-based onto each method's own pose at that reference.
+ *
+ * Pose-only odometry (CObservationOdometry without encoder ticks: a base that reports its
+ * integrated pose, or the synthesized odometry of `lodestone-import aalto|kok`) is taken as it
+ * is: every sample gives an estimate, its increment being the pose change with the
+ * per-sample variances `pose_position_noise` / `pose_heading_noise`, the same for every
+ * method. Such a source drives the estimates on its own; RGB-D frames that come with it are
+ * counted and not fused (framesIgnored()). */
 class FusedOdometry {
   public:
     struct Params : public mrpt::config::CLoadableOptions {
@@ -34,6 +41,8 @@ class FusedOdometry {
         double kalmanMeasurementNoise{1e-4};  ///< blended-position variance [m^2 or rad^2]
         std::string encoderLabel;             ///< only this odometry label ("" = any)
         std::string cameraLabel;              ///< only this RGB-D label ("" = any)
+        double posePositionNoise{1e-4};  ///< pose-only odometry: variance per sample and axis [m^2]
+        double poseHeadingNoise{1e-4};   ///< pose-only odometry: variance per sample [rad^2]
 
         /** Reads [wheel_odometry], [visual_odometry] and [odometry_fusion] (`section` is the
          * fusion one). */
@@ -63,6 +72,8 @@ class FusedOdometry {
 
     const std::vector<std::string>& methods() const { return method_names_; }
     std::size_t framesProcessed() const { return frames_; }
+    std::size_t poseSamples() const { return pose_samples_; }
+    std::size_t framesIgnored() const { return frames_ignored_; }
 
   private:
     struct Pending {
@@ -75,6 +86,7 @@ class FusedOdometry {
     };
     Eigen::Vector2d travelAt(double t) const;
     Estimate resolve(const Pending& p);
+    Estimate fromPoseSample(double t, const mrpt::poses::CPose2D& pose);
     mrpt::poses::CPosePDFGaussian visualOnRobot(const Pending& p) const;
 
     Params params_;
@@ -89,6 +101,9 @@ class FusedOdometry {
     std::optional<double> last_frame_time_;
     Eigen::Vector2d last_frame_travel_{0, 0};
     std::size_t frames_{0};
+    std::optional<mrpt::poses::CPose2D> last_pose_sample_;
+    mrpt::poses::CPosePDFGaussian pose_estimate_;  // pose-only odometry composed
+    std::size_t pose_samples_{0}, frames_ignored_{0};
     double oldestReference_{0};  // frames before it cannot be VO's reference any more
 };
 
