@@ -3,6 +3,7 @@
 #include <lodestone/graphslam/CompositeERD.h>
 #include <lodestone/graphslam/DeciderRegistry.h>
 #include <lodestone/graphslam/FusedOdometryNRD.h>
+#include <lodestone/graphslam/MagneticGpERD.h>
 #include <lodestone/graphslam/OrbSubmapERD.h>
 
 namespace lodestone::graphslam {
@@ -46,6 +47,7 @@ DeciderRegistry::DeciderRegistry() {
     registerNodeDecider("FusedOdometryNRD", [] { return std::make_unique<FusedOdometryNRD>(); });
     registerEdgeDecider("CompositeERD", [] { return std::make_unique<CompositeERD>(); });
     registerEdgeDecider("OrbSubmapERD", [] { return std::make_unique<OrbSubmapERD>(); });
+    registerEdgeDecider("MagneticGpERD", [] { return std::make_unique<MagneticGpERD>(); });
     registerOptimizer("CeresGSO", [] { return std::make_unique<CeresGSO>(); });
 }
 

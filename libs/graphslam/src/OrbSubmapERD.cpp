@@ -2,17 +2,14 @@
 #include <lodestone/graphslam/OrbSubmapERD.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
+
+#include "Stopwatch.h"
 
 namespace lodestone::graphslam {
 
 namespace {
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point t0) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
 
 Eigen::Isometry3d isometryOf(const mrpt::poses::CPose3D& p) {
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
@@ -62,9 +59,10 @@ void OrbSubmapERD::configure(const mrpt::config::CConfigFileBase& ini) {
     p.minTravelGap = s.getDouble("min_travel_gap", p.minTravelGap);
     p.searchRadius = s.getDouble("search_radius", p.searchRadius);
     p.driftPerMetre = s.getDouble("drift_per_metre", p.driftPerMetre);
-    p.nearCandidates = static_cast<std::size_t>(s.getInt("near_candidates", static_cast<int>(p.nearCandidates)));
-    p.similarCandidates =
-        static_cast<std::size_t>(s.getInt("similar_candidates", static_cast<int>(p.similarCandidates)));
+    p.nearCandidates =
+        static_cast<std::size_t>(s.getInt("near_candidates", static_cast<int>(p.nearCandidates)));
+    p.similarCandidates = static_cast<std::size_t>(
+        s.getInt("similar_candidates", static_cast<int>(p.similarCandidates)));
     p.minVotes = s.getInt("min_votes", p.minVotes);
     auto& m = p.matcher;
     m.matcher.maxDistance = s.getInt("match_max_distance", m.matcher.maxDistance);
@@ -99,7 +97,9 @@ bool OrbSubmapERD::updateState(mrpt::obs::CActionCollection::Ptr, mrpt::obs::CSe
     return stats_.accepted > before;
 }
 
-Eigen::Isometry3d OrbSubmapERD::poseOf(TNodeID id) const { return isometryOf(m_graph->nodes.at(id)); }
+Eigen::Isometry3d OrbSubmapERD::poseOf(TNodeID id) const {
+    return isometryOf(m_graph->nodes.at(id));
+}
 
 void OrbSubmapERD::onNode(TNodeID id) {
     // Distance travelled and odometry uncertainty, from the edge that brought the node.
@@ -136,10 +136,10 @@ void OrbSubmapERD::query(TNodeID id, const NodeRecord& rec) {
     const double radius =
         params_.searchRadius + params_.driftPerMetre * (travel_[id] - travel_at_last_closure_);
     const double reachable = travel_[id] - params_.minTravelGap;
-    const auto candidates = catalog_->candidates(
-        pose.translation(), radius, rec.features->descriptors, params_.nearCandidates,
-        params_.similarCandidates, params_.minVotes,
-        [&](std::size_t s) { return submap_end_travel_[s] <= reachable; });
+    const auto candidates =
+        catalog_->candidates(pose.translation(), radius, rec.features->descriptors,
+                             params_.nearCandidates, params_.similarCandidates, params_.minVotes,
+                             [&](std::size_t s) { return submap_end_travel_[s] <= reachable; });
     Query q;
     q.node = id;
     q.candidates = candidates.size();
@@ -158,14 +158,17 @@ void OrbSubmapERD::query(TNodeID id, const NodeRecord& rec) {
         q.slowestMatchMs = std::max(q.slowestMatchMs, ms);
         q.bestMatches = std::max(q.bestMatches, r.matches);
         q.bestInliers = std::max(q.bestInliers, r.inliers);
-        if (r.success && (!best || r.inliers > best->first.inliers)) best = std::make_pair(r, c.submap);
+        if (r.success && (!best || r.inliers > best->first.inliers))
+            best = std::make_pair(r, c.submap);
     }
     q.accepted = best.has_value();
     queries_.push_back(q);
     if (!best) return;
     const auto& [r, submap] = *best;
     const auto from = static_cast<TNodeID>(r.node);
-    registerNewEdge(from, id, constraintOf(r.nodeToQuery, r.covariance, params_.minSigmaXY, params_.minSigmaYaw));
+    registerNewEdge(
+        from, id,
+        constraintOf(r.nodeToQuery, r.covariance, params_.minSigmaXY, params_.minSigmaYaw));
     records_.push_back({from, id, submap, r.usedPhase2, r.inliers, r.phase2Inliers, r.nodeToQuery});
     ++stats_.accepted;
     stats_.phase2Used += r.usedPhase2;

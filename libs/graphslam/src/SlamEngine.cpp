@@ -3,22 +3,16 @@
 #include <lodestone/graphslam/SlamEngine.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 
-#include <chrono>
+#include "Stopwatch.h"
 
 namespace lodestone::graphslam {
-
-namespace {
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point t0) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-}  // namespace
 
 SlamEngine::SlamEngine(std::unique_ptr<NodeDecider> nrd, std::unique_ptr<EdgeDecider> erd,
                        std::unique_ptr<GraphOptimizer> gso)
     : nrd_(std::move(nrd)), erd_(std::move(erd)), gso_(std::move(gso)) {
     graph_.root = 0;
-    for (SlamComponent* c : std::initializer_list<SlamComponent*>{nrd_.get(), erd_.get(), gso_.get()}) {
+    for (SlamComponent* c :
+         std::initializer_list<SlamComponent*>{nrd_.get(), erd_.get(), gso_.get()}) {
         c->setNodeStore(&nodes_);
     }
     nrd_->setGraphPtr(&graph_);
@@ -49,7 +43,9 @@ std::set<std::string> SlamEngine::requiredObservations() const {
     return all;
 }
 
-mrpt::poses::CPose3D SlamEngine::currentPose() const { return nrd_->getCurrentRobotPosEstimation(); }
+mrpt::poses::CPose3D SlamEngine::currentPose() const {
+    return nrd_->getCurrentRobotPosEstimation();
+}
 
 bool SlamEngine::process(const mrpt::obs::CObservation::Ptr& obs) {
     const auto t0 = Clock::now();
@@ -96,8 +92,7 @@ void SlamEngine::reanchor(const std::vector<LoopClosure>& closures) {
         const mrpt::poses::CPose3D& pTo = graph_.nodes.at(lc.to);
         const mrpt::poses::CPose3D& z = lc.constraint.mean;
         const int segment = aFrom ? sTo : sFrom;
-        const mrpt::poses::CPose3D T =
-            aFrom ? (pFrom + z) + (-pTo) : (pTo + (-z)) + (-pFrom);
+        const mrpt::poses::CPose3D T = aFrom ? (pFrom + z) + (-pTo) : (pTo + (-z)) + (-pFrom);
         for (TNodeID id = 0; id < nodes_.size(); ++id) {
             if (nodes_.at(id).segment == segment) graph_.nodes[id] = T + graph_.nodes.at(id);
         }

@@ -1,0 +1,250 @@
+// Magnetic loop closure on real recordings (issue: magnetic loop closure, paper 000 §2.2).
+//   bench_magnetic recordings DATA_DIR OUT_DIR [SEEDS [INI [ONLY]]]   Aalto trials 1-9 and Kok's
+//   walks:
+//       each imported with the drift model for seeds 1..SEEDS, run through lodestone-slam's code
+//       path with odometry_only.ini and magnetic_only.ini; median ATEs, closures, and how far
+//       the accepted closures are from the ground truth. INI (in config_ini/) replaces
+//       magnetic_only.ini; ONLY keeps the recordings whose name contains it.
+//   bench_magnetic timing                                 time per new supernode (KD-tree
+//       search + costs + bundle + GP alignment) with 1 000 and 10 000 supernodes stored.
+#include <lodestone/io/MagneticRecordingImport.h>
+#include <lodestone/io/TumTrajectory.h>
+#include <lodestone/magnetic/GpShiftCorrection.h>
+#include <lodestone/magnetic/SupernodeIndex.h>
+#include <lodestone/magnetic/SupernodeTrack.h>
+#include <lodestone/obs/registerAllClasses.h>
+#include <lodestone/slamapp/SlamRun.h>
+#include <mrpt/graphs/CNetworkOfPoses.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <iostream>
+#include <random>
+#include <sstream>
+
+namespace fs = std::filesystem;
+using namespace lodestone;
+
+namespace {
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.empty()      ? 0
+           : v.size() % 2 ? v[v.size() / 2]
+                          : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+// The true pose at time t (nearest ground-truth sample; they are 10-50 Hz).
+mrpt::poses::CPose3D truthAt(const std::vector<io::TumPose>& gt, double t) {
+    const auto it = std::lower_bound(
+        gt.begin(), gt.end(), t, [](const io::TumPose& p, double v) { return p.timestamp < v; });
+    if (it == gt.end()) return gt.back().pose;
+    if (it != gt.begin() && t - (it - 1)->timestamp < it->timestamp - t) return (it - 1)->pose;
+    return it->pose;
+}
+
+struct ClosureErrors {
+    std::size_t count{0}, over05{0}, alongOver05{0};
+    double median{0}, max{0};
+    double alongMedian{0}, alongMax{0};  ///< the part along the target's path
+};
+
+// Loop-closure edges of the written graph (non-consecutive nodes) against the true relative
+// position of their nodes.
+ClosureErrors closureErrors(const std::string& dir, const std::vector<io::TumPose>& gt) {
+    mrpt::graphs::CNetworkOfPoses3DInf g;
+    g.loadFromTextFile(dir + "/graph.graph");
+    const auto nodes = io::readTumTrajectory(dir + "/trajectory.tum");
+    std::vector<double> err, along;
+    ClosureErrors r;
+    for (const auto& [ids, c] : g.edges) {
+        const auto [from, to] = ids;
+        if (to == from + 1 || from >= nodes.size() || to >= nodes.size()) continue;
+        const auto truth = truthAt(gt, nodes[to].timestamp) - truthAt(gt, nodes[from].timestamp);
+        const double e = std::hypot(truth.x() - c.mean.x(), truth.y() - c.mean.y());
+        err.push_back(e);
+        r.over05 += e > 0.5;
+        r.max = std::max(r.max, e);
+        // The matcher places the node along the target's path; across it a walker may have
+        // passed anywhere within a stride. Along: the error's part in the path direction at
+        // the target (the true motion's direction from `from` to its successor).
+        const auto next =
+            truthAt(gt, nodes[std::min<std::size_t>(from + 1, nodes.size() - 1)].timestamp) -
+            truthAt(gt, nodes[from].timestamp);
+        const double len = std::hypot(next.x(), next.y());
+        if (len > 1e-6) {
+            const double a = std::abs(
+                ((truth.x() - c.mean.x()) * next.x() + (truth.y() - c.mean.y()) * next.y()) / len);
+            along.push_back(a);
+            r.alongOver05 += a > 0.5;
+            r.alongMax = std::max(r.alongMax, a);
+        }
+    }
+    r.count = err.size();
+    r.median = median(err);
+    r.alongMedian = median(along);
+    return r;
+}
+
+struct Recording {
+    std::string name;
+    std::function<io::MagneticRecording()> read;
+};
+
+int recordings(const std::string& data, const std::string& out, int seeds,
+               const std::string& magneticIni, const std::string& only) {
+    registerAllClasses();
+    const std::string cfg = LODESTONE_CONFIG_INI_DIR;
+    std::vector<Recording> recs;
+    for (int t = 1; t <= 9; ++t) {
+        recs.push_back({"aalto " + std::to_string(t),
+                        [=] { return io::readAaltoTrial(data + "/aalto/invensense", t); }});
+    }
+    for (const char* w : {"eight", "square"}) {
+        recs.push_back({std::string("kok ") + w,
+                        [=] { return io::readKokWalk(data + "/kok/" + w + ".csv"); }});
+    }
+    std::printf(
+        "| recording | path [m] | seeds | ATE odometry [m] | ATE magnetic [m] | magnetic / "
+        "odometry | "
+        "closure edges per run | closure error: median / max [m] | > 0.5 m | along the path: "
+        "median / max [m] | > 0.5 m | real-time factor |\n");
+    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    for (const auto& rec : recs) {
+        if (!only.empty() && rec.name.find(only) == std::string::npos) continue;
+        const auto recording = rec.read();
+        std::vector<double> odo, mag, ratio, med, worst, rt, amed, aworst;
+        std::size_t edges = 0, over = 0, aover = 0;
+        for (int seed = 1; seed <= seeds; ++seed) {
+            const std::string stem = out + "/" + rec.name.substr(0, rec.name.find(' ')) +
+                                     rec.name.substr(rec.name.find(' ') + 1) + "_s" +
+                                     std::to_string(seed);
+            io::OdometryDriftModel model;
+            model.seed = static_cast<std::uint64_t>(seed);
+            const auto imported = io::writeMagneticRecording(recording, stem + ".rawlog", model);
+            const auto gt = io::readTumTrajectory(imported.groundTruth);
+            double ate[2] = {0, 0};
+            for (int k = 0; k < 2; ++k) {
+                slamapp::SlamRunOptions o;
+                o.rawlog = imported.rawlog;
+                o.groundTruth = imported.groundTruth;
+                o.config = cfg + (k == 0 ? "/odometry_only.ini" : "/" + magneticIni);
+                o.outDir = stem + (k == 0 ? "_odo" : "_mag");
+                o.quiet = true;
+                std::ostringstream sout, serr;
+                const auto t0 = std::chrono::steady_clock::now();
+                const auto r = slamapp::runSlam(o, sout, serr);
+                const double wall =
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+                if (r.exitCode != 0 || !r.ateRmse) {
+                    std::cerr << rec.name << ": " << serr.str();
+                    return 1;
+                }
+                ate[k] = *r.ateRmse;
+                if (k == 1) {
+                    rt.push_back(imported.duration / wall);
+                    const auto ce = closureErrors(o.outDir, gt);
+                    edges += ce.count;
+                    over += ce.over05;
+                    aover += ce.alongOver05;
+                    med.push_back(ce.median);
+                    worst.push_back(ce.max);
+                    amed.push_back(ce.alongMedian);
+                    aworst.push_back(ce.alongMax);
+                }
+            }
+            odo.push_back(ate[0]);
+            mag.push_back(ate[1]);
+            ratio.push_back(ate[1] / ate[0]);
+        }
+        std::printf(
+            "| %s | %.1f | %d | %.3f | %.3f | %.2f | %.1f | %.3f / %.3f | %zu | %.3f / %.3f | %zu "
+            "| %.0fx |\n",
+            rec.name.c_str(), recording.pathLength(), seeds, median(odo), median(mag),
+            median(ratio), double(edges) / seeds, median(med),
+            *std::max_element(worst.begin(), worst.end()), over, median(amed),
+            *std::max_element(aworst.begin(), aworst.end()), aover, median(rt));
+        std::fflush(stdout);
+    }
+    return 0;
+}
+
+int timing() {
+    // A long synthetic path: smooth random field, 0.05 m resampling, supernodes every 0.25 m.
+    std::mt19937 rng(3);
+    std::normal_distribution<double> n(0, 1);
+    magnetic::SupernodeTrack track({0.05, 2.0, 0.25}, 2);
+    magnetic::SupernodeIndex index(2, track.samplesPerSupernode());
+    Eigen::Vector2d f(50, -40), v(0, 0);
+    std::printf(
+        "| supernodes stored | queries | KD-tree + costs ms: mean / max | GP alignment ms: mean / "
+        "max | total ms: mean / max |\n");
+    std::printf("|---|---|---|---|---|\n");
+    double s = 0;
+    for (const std::size_t target : {std::size_t{1000}, std::size_t{10000}}) {
+        while (index.size() < target) {
+            s += 0.01;
+            v = 0.98 * v + 0.4 * Eigen::Vector2d(n(rng), n(rng));  // correlated anomalies
+            for (const auto& sn : track.add(s, f + v, 0, 0)) index.add(sn);
+        }
+        const auto& samples = track.samples();
+        double searchSum = 0, searchMax = 0, gpSum = 0, gpMax = 0, totalMax = 0;
+        const int queries = 200;
+        for (int q = 0; q < queries; ++q) {
+            const auto& probe =
+                track.supernodes()[static_cast<std::size_t>(q) * 37 % track.supernodes().size()];
+            const auto t0 = std::chrono::steady_clock::now();
+            float best = 1e9;
+            for (const auto id : index.nearest(probe, 20)) {
+                best =
+                    std::min(best, magnetic::SupernodeTrack::cost(probe, track.supernodes()[id]));
+            }
+            const auto t1 = std::chrono::steady_clock::now();
+            // The alignment the ERD runs on a bundle: GP over 3 m + margins, scan +-0.5 m.
+            const std::size_t end = std::min(samples.size(), probe.last + 20);
+            const std::size_t begin = end >= 60 + 24 ? end - 60 - 24 : 0;
+            std::vector<double> tx, qx;
+            Eigen::MatrixXd T(static_cast<Eigen::Index>(end - begin), 2), Q(60, 2);
+            for (std::size_t i = begin; i < end; ++i) {
+                tx.push_back(samples[i].s);
+                T.row(static_cast<Eigen::Index>(i - begin)) =
+                    samples[i].value.cast<double>().transpose();
+            }
+            for (std::size_t i = 0; i < 60; ++i) {
+                qx.push_back(samples[begin + 12 + i].s);
+                Q.row(static_cast<Eigen::Index>(i)) =
+                    samples[begin + 12 + i].value.cast<double>().transpose();
+            }
+            magnetic::GaussianProcess1D gp({4.0, 0.3, 0.5, 10.0});
+            gp.fit(tx, T);
+            const auto shift = magnetic::scanShift(gp, qx, Q, {0.5, 0.02, 0.01});
+            const auto t2 = std::chrono::steady_clock::now();
+            const double a = std::chrono::duration<double, std::milli>(t1 - t0).count();
+            const double b = std::chrono::duration<double, std::milli>(t2 - t1).count();
+            searchSum += a;
+            gpSum += b;
+            searchMax = std::max(searchMax, a);
+            gpMax = std::max(gpMax, b);
+            totalMax = std::max(totalMax, a + b);
+            if (best > 1e8 || !shift.valid) std::cerr << "query " << q << " found nothing\n";
+        }
+        std::printf("| %zu | %d | %.3f / %.3f | %.3f / %.3f | %.3f / %.3f |\n", index.size(),
+                    queries, searchSum / queries, searchMax, gpSum / queries, gpMax,
+                    (searchSum + gpSum) / queries, totalMax);
+    }
+    return 0;
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+    const std::string mode = argc > 1 ? argv[1] : "";
+    if (mode == "recordings" && argc >= 4) {
+        return recordings(argv[2], argv[3], argc > 4 ? std::atoi(argv[4]) : 5,
+                          argc > 5 ? argv[5] : "magnetic_only.ini", argc > 6 ? argv[6] : "");
+    }
+    if (mode == "timing") return timing();
+    std::cerr << "usage: bench_magnetic recordings DATA_DIR OUT_DIR [SEEDS] | timing\n";
+    return 2;
+}

@@ -1,0 +1,109 @@
+#pragma once
+
+#include <lodestone/graphslam/EdgeDecider.h>
+#include <lodestone/magnetic/BundleMatcher.h>
+#include <lodestone/magnetic/FieldFeatures.h>
+#include <lodestone/magnetic/GpShiftCorrection.h>
+#include <lodestone/magnetic/SupernodeIndex.h>
+#include <lodestone/magnetic/SupernodeTrack.h>
+
+#include <deque>
+#include <memory>
+#include <vector>
+
+namespace lodestone::graphslam {
+
+/** Magnetic loop closure, paper 000 §2.2-2.3. The magnetometer readings the nodes keep are
+ * placed along the path (by time between their node and the previous one), resampled by
+ * distance and cut into overlapping supernodes (magnetic::SupernodeTrack). Each new supernode
+ * is matched by the L2 cost of eq. (2) against stored ones the robot left at least
+ * `min_travel_gap` ago: shortlisted by a KD-tree over the field, and restricted to those near
+ * the robot's graph position while the odometry's drift since the last closure is small.
+ * Chains of consistent matches form node bundles (magnetic::BundleMatcher); bundles whose
+ * targets lie at different places are ambiguous and dropped. The last `gp_window` metres of
+ * a bundle are aligned along the path by the GP correction of eq. (3) and, if the field fits
+ * (normalized residual under `max_normalized_rms`), subdivided into node-to-node edges
+ * (§2.3): every `edge_every`-th query node gets an edge from the target node at its corrected
+ * travel, with the along-track sigma of the GP scan and loose cross-track and heading sigmas
+ * (a field sequence says where along a path the robot is, little about across it).
+ * NaN, infinite or saturated readings are dropped and counted. INI section [MagneticGpERD]. */
+class MagneticGpERD : public EdgeDecider {
+  public:
+    struct Params {
+        magnetic::FieldMode mode{magnetic::FieldMode::Invariant};
+        std::string sensorLabel;    ///< only this magnetometer ("": the first one seen)
+        double saturation{1000.0};  ///< [uT] a component this large is a saturated reading
+        magnetic::SupernodeTrack::Params track;
+        int indexBins{8};
+        std::size_t candidates{20};   ///< KD-tree shortlist per supernode
+        double maxCost{1.5};          ///< [uT] RMS, eq. (2) per element
+        double minSpread{1.0};        ///< [uT] a supernode flatter than this matches nothing
+        double minTravelGap{4.0};     ///< [m]
+        double searchRadius{1.5};     ///< [m] position gate ...
+        double driftPerMetre{0.05};   ///< ... growing with travel since the last closure
+        double maxGateRadius{6.0};    ///< [m] beyond this the gate is off (search everywhere)
+        double sameplaceRadius{1.5};  ///< [m] bundles whose targets are this close agree
+        magnetic::BundleMatcher::Params bundle;
+        double gpWindow{3.0};  ///< [m] of query path aligned by the GP
+        magnetic::GpHyperparameters gp;
+        magnetic::ShiftScanParams shift;
+        double maxNormalizedRms{2.0};
+        int edgeEvery{3};                  ///< [nodes]
+        double sigmaAlong{0.03};           ///< [m] floor, added to the GP's shift sigma
+        double sigmaCross{0.20};           ///< [m]
+        double sigmaYaw{10 * M_PI / 180};  ///< [rad]
+    };
+
+    /** One accepted bundle alignment and the edges it gave. */
+    struct Record {
+        std::size_t querySupernode{0};
+        double offset{0}, shift{0}, shiftSigma{0}, normalizedRms{0}, cost{0};
+        std::vector<std::pair<TNodeID, TNodeID>> edges;  ///< (target node, query node)
+        std::vector<Constraint> constraints;
+    };
+    struct Stats {
+        std::size_t readings{0}, droppedReadings{0}, otherSensors{0}, supernodes{0},
+            flatSupernodes{0}, matchedSupernodes{0}, bundles{0}, ambiguous{0}, gpRejected{0},
+            alignments{0}, edges{0};
+        std::vector<double> queryMs;  ///< per supernode: search + bundle + GP [ms]
+    };
+
+    MagneticGpERD();
+    void configure(const mrpt::config::CConfigFileBase& ini) override;
+    const Params& params() const { return params_; }
+    bool updateState(mrpt::obs::CActionCollection::Ptr action,
+                     mrpt::obs::CSensoryFrame::Ptr observations,
+                     mrpt::obs::CObservation::Ptr observation) override;
+    std::set<std::string> requiredObservations() const override {
+        return {"CObservationMagnetometer"};
+    }
+    JsonObject describe() const override;
+
+    const std::vector<Record>& records() const { return records_; }
+    const Stats& stats() const { return stats_; }
+    const magnetic::SupernodeTrack& track() const { return *track_; }
+
+  private:
+    void rebuild();
+    void onNode(TNodeID id);
+    void query(const magnetic::Supernode& q);
+    void align(const magnetic::BundleMatch& b, double cost);
+    bool nodeAtTravel(double s, int segment, TNodeID& k, double& frac) const;
+    mrpt::math::TPoint2D positionOf(TNodeID id) const;
+
+    Params params_;
+    std::unique_ptr<magnetic::SupernodeTrack> track_;
+    std::unique_ptr<magnetic::SupernodeIndex> index_;
+    std::unique_ptr<magnetic::BundleMatcher> matcher_;
+    std::vector<double> travel_;     // per node [m]
+    std::vector<int> segment_;       // per node
+    std::vector<bool> constrained_;  // per node: has a magnetic edge already
+    double travel_at_last_closure_{0};
+    std::optional<std::size_t> previous_supernode_;
+    std::deque<std::size_t> unindexed_;  // supernodes too recent to be matched yet
+    TNodeID seen_{0};
+    std::vector<Record> records_;
+    Stats stats_;
+};
+
+}  // namespace lodestone::graphslam

@@ -1,0 +1,330 @@
+#include <lodestone/config/IniSection.h>
+#include <lodestone/graphslam/MagneticGpERD.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "Stopwatch.h"
+
+namespace lodestone::graphslam {
+
+MagneticGpERD::MagneticGpERD() {
+    setClassName("MagneticGpERD");
+    rebuild();
+}
+
+void MagneticGpERD::rebuild() {
+    track_ = std::make_unique<magnetic::SupernodeTrack>(params_.track,
+                                                        magnetic::channelsOf(params_.mode));
+    index_ = std::make_unique<magnetic::SupernodeIndex>(
+        track_->channels(), track_->samplesPerSupernode(), params_.indexBins);
+    matcher_ = std::make_unique<magnetic::BundleMatcher>(params_.bundle);
+}
+
+void MagneticGpERD::configure(const mrpt::config::CConfigFileBase& ini) {
+    config::IniSection s(ini, "MagneticGpERD", config::sourceName(ini));
+    Params p = params_;  // all or nothing
+    try {
+        p.mode = magnetic::parseFieldMode(s.getString("field_mode", magnetic::toString(p.mode)));
+    } catch (const std::invalid_argument& e) {
+        s.fail("field_mode", e.what());
+    }
+    p.sensorLabel = s.getString("sensor_label", p.sensorLabel);
+    p.saturation = s.getDouble("saturation", p.saturation);
+    p.track.step = s.getDouble("resample_step", p.track.step);
+    p.track.length = s.getDouble("supernode_length", p.track.length);
+    p.track.stride = s.getDouble("supernode_stride", p.track.stride);
+    p.indexBins = s.getInt("index_bins", p.indexBins);
+    p.candidates = static_cast<std::size_t>(s.getInt("candidates", static_cast<int>(p.candidates)));
+    p.maxCost = s.getDouble("max_cost", p.maxCost);
+    p.minSpread = s.getDouble("min_spread", p.minSpread);
+    p.minTravelGap = s.getDouble("min_travel_gap", p.minTravelGap);
+    p.searchRadius = s.getDouble("search_radius", p.searchRadius);
+    p.driftPerMetre = s.getDouble("drift_per_metre", p.driftPerMetre);
+    p.maxGateRadius = s.getDouble("max_gate_radius", p.maxGateRadius);
+    p.sameplaceRadius = s.getDouble("same_place_radius", p.sameplaceRadius);
+    p.bundle.minChain =
+        static_cast<std::size_t>(s.getInt("min_chain", static_cast<int>(p.bundle.minChain)));
+    p.bundle.offsetTolerance = s.getDouble("offset_tolerance", p.bundle.offsetTolerance);
+    p.gpWindow = s.getDouble("gp_window", p.gpWindow);
+    p.gp.sigmaF = s.getDouble("gp_sigma_f", p.gp.sigmaF);
+    p.gp.lengthScale = s.getDouble("gp_length_scale", p.gp.lengthScale);
+    p.gp.sigmaN = s.getDouble("gp_sigma_n", p.gp.sigmaN);
+    p.gp.sigmaC = s.getDouble("gp_sigma_c", p.gp.sigmaC);
+    p.shift.maxShift = s.getDouble("max_shift", p.shift.maxShift);
+    p.shift.step = s.getDouble("shift_step", p.shift.step);
+    p.maxNormalizedRms = s.getDouble("max_normalized_rms", p.maxNormalizedRms);
+    p.edgeEvery = s.getInt("edge_every", p.edgeEvery);
+    p.sigmaAlong = s.getDouble("sigma_along", p.sigmaAlong);
+    p.sigmaCross = s.getDouble("sigma_cross", p.sigmaCross);
+    p.sigmaYaw = s.getDouble("sigma_yaw_deg", p.sigmaYaw * 180 / M_PI) * M_PI / 180;
+    if (!(p.track.step > 0)) s.fail("resample_step", "must be > 0");
+    if (!(p.track.length > 2 * p.track.step))
+        s.fail("supernode_length", "must be > 2 x resample_step");
+    if (!(p.track.stride >= p.track.step)) s.fail("supernode_stride", "must be >= resample_step");
+    if (p.indexBins < 1) s.fail("index_bins", "must be >= 1");
+    if (p.candidates < 1) s.fail("candidates", "must be >= 1");
+    if (!(p.maxCost > 0)) s.fail("max_cost", "must be > 0");
+    if (p.bundle.minChain < 1) s.fail("min_chain", "must be >= 1");
+    if (!p.gp.valid()) s.fail("gp_sigma_f", "GP hyperparameters must be > 0");
+    if (!(p.shift.step > 0) || !(p.shift.maxShift > p.shift.step))
+        s.fail("max_shift", "must be > shift_step > 0");
+    if (p.edgeEvery < 1) s.fail("edge_every", "must be >= 1");
+    if (!(p.sigmaAlong > 0) || !(p.sigmaCross > 0) || !(p.sigmaYaw > 0))
+        s.fail("sigma_cross", "sigmas must be > 0");
+    if (!(p.saturation > 0)) s.fail("saturation", "must be > 0");
+    s.finish();
+    params_ = p;
+    rebuild();
+}
+
+bool MagneticGpERD::updateState(mrpt::obs::CActionCollection::Ptr, mrpt::obs::CSensoryFrame::Ptr,
+                                mrpt::obs::CObservation::Ptr) {
+    const std::size_t before = stats_.edges;
+    for (; seen_ < m_graph->nodes.size() && nodes_ && nodes_->has(seen_); ++seen_) onNode(seen_);
+    return stats_.edges > before;
+}
+
+mrpt::math::TPoint2D MagneticGpERD::positionOf(TNodeID id) const {
+    const auto& p = m_graph->nodes.at(id);
+    return {p.x(), p.y()};
+}
+
+void MagneticGpERD::onNode(TNodeID id) {
+    const NodeRecord& rec = nodes_->at(id);
+    double step = 0, heading = m_graph->nodes.at(id).yaw();
+    double t0 = rec.timestamp;
+    if (id > 0) {
+        const auto e = m_graph->edges.find({id - 1, id});
+        // No travel across a kidnap: the edge there says nothing of the path.
+        if (e != m_graph->edges.end() && rec.segment == segment_.back()) {
+            step = std::hypot(e->second.mean.x(), e->second.mean.y());
+        }
+        t0 = nodes_->at(id - 1).timestamp;
+    }
+    const double s0 = travel_.empty() ? 0.0 : travel_.back();
+    travel_.push_back(s0 + step);
+    segment_.push_back(rec.segment);
+    constrained_.push_back(false);
+    for (const auto& m : rec.magnetic) {
+        if (params_.sensorLabel.empty()) params_.sensorLabel = m.sensorLabel;
+        if (m.sensorLabel != params_.sensorLabel) {
+            ++stats_.otherSensors;
+            continue;
+        }
+        ++stats_.readings;
+        // The field in the robot frame: the sensor's mounting applied.
+        const auto& R = m.sensorPose.getRotationMatrix();
+        const Eigen::Vector3d inSensor(m.field.x, m.field.y, m.field.z);
+        if (!magnetic::usableReading(inSensor, params_.saturation)) {
+            ++stats_.droppedReadings;
+            continue;
+        }
+        const Eigen::Vector3d b = R.asEigen() * inSensor;
+        const double f = rec.timestamp > t0
+                             ? std::clamp((m.timestamp - t0) / (rec.timestamp - t0), 0.0, 1.0)
+                             : 1.0;
+        for (const auto& sn :
+             track_->add(s0 + f * step, magnetic::fieldFeature(b, heading, params_.mode), id,
+                         rec.segment)) {
+            query(sn);
+        }
+    }
+}
+
+void MagneticGpERD::query(const magnetic::Supernode& q) {
+    const auto t0 = Clock::now();
+    ++stats_.supernodes;
+    const auto& samples = track_->samples();
+    const bool follows = previous_supernode_ && *previous_supernode_ + 1 == q.id &&
+                         track_->supernodes()[*previous_supernode_].segment == q.segment;
+    previous_supernode_ = q.id;
+    std::vector<magnetic::SupernodeMatch> matches;
+    const TNodeID qNode = static_cast<TNodeID>(samples[q.last - 1].node);
+    const double qTravel = samples[q.first].s;
+    // Supernodes join the index once the robot is min_travel_gap past them: the nearest ones
+    // in field space would otherwise be the query's own overlapping predecessors.
+    while (!unindexed_.empty() && samples[track_->supernodes()[unindexed_.front()].last - 1].s <=
+                                      qTravel - params_.minTravelGap) {
+        index_->add(track_->supernodes()[unindexed_.front()]);
+        unindexed_.pop_front();
+    }
+    if (q.spread < params_.minSpread) {
+        ++stats_.flatSupernodes;
+    } else {
+        const double radius = params_.searchRadius +
+                              params_.driftPerMetre * (travel_[qNode] - travel_at_last_closure_);
+        const bool gated = radius <= params_.maxGateRadius;
+        const auto here = positionOf(qNode);
+        for (const std::size_t id : index_->nearest(q, params_.candidates)) {
+            const auto& t = track_->supernodes()[id];
+            const auto tNode = static_cast<TNodeID>(samples[(t.first + t.last) / 2].node);
+            // Across segments the graph's positions are not yet comparable (kidnap).
+            if (gated && t.segment == q.segment && (positionOf(tNode) - here).norm() > radius)
+                continue;
+            const float cost = magnetic::SupernodeTrack::cost(q, t);
+            if (cost > params_.maxCost) continue;
+            matches.push_back({q.id, id, samples[t.first].s - qTravel, cost});
+        }
+    }
+    unindexed_.push_back(q.id);
+    if (!matches.empty()) ++stats_.matchedSupernodes;
+    auto bundles = matcher_->add(q.id, matches, follows);
+    if (!bundles.empty()) {
+        ++stats_.bundles;
+        // Several bundles: the same place seen on several earlier passes (fine) or look-alike
+        // places (aliasing). Which, the graph says: their targets must lie together.
+        const auto where = [&](const magnetic::BundleMatch& b) {
+            return positionOf(
+                static_cast<TNodeID>(samples[track_->supernodes()[b.lastTarget].last - 1].node));
+        };
+        bool agree = true;
+        for (const auto& b : bundles)
+            agree = agree && (where(b) - where(bundles.front())).norm() <= params_.sameplaceRadius;
+        if (agree) {
+            align(bundles.front(), bundles.front().meanCost);  // the cheapest
+        } else {
+            ++stats_.ambiguous;
+        }
+    }
+    stats_.queryMs.push_back(msSince(t0));
+}
+
+bool MagneticGpERD::nodeAtTravel(double s, int segment, TNodeID& k, double& frac) const {
+    const auto it = std::upper_bound(travel_.begin(), travel_.end(), s);
+    if (it == travel_.begin() || it == travel_.end()) return false;
+    const auto next = static_cast<std::size_t>(it - travel_.begin());
+    k = static_cast<TNodeID>(next - 1);
+    if (segment_[k] != segment || segment_[next] != segment) return false;
+    const double span = travel_[next] - travel_[k];
+    frac = span > 0 ? (s - travel_[k]) / span : 0.0;
+    return true;
+}
+
+void MagneticGpERD::align(const magnetic::BundleMatch& b, double cost) {
+    const auto& samples = track_->samples();
+    const auto& sn = track_->supernodes();
+    const std::size_t qEnd = sn[b.lastQuery].last;
+    const std::size_t qChainStart = sn[b.firstQuery].first;
+    const auto window =
+        static_cast<std::size_t>(std::lround(params_.gpWindow / params_.track.step));
+    const std::size_t qBegin = std::max(qChainStart, qEnd > window ? qEnd - window : 0);
+    const int tSegment = sn[b.lastTarget].segment;
+    // Target readings over the query window's travel moved by the offset, plus the scan range.
+    const double margin = params_.shift.maxShift + 2 * params_.track.step;
+    const double lo = samples[qBegin].s + b.offset - margin,
+                 hi = samples[qEnd - 1].s + b.offset + margin;
+    const auto first =
+        std::lower_bound(samples.begin(), samples.end(), lo,
+                         [](const magnetic::TrackSample& a, double v) { return a.s < v; });
+    std::vector<double> tx;
+    std::vector<Eigen::VectorXf> ty;
+    for (auto it = first; it != samples.end() && it->s <= hi; ++it) {
+        if (it->segment != tSegment) return;  // the target stretch crosses a kidnap
+        tx.push_back(it->s);
+        ty.push_back(it->value);
+    }
+    const double expected = (hi - lo) / params_.track.step;
+    if (tx.size() < 0.9 * expected) return;  // a gap in the target's readings
+    const int C = track_->channels();
+    Eigen::MatrixXd T(static_cast<Eigen::Index>(tx.size()), C);
+    for (std::size_t i = 0; i < tx.size(); ++i)
+        T.row(static_cast<Eigen::Index>(i)) = ty[i].cast<double>().transpose();
+    std::vector<double> qx;
+    Eigen::MatrixXd Q(static_cast<Eigen::Index>(qEnd - qBegin), C);
+    for (std::size_t i = qBegin; i < qEnd; ++i) {
+        qx.push_back(samples[i].s + b.offset);
+        Q.row(static_cast<Eigen::Index>(i - qBegin)) = samples[i].value.cast<double>().transpose();
+    }
+    magnetic::GaussianProcess1D gp(params_.gp);
+    gp.fit(tx, T);
+    const auto shift = magnetic::scanShift(gp, qx, Q, params_.shift);
+    if (!shift.valid || shift.normalizedRms > params_.maxNormalizedRms) {
+        ++stats_.gpRejected;
+        return;
+    }
+    ++stats_.alignments;
+    Record rec;
+    rec.querySupernode = b.lastQuery;
+    rec.offset = b.offset;
+    rec.shift = shift.shift;
+    rec.shiftSigma = shift.sigma;
+    rec.normalizedRms = shift.normalizedRms;
+    rec.cost = cost;
+    // §2.3: the bundle constraint subdivided into node-to-node edges.
+    const std::size_t firstNode = samples[qBegin].node, lastNode = samples[qEnd - 1].node;
+    const double sigmaAlong2 = shift.sigma * shift.sigma + params_.sigmaAlong * params_.sigmaAlong;
+    for (std::size_t qn = firstNode; qn <= lastNode; ++qn) {
+        if (constrained_[qn] || qn % static_cast<std::size_t>(params_.edgeEvery) != 0) continue;
+        TNodeID k;
+        double frac;
+        if (!nodeAtTravel(travel_[qn] + b.offset + shift.shift, tSegment, k, frac)) continue;
+        const auto e = m_graph->edges.find({k, k + 1});
+        if (e == m_graph->edges.end()) continue;
+        const auto& d = e->second.mean;
+        mrpt::poses::CPosePDFGaussian z;
+        z.mean = mrpt::poses::CPose2D(frac * d.x(), frac * d.y(), frac * d.yaw());
+        // Along the target's path: the GP's precision; across it and in heading: loose.
+        const double len = std::hypot(d.x(), d.y());
+        const Eigen::Vector2d u =
+            len > 1e-6 ? Eigen::Vector2d(d.x() / len, d.y() / len) : Eigen::Vector2d(1, 0);
+        const Eigen::Matrix2d P = u * u.transpose();
+        const Eigen::Matrix2d S = sigmaAlong2 * P + params_.sigmaCross * params_.sigmaCross *
+                                                        (Eigen::Matrix2d::Identity() - P);
+        z.cov.setZero();
+        for (int r = 0; r < 2; ++r)
+            for (int c = 0; c < 2; ++c) z.cov(r, c) = S(r, c);
+        z.cov(2, 2) = params_.sigmaYaw * params_.sigmaYaw;
+        const Constraint c = planarConstraint(z);
+        registerNewEdge(k, static_cast<TNodeID>(qn), c);
+        rec.edges.emplace_back(k, static_cast<TNodeID>(qn));
+        rec.constraints.push_back(c);
+        constrained_[qn] = true;
+        ++stats_.edges;
+    }
+    if (!rec.edges.empty()) {
+        travel_at_last_closure_ = travel_.back();
+        records_.push_back(std::move(rec));
+    }
+}
+
+JsonObject MagneticGpERD::describe() const {
+    JsonObject params;
+    params.set("field_mode", magnetic::toString(params_.mode))
+        .set("sensor_label", params_.sensorLabel)
+        .set("resample_step", params_.track.step)
+        .set("supernode_length", params_.track.length)
+        .set("supernode_stride", params_.track.stride)
+        .set("max_cost", params_.maxCost)
+        .set("min_spread", params_.minSpread)
+        .set("min_chain", params_.bundle.minChain)
+        .set("gp_window", params_.gpWindow)
+        .set("gp_sigma_f", params_.gp.sigmaF)
+        .set("gp_length_scale", params_.gp.lengthScale)
+        .set("gp_sigma_n", params_.gp.sigmaN)
+        .set("gp_sigma_c", params_.gp.sigmaC)
+        .set("max_shift", params_.shift.maxShift)
+        .set("edge_every", params_.edgeEvery);
+    double total = 0, worst = 0;
+    for (double ms : stats_.queryMs) {
+        total += ms;
+        worst = std::max(worst, ms);
+    }
+    JsonObject stats;
+    stats.set("readings", stats_.readings)
+        .set("dropped_readings", stats_.droppedReadings)
+        .set("other_sensor_readings", stats_.otherSensors)
+        .set("supernodes", stats_.supernodes)
+        .set("flat_supernodes", stats_.flatSupernodes)
+        .set("matched_supernodes", stats_.matchedSupernodes)
+        .set("bundles", stats_.bundles)
+        .set("ambiguous_bundles", stats_.ambiguous)
+        .set("gp_rejected", stats_.gpRejected)
+        .set("alignments", stats_.alignments)
+        .set("edges", stats_.edges)
+        .set("query_ms_mean", stats_.queryMs.empty() ? 0.0 : total / double(stats_.queryMs.size()))
+        .set("query_ms_max", worst);
+    return JsonObject().set("class", getClassName()).set("params", params).set("stats", stats);
+}
+
+}  // namespace lodestone::graphslam

@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Magnetic loop closure benchmarks (MagneticGpERD, config_ini/magnetic_only.ini), printed as
+# markdown tables:
+#   1. Aalto invensense trials 1-9 and Kok & Solin's walks, read in place from
+#      ../shared/data/magnetic, each imported with the drift model for seeds 1..5 and run through
+#      lodestone-slam's code path with odometry_only.ini and magnetic_only.ini: median ATEs,
+#      closures and their errors against the ground truth;
+#   2. time per new supernode with 1 000 and 10 000 supernodes stored.
+# Usage: scripts/bench/magnetic.sh [SEEDS]   (default 5; about 10 s in all)
+set -euo pipefail
+root=$(cd "$(dirname "$0")/../.." && pwd)
+data="$root/../shared/data/magnetic"
+"$root/scripts/build.sh" > /dev/null
+bin="$root/build/bench"
+pin=()
+command -v taskset > /dev/null && pin=(taskset -c 0)
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+if [ -d "$data" ]; then
+    echo "#### Magnetic SLAM on real recordings (median over seeds; one core)"
+    echo
+    # (the optimizer logs its rejections on stdout: kept out of the table)
+    "${pin[@]}" "$bin/bench_magnetic" recordings "$data" "$out" "${1:-5}" 2> /dev/null | grep -v "^\["
+    echo
+else
+    echo "(real recordings absent: $data; table 1 skipped)"
+fi
+echo "#### Time per new supernode (synthetic field, one core)"
+echo
+"${pin[@]}" "$bin/bench_magnetic" timing
