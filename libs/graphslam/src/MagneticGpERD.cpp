@@ -1,6 +1,7 @@
 #include <lodestone/config/IniSection.h>
 #include <lodestone/graphslam/MagneticGpERD.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 
@@ -54,6 +55,23 @@ void MagneticGpERD::configure(const mrpt::config::CConfigFileBase& ini) {
     p.shift.maxShift = s.getDouble("max_shift", p.shift.maxShift);
     p.shift.step = s.getDouble("shift_step", p.shift.step);
     p.maxNormalizedRms = s.getDouble("max_normalized_rms", p.maxNormalizedRms);
+    {
+        const std::string a =
+            s.getString("alignment", p.alignment == Params::Alignment::Plane ? "plane" : "path");
+        if (a != "path" && a != "plane") s.fail("alignment", "'" + a + "' is not path | plane");
+        p.alignment = a == "plane" ? Params::Alignment::Plane : Params::Alignment::Path;
+    }
+    p.planeMargin = s.getDouble("plane_margin", p.planeMargin);
+    p.planeSubsample = s.getInt("plane_subsample", p.planeSubsample);
+    p.plane.priorSigmaXY = s.getDouble("plane_prior_sigma", p.plane.priorSigmaXY);
+    p.plane.priorSigmaYaw =
+        s.getDouble("plane_prior_sigma_yaw_deg", p.plane.priorSigmaYaw * 180 / M_PI) * M_PI / 180;
+    p.plane.maxShift = s.getDouble("plane_max_shift", p.plane.maxShift);
+    if (!(p.planeMargin >= 0)) s.fail("plane_margin", "must be >= 0");
+    if (p.planeSubsample < 1) s.fail("plane_subsample", "must be >= 1");
+    if (!(p.plane.priorSigmaXY > 0) || !(p.plane.priorSigmaYaw > 0))
+        s.fail("plane_prior_sigma", "prior sigmas must be > 0");
+    if (!(p.plane.maxShift > 0)) s.fail("plane_max_shift", "must be > 0");
     p.edgeEvery = s.getInt("edge_every", p.edgeEvery);
     p.sigmaAlong = s.getDouble("sigma_along", p.sigmaAlong);
     p.sigmaCross = s.getDouble("sigma_cross", p.sigmaCross);
@@ -182,7 +200,7 @@ void MagneticGpERD::query(const magnetic::Supernode& q) {
         for (const auto& b : bundles)
             agree = agree && (where(b) - where(bundles.front())).norm() <= params_.sameplaceRadius;
         if (agree) {
-            align(bundles.front(), bundles.front().meanCost);  // the cheapest
+            align(bundles);  // the cheapest first
         } else {
             ++stats_.ambiguous;
         }
@@ -201,7 +219,9 @@ bool MagneticGpERD::nodeAtTravel(double s, int segment, TNodeID& k, double& frac
     return true;
 }
 
-void MagneticGpERD::align(const magnetic::BundleMatch& b, double cost) {
+void MagneticGpERD::align(const std::vector<magnetic::BundleMatch>& bundles) {
+    const magnetic::BundleMatch& b = bundles.front();
+    const double cost = b.meanCost;
     const auto& samples = track_->samples();
     const auto& sn = track_->supernodes();
     const std::size_t qEnd = sn[b.lastQuery].last;
@@ -251,6 +271,15 @@ void MagneticGpERD::align(const magnetic::BundleMatch& b, double cost) {
     rec.shiftSigma = shift.sigma;
     rec.normalizedRms = shift.normalizedRms;
     rec.cost = cost;
+    if (params_.alignment == Params::Alignment::Plane) {
+        if (!alignInPlane(bundles, qBegin, qEnd, shift.shift, rec)) {
+            ++stats_.planeRejected;
+            return;
+        }
+        travel_at_last_closure_ = travel_.back();
+        records_.push_back(std::move(rec));
+        return;
+    }
     // §2.3: the bundle constraint subdivided into node-to-node edges.
     const std::size_t firstNode = samples[qBegin].node, lastNode = samples[qEnd - 1].node;
     const double sigmaAlong2 = shift.sigma * shift.sigma + params_.sigmaAlong * params_.sigmaAlong;
@@ -288,6 +317,119 @@ void MagneticGpERD::align(const magnetic::BundleMatch& b, double cost) {
     }
 }
 
+bool MagneticGpERD::positionAtTravel(double s, int segment, Eigen::Vector2d& p) const {
+    TNodeID k;
+    double frac;
+    if (!nodeAtTravel(s, segment, k, frac)) return false;
+    const auto a = positionOf(k), b = positionOf(k + 1);
+    p = Eigen::Vector2d(a.x + frac * (b.x - a.x), a.y + frac * (b.y - a.y));
+    return true;
+}
+
+bool MagneticGpERD::alignInPlane(const std::vector<magnetic::BundleMatch>& bundles,
+                                 std::size_t qBegin, std::size_t qEnd, double shift, Record& rec) {
+    const auto& samples = track_->samples();
+    const auto& sn = track_->supernodes();
+    const magnetic::BundleMatch& best = bundles.front();
+    const int qSegment = samples[qEnd - 1].segment;
+    const int C = track_->channels();
+    // The query window where the graph has it now, and where the path alignment puts it.
+    std::vector<Eigen::Vector2d> here, there;
+    for (std::size_t i = qBegin; i < qEnd; ++i) {
+        Eigen::Vector2d a, b;
+        if (!positionAtTravel(samples[i].s, qSegment, a) ||
+            !positionAtTravel(samples[i].s + best.offset + shift, sn[best.lastTarget].segment, b))
+            return false;
+        here.push_back(a);
+        there.push_back(b);
+    }
+    const auto m = static_cast<Eigen::Index>(here.size());
+    Eigen::Matrix2Xd from(2, m), to(2, m);
+    for (Eigen::Index i = 0; i < m; ++i) {
+        from.col(i) = here[static_cast<std::size_t>(i)];
+        to.col(i) = there[static_cast<std::size_t>(i)];
+    }
+    const Eigen::Matrix3d T0 = Eigen::umeyama(from, to, false);  // rigid, query -> target
+    Eigen::MatrixX2d start(m, 2);
+    Eigen::MatrixXd Q(m, C);
+    for (Eigen::Index i = 0; i < m; ++i) {
+        start.row(i) = (T0.topLeftCorner<2, 2>() * from.col(i) + T0.topRightCorner<2, 1>()).transpose();
+        Q.row(i) = samples[qBegin + static_cast<std::size_t>(i)].value.cast<double>().transpose();
+    }
+    // Every earlier pass the bundles found here: their readings where the graph has them.
+    std::vector<Eigen::Vector2d> at;
+    std::vector<Eigen::VectorXf> values;
+    for (const auto& bb : bundles) {
+        const int seg = sn[bb.lastTarget].segment;
+        const double lo = samples[qBegin].s + bb.offset - params_.planeMargin,
+                     hi = samples[qEnd - 1].s + bb.offset + params_.planeMargin;
+        auto it = std::lower_bound(samples.begin(), samples.end(), lo,
+                                   [](const magnetic::TrackSample& a, double v) { return a.s < v; });
+        for (int k = 0; it != samples.end() && it->s <= hi; ++it, ++k) {
+            Eigen::Vector2d p;
+            if (k % params_.planeSubsample != 0 || it->segment != seg || !positionAtTravel(it->s, seg, p))
+                continue;
+            at.push_back(p);
+            values.push_back(it->value);
+        }
+    }
+    if (at.size() < static_cast<std::size_t>(m) / 2) return false;
+    Eigen::MatrixX2d P(static_cast<Eigen::Index>(at.size()), 2);
+    Eigen::MatrixXd Y(static_cast<Eigen::Index>(at.size()), C);
+    for (std::size_t i = 0; i < at.size(); ++i) {
+        P.row(static_cast<Eigen::Index>(i)) = at[i].transpose();
+        Y.row(static_cast<Eigen::Index>(i)) = values[i].cast<double>().transpose();
+    }
+    magnetic::GaussianProcess2D gp(params_.gp);
+    gp.fit(P, Y);
+    const auto r = magnetic::alignInPlane(gp, start, Q, params_.plane);
+    if (!r.valid || r.normalizedRms > params_.maxNormalizedRms) return false;
+    rec.plane = true;
+    rec.planeDelta = r.delta;
+    rec.normalizedRms = r.normalizedRms;
+    // Each query node moved as its readings were: by T0, then by the plane alignment; tied to
+    // the target node nearest where the path alignment put it.
+    const double yaw0 = std::atan2(T0(1, 0), T0(0, 0));
+    Eigen::Matrix2d J90;
+    J90 << 0, -1, 1, 0;
+    const std::size_t firstNode = samples[qBegin].node, lastNode = samples[qEnd - 1].node;
+    for (std::size_t qn = firstNode; qn <= lastNode; ++qn) {
+        if (constrained_[qn] || qn % static_cast<std::size_t>(params_.edgeEvery) != 0) continue;
+        TNodeID k;
+        double frac;
+        if (!nodeAtTravel(travel_[qn] + best.offset + shift, sn[best.lastTarget].segment, k, frac))
+            continue;
+        if (frac > 0.5) ++k;
+        const auto& q = m_graph->nodes.at(static_cast<TNodeID>(qn));
+        const Eigen::Vector2d moved0 = T0.topLeftCorner<2, 2>() * Eigen::Vector2d(q.x(), q.y()) +
+                                       T0.topRightCorner<2, 1>();
+        const Eigen::Vector2d moved = r.apply(moved0);
+        const mrpt::poses::CPose2D corrected(moved.x(), moved.y(), q.yaw() + yaw0 + r.delta[2]);
+        const auto& tk = m_graph->nodes.at(k);
+        const mrpt::poses::CPose2D target(tk.x(), tk.y(), tk.yaw());
+        mrpt::poses::CPosePDFGaussian z;
+        z.mean = corrected - target;
+        // The alignment's covariance at this node (the turn's lever arm included), in k's frame.
+        Eigen::Matrix<double, 2, 3> J;
+        J << Eigen::Matrix2d::Identity(), J90 * (moved0 - r.pivot);
+        Eigen::Matrix2d S = J * r.covariance * J.transpose() +
+                            params_.sigmaAlong * params_.sigmaAlong * Eigen::Matrix2d::Identity();
+        const Eigen::Matrix2d Rk = Eigen::Rotation2Dd(tk.yaw()).toRotationMatrix();
+        S = Rk.transpose() * S * Rk;
+        z.cov.setZero();
+        for (int a = 0; a < 2; ++a)
+            for (int c = 0; c < 2; ++c) z.cov(a, c) = S(a, c);
+        z.cov(2, 2) = r.covariance(2, 2) + params_.sigmaYaw * params_.sigmaYaw;
+        const Constraint c = planarConstraint(z);
+        registerNewEdge(k, static_cast<TNodeID>(qn), c);
+        rec.edges.emplace_back(k, static_cast<TNodeID>(qn));
+        rec.constraints.push_back(c);
+        constrained_[qn] = true;
+        ++stats_.edges;
+    }
+    return !rec.edges.empty();
+}
+
 JsonObject MagneticGpERD::describe() const {
     JsonObject params;
     params.set("field_mode", magnetic::toString(params_.mode))
@@ -304,7 +446,8 @@ JsonObject MagneticGpERD::describe() const {
         .set("gp_sigma_n", params_.gp.sigmaN)
         .set("gp_sigma_c", params_.gp.sigmaC)
         .set("max_shift", params_.shift.maxShift)
-        .set("edge_every", params_.edgeEvery);
+        .set("edge_every", params_.edgeEvery)
+        .set("alignment", params_.alignment == Params::Alignment::Plane ? "plane" : "path");
     double total = 0, worst = 0;
     for (double ms : stats_.queryMs) {
         total += ms;
@@ -321,6 +464,7 @@ JsonObject MagneticGpERD::describe() const {
         .set("ambiguous_bundles", stats_.ambiguous)
         .set("gp_rejected", stats_.gpRejected)
         .set("alignments", stats_.alignments)
+        .set("plane_rejected", stats_.planeRejected)
         .set("edges", stats_.edges)
         .set("query_ms_mean", stats_.queryMs.empty() ? 0.0 : total / double(stats_.queryMs.size()))
         .set("query_ms_max", worst);

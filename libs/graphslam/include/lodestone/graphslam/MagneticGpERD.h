@@ -4,6 +4,7 @@
 #include <lodestone/magnetic/BundleMatcher.h>
 #include <lodestone/magnetic/FieldFeatures.h>
 #include <lodestone/magnetic/GpShiftCorrection.h>
+#include <lodestone/magnetic/PlanarAlignment.h>
 #include <lodestone/magnetic/SupernodeIndex.h>
 #include <lodestone/magnetic/SupernodeTrack.h>
 
@@ -48,6 +49,13 @@ class MagneticGpERD : public EdgeDecider {
         magnetic::GpHyperparameters gp;
         magnetic::ShiftScanParams shift;
         double maxNormalizedRms{2.0};
+        /** path: paper 000 eq. (3), the query slid along the target's path (across it the
+         * edges stay loose); plane: then moved in the plane against a 2-D GP of every earlier
+         * pass the bundles found there (PlanarAlignment), which also corrects across. */
+        enum class Alignment { Path, Plane } alignment{Alignment::Path};
+        magnetic::PlanarAlignmentParams plane;
+        double planeMargin{0.5};  ///< [m] of target path either side of the query window
+        int planeSubsample{2};    ///< every n-th target reading into the 2-D GP
         int edgeEvery{3};                  ///< [nodes]
         double sigmaAlong{0.03};           ///< [m] floor, added to the GP's shift sigma
         double sigmaCross{0.20};           ///< [m]
@@ -58,13 +66,15 @@ class MagneticGpERD : public EdgeDecider {
     struct Record {
         std::size_t querySupernode{0};
         double offset{0}, shift{0}, shiftSigma{0}, normalizedRms{0}, cost{0};
+        bool plane{false};  ///< refined in the plane
+        Eigen::Vector3d planeDelta{Eigen::Vector3d::Zero()};
         std::vector<std::pair<TNodeID, TNodeID>> edges;  ///< (target node, query node)
         std::vector<Constraint> constraints;
     };
     struct Stats {
         std::size_t readings{0}, droppedReadings{0}, otherSensors{0}, supernodes{0},
             flatSupernodes{0}, matchedSupernodes{0}, bundles{0}, ambiguous{0}, gpRejected{0},
-            alignments{0}, edges{0};
+            alignments{0}, edges{0}, planeRejected{0};
         std::vector<double> queryMs;  ///< per supernode: search + bundle + GP [ms]
     };
 
@@ -87,7 +97,11 @@ class MagneticGpERD : public EdgeDecider {
     void rebuild();
     void onNode(TNodeID id);
     void query(const magnetic::Supernode& q);
-    void align(const magnetic::BundleMatch& b, double cost);
+    void align(const std::vector<magnetic::BundleMatch>& bundles);
+    /** Plane refinement of an along-the-path alignment; false when it does not fit. */
+    bool alignInPlane(const std::vector<magnetic::BundleMatch>& bundles, std::size_t qBegin,
+                      std::size_t qEnd, double shift, Record& rec);
+    bool positionAtTravel(double s, int segment, Eigen::Vector2d& p) const;
     bool nodeAtTravel(double s, int segment, TNodeID& k, double& frac) const;
     mrpt::math::TPoint2D positionOf(TNodeID id) const;
 
