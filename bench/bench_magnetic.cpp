@@ -3,13 +3,16 @@
 //   walks:
 //       each imported with the drift model for seeds 1..SEEDS, run through lodestone-slam's code
 //       path with odometry_only.ini and magnetic_only.ini; median ATEs, closures, and how far
-//       the accepted closures are from the ground truth. INI (in config_ini/) replaces
-//       magnetic_only.ini; ONLY keeps the recordings whose name contains it.
+//       the accepted closures are from the ground truth, and how much of each path comes back
+//       near an earlier pass (same direction / reversed / crossing) - what any loop closer
+//       has to work with. INI (a config_ini/ name, or a path) replaces magnetic_only.ini; ONLY
+//       keeps the recordings whose name contains it.
 //   bench_magnetic timing                                 time per new supernode (KD-tree
 //       search + costs + bundle + GP alignment) with 1 000 and 10 000 supernodes stored.
 #include <lodestone/io/MagneticRecordingImport.h>
 #include <lodestone/io/TumTrajectory.h>
 #include <lodestone/magnetic/GpShiftCorrection.h>
+#include <lodestone/magnetic/PlanarAlignment.h>
 #include <lodestone/magnetic/SupernodeIndex.h>
 #include <lodestone/magnetic/SupernodeTrack.h>
 #include <lodestone/obs/registerAllClasses.h>
@@ -88,6 +91,40 @@ ClosureErrors closureErrors(const std::string& dir, const std::vector<io::TumPos
     return r;
 }
 
+/** How much of the path passes within `radius` of where it was at least `gap` metres of travel
+ * earlier: in the same direction (within 45 deg), reversed (within 45 deg of opposite) or
+ * crossing [m of path]. A sequence matcher can only close the first (and, mirrored, the second). */
+struct Revisits {
+    double same{0}, reversed{0}, crossing{0};
+};
+Revisits revisits(const io::MagneticRecording& rec, double radius = 0.2, double gap = 4.0) {
+    const double step = 0.05;
+    std::vector<Eigen::Vector2d> p;
+    for (const auto& s : rec.samples) {
+        const Eigen::Vector2d q(s.x, s.y);
+        if (p.empty() || (q - p.back()).norm() >= step) p.push_back(q);
+    }
+    const auto n = p.size();
+    const auto dir = [&](std::size_t i) {
+        const Eigen::Vector2d d = p[std::min(i + 4, n - 1)] - p[i >= 4 ? i - 4 : 0];
+        return std::atan2(d.y(), d.x());
+    };
+    const auto skip = static_cast<std::size_t>(gap / step);
+    Revisits r;
+    for (std::size_t i = skip; i < n; ++i) {
+        bool same = false, rev = false, cross = false;
+        for (std::size_t j = 0; j + skip <= i; ++j) {
+            if ((p[i] - p[j]).norm() >= radius) continue;
+            const double a = std::abs(std::remainder(dir(i) - dir(j), 2 * M_PI));
+            (a < M_PI / 4 ? same : a > 3 * M_PI / 4 ? rev : cross) = true;
+        }
+        r.same += same * step;
+        r.reversed += rev * step;
+        r.crossing += cross * step;
+    }
+    return r;
+}
+
 struct Recording {
     std::string name;
     std::function<io::MagneticRecording()> read;
@@ -110,11 +147,13 @@ int recordings(const std::string& data, const std::string& out, int seeds,
         "| recording | path [m] | seeds | ATE odometry [m] | ATE magnetic [m] | magnetic / "
         "odometry | "
         "closure edges per run | closure error: median / max [m] | > 0.5 m | along the path: "
-        "median / max [m] | > 0.5 m | real-time factor |\n");
-    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+        "median / max [m] | > 0.5 m | real-time factor | path within 0.2 m of an earlier pass: "
+        "same direction / reversed / crossing [m] |\n");
+    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (const auto& rec : recs) {
         if (!only.empty() && rec.name.find(only) == std::string::npos) continue;
         const auto recording = rec.read();
+        const auto seen = revisits(recording);
         std::vector<double> odo, mag, ratio, med, worst, rt, amed, aworst;
         std::size_t edges = 0, over = 0, aover = 0;
         for (int seed = 1; seed <= seeds; ++seed) {
@@ -130,7 +169,10 @@ int recordings(const std::string& data, const std::string& out, int seeds,
                 slamapp::SlamRunOptions o;
                 o.rawlog = imported.rawlog;
                 o.groundTruth = imported.groundTruth;
-                o.config = cfg + (k == 0 ? "/odometry_only.ini" : "/" + magneticIni);
+                // (an INI named with a folder is used as it is; else it is one of config_ini/)
+                o.config = k == 0 ? cfg + "/odometry_only.ini"
+                           : magneticIni.find('/') != std::string::npos ? magneticIni
+                                                                         : cfg + "/" + magneticIni;
                 o.outDir = stem + (k == 0 ? "_odo" : "_mag");
                 o.quiet = true;
                 std::ostringstream sout, serr;
@@ -161,11 +203,12 @@ int recordings(const std::string& data, const std::string& out, int seeds,
         }
         std::printf(
             "| %s | %.1f | %d | %.3f | %.3f | %.2f | %.1f | %.3f / %.3f | %zu | %.3f / %.3f | %zu "
-            "| %.0fx |\n",
+            "| %.0fx | %.1f / %.1f / %.1f |\n",
             rec.name.c_str(), recording.pathLength(), seeds, median(odo), median(mag),
             median(ratio), double(edges) / seeds, median(med),
             *std::max_element(worst.begin(), worst.end()), over, median(amed),
-            *std::max_element(aworst.begin(), aworst.end()), aover, median(rt));
+            *std::max_element(aworst.begin(), aworst.end()), aover, median(rt), seen.same,
+            seen.reversed, seen.crossing);
         std::fflush(stdout);
     }
     return 0;
@@ -179,9 +222,9 @@ int timing() {
     magnetic::SupernodeIndex index(2, track.samplesPerSupernode());
     Eigen::Vector2d f(50, -40), v(0, 0);
     std::printf(
-        "| supernodes stored | queries | KD-tree + costs ms: mean / max | GP alignment ms: mean / "
-        "max | total ms: mean / max |\n");
-    std::printf("|---|---|---|---|---|\n");
+        "| supernodes stored | queries | KD-tree + costs ms: mean / max | path GP alignment ms: "
+        "mean / max | plane alignment ms: mean / max | total ms: mean / max |\n");
+    std::printf("|---|---|---|---|---|---|\n");
     double s = 0;
     for (const std::size_t target : {std::size_t{1000}, std::size_t{10000}}) {
         while (index.size() < target) {
@@ -190,7 +233,8 @@ int timing() {
             for (const auto& sn : track.add(s, f + v, 0, 0)) index.add(sn);
         }
         const auto& samples = track.samples();
-        double searchSum = 0, searchMax = 0, gpSum = 0, gpMax = 0, totalMax = 0;
+        double searchSum = 0, searchMax = 0, gpSum = 0, gpMax = 0, planeSum = 0, planeMax = 0,
+               totalMax = 0;
         const int queries = 200;
         for (int q = 0; q < queries; ++q) {
             const auto& probe =
@@ -221,18 +265,44 @@ int timing() {
             gp.fit(tx, T);
             const auto shift = magnetic::scanShift(gp, qx, Q, {0.5, 0.02, 0.01});
             const auto t2 = std::chrono::steady_clock::now();
+            // Then the plane refinement (alignment = plane): a 2-D GP over three earlier passes
+            // 0.25 m apart, every second reading, and the query stretch moved against it.
+            std::vector<Eigen::Vector2d> at;
+            std::vector<int> rows;
+            for (const double y : {0.0, 0.25, -0.25}) {
+                for (std::size_t i = 0; i < tx.size(); i += 2) {
+                    at.emplace_back(tx[i], y);
+                    rows.push_back(static_cast<int>(i));
+                }
+            }
+            Eigen::MatrixX2d P(static_cast<Eigen::Index>(at.size()), 2), start(60, 2);
+            Eigen::MatrixXd Y(static_cast<Eigen::Index>(at.size()), 2);
+            for (std::size_t i = 0; i < at.size(); ++i) {
+                P.row(static_cast<Eigen::Index>(i)) = at[i].transpose();
+                Y.row(static_cast<Eigen::Index>(i)) = T.row(rows[i]);
+            }
+            for (Eigen::Index i = 0; i < 60; ++i) start.row(i) << qx[static_cast<std::size_t>(i)] + 0.05, 0.1;
+            magnetic::GaussianProcess2D gp2({4.0, 0.3, 0.5, 10.0});
+            gp2.fit(P, Y);
+            const auto moved = magnetic::alignInPlane(gp2, start, Q, {});
+            const auto t3 = std::chrono::steady_clock::now();
             const double a = std::chrono::duration<double, std::milli>(t1 - t0).count();
             const double b = std::chrono::duration<double, std::milli>(t2 - t1).count();
+            const double c = std::chrono::duration<double, std::milli>(t3 - t2).count();
             searchSum += a;
             gpSum += b;
+            planeSum += c;
             searchMax = std::max(searchMax, a);
             gpMax = std::max(gpMax, b);
-            totalMax = std::max(totalMax, a + b);
-            if (best > 1e8 || !shift.valid) std::cerr << "query " << q << " found nothing\n";
+            planeMax = std::max(planeMax, c);
+            totalMax = std::max(totalMax, a + b + c);
+            if (best > 1e8 || !shift.valid || !moved.valid)
+                std::cerr << "query " << q << " found nothing\n";
         }
-        std::printf("| %zu | %d | %.3f / %.3f | %.3f / %.3f | %.3f / %.3f |\n", index.size(),
-                    queries, searchSum / queries, searchMax, gpSum / queries, gpMax,
-                    (searchSum + gpSum) / queries, totalMax);
+        std::printf("| %zu | %d | %.3f / %.3f | %.3f / %.3f | %.3f / %.3f | %.3f / %.3f |\n",
+                    index.size(), queries, searchSum / queries, searchMax, gpSum / queries, gpMax,
+                    planeSum / queries, planeMax, (searchSum + gpSum + planeSum) / queries,
+                    totalMax);
     }
     return 0;
 }

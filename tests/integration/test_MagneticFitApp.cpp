@@ -37,7 +37,8 @@ double valueOf(const std::string& text, const std::string& key) {
 }
 
 // 60 m round a 4 m-radius circle at 1 m/s, 50 Hz; the vertical field is the earth's plus a GP
-// draw of the given length scale and amplitude along the path; odometry without noise.
+// draw of the given length scale and amplitude along the path plus reading noise of 0.2 uT;
+// odometry without noise.
 std::string writeGpRecording(const std::string& path, double lengthScale, double sigmaF) {
     std::mt19937 rng(5);
     std::normal_distribution<double> n(0, 1);
@@ -60,7 +61,7 @@ std::string writeGpRecording(const std::string& path, double lengthScale, double
         x.x = 4 * std::sin(a);
         x.y = 4 * (1 - std::cos(a));
         x.heading = a;
-        x.field = {0, 0, -40 + g};
+        x.field = {0, 0, -40 + g + 0.2 * n(rng)};
         rec.samples.push_back(x);
     }
     lodestone::io::OdometryDriftModel exact;
@@ -78,8 +79,8 @@ TEST(MagneticFitApp, RecoversTheLengthScaleOfAGpDrawnField) {
     EXPECT_NE(r.out.find("[MagneticGpERD]"), std::string::npos) << r.out;
     EXPECT_NEAR(valueOf(r.out, "gp_length_scale"), 0.4, 0.1) << r.out;
     EXPECT_NEAR(valueOf(r.out, "gp_sigma_f"), 3.0, 1.2) << r.out;
-    // No reading noise was added: the fitted noise is far below the anomaly amplitude.
-    EXPECT_LT(valueOf(r.out, "gp_sigma_n"), 0.3) << r.out;
+    // The noise of what the GP sees: 0.05 m bins of readings 0.02 m apart average 2.5 of them.
+    EXPECT_NEAR(valueOf(r.out, "gp_sigma_n"), 0.2 / std::sqrt(2.5), 0.03) << r.out;
 }
 
 TEST(MagneticFitApp, BadInputsAreNamedErrors) {

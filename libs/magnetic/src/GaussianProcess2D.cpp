@@ -34,22 +34,36 @@ Eigen::VectorXd GaussianProcess2D::mean(const Eigen::Vector2d& p, Eigen::MatrixX
                  il2 = 1.0 / (h_.lengthScale * h_.lengthScale);
     Eigen::VectorXd m = mean_.transpose();
     if (gradient) gradient->setZero(alpha_.cols(), 2);
+    // The constant term sums once; the SE term only within 4 length scales (beyond, it is
+    // below e^-8 of sigma_f^2: most of a 3 m stretch's readings are that far from any point).
+    m += c2 * alpha_.colwise().sum().transpose();
+    const double cutoff = 16.0 / il2;
     for (Eigen::Index j = 0; j < points_.rows(); ++j) {
         const Eigen::Vector2d d = p - points_.row(j).transpose();
-        const double se = f2 * std::exp(-0.5 * d.squaredNorm() * il2);
-        m += (c2 + se) * alpha_.row(j).transpose();
+        const double d2 = d.squaredNorm();
+        if (d2 > cutoff) continue;
+        const double se = f2 * std::exp(-0.5 * d2 * il2);
+        m += se * alpha_.row(j).transpose();
         if (gradient) *gradient -= alpha_.row(j).transpose() * (se * il2 * d.transpose());
     }
     return m;
 }
 
 double GaussianProcess2D::variance(const Eigen::Vector2d& p) const {
+    return variances(p.transpose())[0];
+}
+
+Eigen::VectorXd GaussianProcess2D::variances(const Eigen::MatrixX2d& at) const {
     const double f2 = h_.sigmaF * h_.sigmaF, c2 = h_.sigmaC * h_.sigmaC,
                  inv2l2 = 0.5 / (h_.lengthScale * h_.lengthScale);
-    Eigen::VectorXd k(points_.rows());
-    for (Eigen::Index j = 0; j < points_.rows(); ++j)
-        k[j] = c2 + f2 * std::exp(-(p - points_.row(j).transpose()).squaredNorm() * inv2l2);
-    return std::max(0.0, f2 + c2 - k.dot(llt_.solve(k))) + h_.sigmaN * h_.sigmaN;
+    Eigen::MatrixXd k(points_.rows(), at.rows());
+    for (Eigen::Index i = 0; i < at.rows(); ++i)
+        for (Eigen::Index j = 0; j < points_.rows(); ++j)
+            k(j, i) = c2 + f2 * std::exp(-(at.row(i) - points_.row(j)).squaredNorm() * inv2l2);
+    // k^T K^-1 k = |L^-1 k|^2, all columns in one triangular solve.
+    const Eigen::MatrixXd v = llt_.matrixL().solve(k);
+    return ((f2 + c2) - v.colwise().squaredNorm().array()).max(0.0).matrix().transpose().array() +
+           h_.sigmaN * h_.sigmaN;
 }
 
 }  // namespace lodestone::magnetic

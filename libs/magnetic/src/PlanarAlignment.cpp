@@ -46,11 +46,13 @@ double evaluate(const GaussianProcess2D& gp, const Eigen::MatrixX2d& points,
 
 double normalizedRms(const GaussianProcess2D& gp, const Eigen::MatrixX2d& points,
                      const Eigen::MatrixXd& query, const PlanarAlignmentResult& r) {
+    Eigen::MatrixX2d moved(points.rows(), 2);
+    for (Eigen::Index i = 0; i < points.rows(); ++i)
+        moved.row(i) = r.apply(points.row(i).transpose()).transpose();
+    const Eigen::VectorXd var = gp.variances(moved);
     double sum = 0;
-    for (Eigen::Index i = 0; i < points.rows(); ++i) {
-        const Eigen::Vector2d p = r.apply(points.row(i).transpose());
-        sum += (query.row(i).transpose() - gp.mean(p)).squaredNorm() / gp.variance(p);
-    }
+    for (Eigen::Index i = 0; i < points.rows(); ++i)
+        sum += (query.row(i).transpose() - gp.mean(moved.row(i).transpose())).squaredNorm() / var[i];
     return std::sqrt(sum / double(query.size()));
 }
 }  // namespace
@@ -66,9 +68,7 @@ PlanarAlignmentResult alignInPlane(const GaussianProcess2D& gp, const Eigen::Mat
     result.pivot = points.colwise().mean().transpose();
     // Each reading weighed by the predictive sigma where it starts (fixed, so the steps are
     // plain Gauss-Newton on the mean); the variance enters the final score.
-    Eigen::VectorXd sigma(points.rows());
-    for (Eigen::Index i = 0; i < points.rows(); ++i)
-        sigma[i] = std::sqrt(gp.variance(points.row(i).transpose()));
+    const Eigen::VectorXd sigma = gp.variances(points).cwiseSqrt();
     const Eigen::Vector3d priorInfo(1 / (params.priorSigmaXY * params.priorSigmaXY),
                                     1 / (params.priorSigmaXY * params.priorSigmaXY),
                                     1 / (params.priorSigmaYaw * params.priorSigmaYaw));
@@ -83,12 +83,16 @@ PlanarAlignmentResult alignInPlane(const GaussianProcess2D& gp, const Eigen::Mat
         A.diagonal() *= 1 + lambda;
         const Eigen::Vector3d step = A.ldlt().solve(-g);
         const Eigen::Vector3d next = x + step;
-        const double c = evaluate(gp, points, query, sigma, result.pivot, next, priorInfo, nullptr, nullptr);
+        Eigen::Matrix3d Hn;
+        Eigen::Vector3d gn;
+        const double c = evaluate(gp, points, query, sigma, result.pivot, next, priorInfo, &Hn, &gn);
         if (c < cost) {
             x = next;
-            cost = evaluate(gp, points, query, sigma, result.pivot, x, priorInfo, &H, &g);
+            cost = c;
+            H = Hn;
+            g = gn;
             lambda = std::max(1e-6, lambda / 4);
-            if (step.head<2>().norm() < 1e-4 && std::abs(step[2]) < 1e-4) break;
+            if (step.head<2>().norm() < 1e-3 && std::abs(step[2]) < 1e-3) break;  // [m], [rad]
         } else {
             lambda *= 8;
             if (lambda > 1e6) break;

@@ -46,13 +46,13 @@ class MagneticGpERD : public EdgeDecider {
         double sameplaceRadius{1.5};  ///< [m] bundles whose targets are this close agree
         magnetic::BundleMatcher::Params bundle;
         double gpWindow{3.0};  ///< [m] of query path aligned by the GP
-        magnetic::GpHyperparameters gp;
+        magnetic::GpHyperparameters gp{3.0, 0.28, 0.15, 10.0};  // lodestone-magfit on the Kok walks
         magnetic::ShiftScanParams shift;
         double maxNormalizedRms{2.0};
         /** path: paper 000 eq. (3), the query slid along the target's path (across it the
          * edges stay loose); plane: then moved in the plane against a 2-D GP of every earlier
          * pass the bundles found there (PlanarAlignment), which also corrects across. */
-        enum class Alignment { Path, Plane } alignment{Alignment::Path};
+        enum class Alignment { Path, Plane } alignment{Alignment::Plane};
         magnetic::PlanarAlignmentParams plane;
         double planeMargin{0.5};  ///< [m] of target path either side of the query window
         int planeSubsample{2};    ///< every n-th target reading into the 2-D GP

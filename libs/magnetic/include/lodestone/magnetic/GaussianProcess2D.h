@@ -23,6 +23,8 @@ class GaussianProcess2D {
     Eigen::VectorXd mean(const Eigen::Vector2d& p, Eigen::MatrixX2d* gradient = nullptr) const;
     /** Predictive variance of a new reading at `p` (latent + noise). */
     double variance(const Eigen::Vector2d& p) const;
+    /** The same at each row of `points` (m x 2), solved together (much faster than one by one). */
+    Eigen::VectorXd variances(const Eigen::MatrixX2d& points) const;
 
     const GpHyperparameters& hyperparameters() const { return h_; }
     Eigen::Index size() const { return points_.rows(); }
