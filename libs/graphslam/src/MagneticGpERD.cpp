@@ -344,7 +344,8 @@ bool MagneticGpERD::alignInPlane(const std::vector<magnetic::BundleMatch>& bundl
         there.push_back(b);
     }
     const auto m = static_cast<Eigen::Index>(here.size());
-    Eigen::Matrix2Xd from(2, m), to(2, m);
+    // (dynamic-size on purpose: GCC 12 warns falsely inside umeyama for 2 x N fixed rows)
+    Eigen::MatrixXd from(2, m), to(2, m);
     for (Eigen::Index i = 0; i < m; ++i) {
         from.col(i) = here[static_cast<std::size_t>(i)];
         to.col(i) = there[static_cast<std::size_t>(i)];
