@@ -272,14 +272,21 @@ void MagneticGpERD::align(const std::vector<magnetic::BundleMatch>& bundles) {
     rec.normalizedRms = shift.normalizedRms;
     rec.cost = cost;
     if (params_.alignment == Params::Alignment::Plane) {
-        if (!alignInPlane(bundles, qBegin, qEnd, shift.shift, rec)) {
-            ++stats_.planeRejected;
-            return;
-        }
+        if (!alignInPlane(bundles, qBegin, qEnd, shift.shift, rec)) ++stats_.planeRejected;
+    } else {
+        addPathEdges(b, qBegin, qEnd, shift, rec);
+    }
+    if (!rec.edges.empty()) {
         travel_at_last_closure_ = travel_.back();
         records_.push_back(std::move(rec));
-        return;
     }
+}
+
+void MagneticGpERD::addPathEdges(const magnetic::BundleMatch& b, std::size_t qBegin,
+                                 std::size_t qEnd, const magnetic::ShiftResult& shift,
+                                 Record& rec) {
+    const auto& samples = track_->samples();
+    const int tSegment = track_->supernodes()[b.lastTarget].segment;
     // §2.3: the bundle constraint subdivided into node-to-node edges.
     const std::size_t firstNode = samples[qBegin].node, lastNode = samples[qEnd - 1].node;
     const double sigmaAlong2 = shift.sigma * shift.sigma + params_.sigmaAlong * params_.sigmaAlong;
@@ -291,8 +298,7 @@ void MagneticGpERD::align(const std::vector<magnetic::BundleMatch>& bundles) {
         const auto e = m_graph->edges.find({k, k + 1});
         if (e == m_graph->edges.end()) continue;
         const auto& d = e->second.mean;
-        mrpt::poses::CPosePDFGaussian z;
-        z.mean = mrpt::poses::CPose2D(frac * d.x(), frac * d.y(), frac * d.yaw());
+        const mrpt::poses::CPose2D mean(frac * d.x(), frac * d.y(), frac * d.yaw());
         // Along the target's path: the GP's precision; across it and in heading: loose.
         const double len = std::hypot(d.x(), d.y());
         const Eigen::Vector2d u =
@@ -300,21 +306,26 @@ void MagneticGpERD::align(const std::vector<magnetic::BundleMatch>& bundles) {
         const Eigen::Matrix2d P = u * u.transpose();
         const Eigen::Matrix2d S = sigmaAlong2 * P + params_.sigmaCross * params_.sigmaCross *
                                                         (Eigen::Matrix2d::Identity() - P);
-        z.cov.setZero();
-        for (int r = 0; r < 2; ++r)
-            for (int c = 0; c < 2; ++c) z.cov(r, c) = S(r, c);
-        z.cov(2, 2) = params_.sigmaYaw * params_.sigmaYaw;
-        const Constraint c = planarConstraint(z);
-        registerNewEdge(k, static_cast<TNodeID>(qn), c);
-        rec.edges.emplace_back(k, static_cast<TNodeID>(qn));
-        rec.constraints.push_back(c);
-        constrained_[qn] = true;
-        ++stats_.edges;
+        addEdge(k, qn, mean, S, params_.sigmaYaw * params_.sigmaYaw, rec);
     }
-    if (!rec.edges.empty()) {
-        travel_at_last_closure_ = travel_.back();
-        records_.push_back(std::move(rec));
-    }
+}
+
+void MagneticGpERD::addEdge(TNodeID target, std::size_t queryNode,
+                            const mrpt::poses::CPose2D& mean, const Eigen::Matrix2d& positionCov,
+                            double yawVariance, Record& rec) {
+    mrpt::poses::CPosePDFGaussian z;
+    z.mean = mean;
+    z.cov.setZero();
+    for (int r = 0; r < 2; ++r)
+        for (int c = 0; c < 2; ++c) z.cov(r, c) = positionCov(r, c);
+    z.cov(2, 2) = yawVariance;
+    const Constraint c = planarConstraint(z);
+    const auto q = static_cast<TNodeID>(queryNode);
+    registerNewEdge(target, q, c);
+    rec.edges.emplace_back(target, q);
+    rec.constraints.push_back(c);
+    constrained_[queryNode] = true;
+    ++stats_.edges;
 }
 
 bool MagneticGpERD::positionAtTravel(double s, int segment, Eigen::Vector2d& p) const {
@@ -408,27 +419,16 @@ bool MagneticGpERD::alignInPlane(const std::vector<magnetic::BundleMatch>& bundl
         const mrpt::poses::CPose2D corrected(moved.x(), moved.y(), q.yaw() + yaw0 + r.delta[2]);
         const auto& tk = m_graph->nodes.at(k);
         const mrpt::poses::CPose2D target(tk.x(), tk.y(), tk.yaw());
-        mrpt::poses::CPosePDFGaussian z;
-        z.mean = corrected - target;
         // The alignment's covariance at this node (the turn's lever arm included), in k's frame.
         Eigen::Matrix<double, 2, 3> J;
         J << Eigen::Matrix2d::Identity(), J90 * (moved0 - r.pivot);
-        Eigen::Matrix2d S = J * r.covariance * J.transpose() +
+        const Eigen::Matrix2d S = J * r.covariance * J.transpose() +
                             params_.sigmaAlong * params_.sigmaAlong * Eigen::Matrix2d::Identity();
         const Eigen::Matrix2d Rk = Eigen::Rotation2Dd(tk.yaw()).toRotationMatrix();
-        S = Rk.transpose() * S * Rk;
-        z.cov.setZero();
-        for (int a = 0; a < 2; ++a)
-            for (int c = 0; c < 2; ++c) z.cov(a, c) = S(a, c);
-        z.cov(2, 2) = r.covariance(2, 2) + params_.sigmaYaw * params_.sigmaYaw;
-        const Constraint c = planarConstraint(z);
-        registerNewEdge(k, static_cast<TNodeID>(qn), c);
-        rec.edges.emplace_back(k, static_cast<TNodeID>(qn));
-        rec.constraints.push_back(c);
-        constrained_[qn] = true;
-        ++stats_.edges;
+        addEdge(k, qn, corrected - target, Rk.transpose() * S * Rk,
+                r.covariance(2, 2) + params_.sigmaYaw * params_.sigmaYaw, rec);
     }
-    return !rec.edges.empty();
+    return true;
 }
 
 JsonObject MagneticGpERD::describe() const {

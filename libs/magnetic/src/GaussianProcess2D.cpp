@@ -62,8 +62,10 @@ Eigen::VectorXd GaussianProcess2D::variances(const Eigen::MatrixX2d& at) const {
             k(j, i) = c2 + f2 * std::exp(-(at.row(i) - points_.row(j)).squaredNorm() * inv2l2);
     // k^T K^-1 k = |L^-1 k|^2, all columns in one triangular solve.
     const Eigen::MatrixXd v = llt_.matrixL().solve(k);
-    return ((f2 + c2) - v.colwise().squaredNorm().array()).max(0.0).matrix().transpose().array() +
-           h_.sigmaN * h_.sigmaN;
+    Eigen::VectorXd var(at.rows());
+    for (Eigen::Index i = 0; i < at.rows(); ++i)
+        var[i] = std::max(0.0, f2 + c2 - v.col(i).squaredNorm()) + h_.sigmaN * h_.sigmaN;
+    return var;
 }
 
 }  // namespace lodestone::magnetic

@@ -98,7 +98,14 @@ class MagneticGpERD : public EdgeDecider {
     void onNode(TNodeID id);
     void query(const magnetic::Supernode& q);
     void align(const std::vector<magnetic::BundleMatch>& bundles);
-    /** Plane refinement of an along-the-path alignment; false when it does not fit. */
+    /** §2.3 along the path: the bundle subdivided into node-to-node edges on the target's path. */
+    void addPathEdges(const magnetic::BundleMatch& b, std::size_t qBegin, std::size_t qEnd,
+                      const magnetic::ShiftResult& shift, Record& rec);
+    /** One closure edge target -> queryNode, planar, recorded in `rec`. */
+    void addEdge(TNodeID target, std::size_t queryNode, const mrpt::poses::CPose2D& mean,
+                 const Eigen::Matrix2d& positionCov, double yawVariance, Record& rec);
+    /** Plane refinement of an along-the-path alignment, then its edges; false when it does not
+     * fit. */
     bool alignInPlane(const std::vector<magnetic::BundleMatch>& bundles, std::size_t qBegin,
                       std::size_t qEnd, double shift, Record& rec);
     bool positionAtTravel(double s, int segment, Eigen::Vector2d& p) const;
