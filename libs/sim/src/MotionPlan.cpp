@@ -68,6 +68,10 @@ MotionPlan::MotionPlan(
             MotionSegment part = s;
             part.t1 = cut;
             part.end = poseOnSegment(s, cut);
+            // poseOnSegment wraps the heading, but the segment interpolates from its start's
+            // unwrapped heading (turns accumulate over laps): keep the cut end on that branch,
+            // or a drive cut by a kidnap spins through every turn of the laps before it.
+            part.end.yaw = s.start.yaw + wrapAngle(part.end.yaw - s.start.yaw);
             append(part);
             MotionSegment carry;
             carry.kind = MotionSegment::Kind::Carry;

@@ -87,6 +87,22 @@ TEST(MotionPlan, KidnapCarriesThenResumesAtTheNearestWaypoint) {
     EXPECT_TRUE(reached);
 }
 
+TEST(MotionPlan, ADriveCutByAKidnapAfterALapKeepsItsHeading) {
+    // Lap 1 ends at 34 s facing south after three left turns (heading 3 pi / 2, unwrapped);
+    // the turn to east ends at 36 s and lap 2's first drive is cut by a lift at 40 s.
+    KidnapSpec k;
+    k.name = "kidnap_1";
+    k.start = 40.0;
+    k.duration = 4.0;
+    k.putDown = {2.0, 3.0, M_PI, 0};
+    const MotionPlan plan(square(), {k}, anywhere);
+    for (double t = 36.1; t < 40.0; t += 0.3) {
+        const RobotPose p = plan.poseAt(t);
+        EXPECT_NEAR(std::remainder(p.yaw, 2 * M_PI), 0, 1e-9) << "t = " << t;  // driving east
+        EXPECT_NEAR(p.x, 0.5 * (t - 36), 1e-9) << "t = " << t;
+    }
+}
+
 TEST(MotionPlan, PutDownWithNoReachableWaypointIsNamed) {
     KidnapSpec k;
     k.name = "scenario.ini [kidnap] key 'kidnap_3'";
