@@ -9,6 +9,7 @@ packages=(
     mrpt-common                    # MRPT's sample datasets: the tests compare inspect with rawlog-edit on them
     libopencv-dev libeigen3-dev libnanoflann-dev zlib1g-dev
     libceres-dev                   # pose-graph optimization (sparse, robust losses)
+    nlohmann-json3-dev             # lodestone-eval relocation reads report.json
     libgtest-dev libgmock-dev
 )
 

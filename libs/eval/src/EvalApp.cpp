@@ -1,24 +1,74 @@
 #include <lodestone/config/CommandLine.h>
 #include <lodestone/eval/EvalApp.h>
+#include <lodestone/eval/RelocationEval.h>
 #include <lodestone/eval/TrajectoryPlot.h>
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <opencv2/imgcodecs.hpp>
 
 namespace lodestone::eval {
 
+namespace {
+
+int runRelocationEval(const std::string& dir, std::string truthPath, std::string eventsPath,
+                      double maxDt, std::ostream& out, std::ostream& err) {
+    try {
+        if (truthPath.empty()) truthPath = dir + "/ground_truth.tum";
+        if (eventsPath.empty()) eventsPath = dir + "/events.txt";
+        const auto reported = readReportedKidnaps(dir + "/report.json");
+        const auto trajectory = io::readTumTrajectory(dir + "/trajectory.tum");
+        const std::string before = dir + "/map_at_first_kidnap.tum";
+        std::vector<io::TumPose> mapBefore;
+        if (std::ifstream(before).good()) mapBefore = io::readTumTrajectory(before);
+        const auto truth = io::readTumTrajectory(truthPath);
+        const auto events = io::readKidnapEvents(eventsPath);
+        RelocationEvalOptions options;
+        options.maxDt = maxDt;
+        out << formatRelocationEvaluation(
+            evaluateRelocations(reported, trajectory, mapBefore, truth, events, options));
+    } catch (const std::exception& e) {
+        err << "lodestone-eval: error: " << e.what() << "\n";
+        return 1;
+    }
+    return 0;
+}
+
+}  // namespace
+
 int runEvalApp(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
-    TCLAP::CmdLine cmd("Trajectory error of an estimate against ground truth (TUM RGB-D metrics)",
-                       ' ', "");
-    TCLAP::UnlabeledMultiArg<std::string> files("EST_GT", "EST.tum then GT.tum (TUM format)", true,
-                                                "EST GT", cmd);
+    TCLAP::CmdLine cmd(
+        "Trajectory error of an estimate against ground truth (TUM RGB-D metrics).\n"
+        "  lodestone-eval EST.tum GT.tum            ATE and RPE\n"
+        "  lodestone-eval relocation SLAM_OUT_DIR   kidnaps of a lodestone-slam run, judged\n"
+        "      (reads report.json, trajectory.tum, map_at_first_kidnap.tum, and the ground\n"
+        "      truth and events that lodestone-slam --sim writes there, unless given)",
+        ' ', "");
+    TCLAP::UnlabeledMultiArg<std::string> files(
+        "EST_GT", "EST.tum then GT.tum (TUM format), or: relocation SLAM_OUT_DIR", true, "EST GT",
+        cmd);
+    TCLAP::ValueArg<std::string> truthArg("g", "ground-truth",
+                                          "relocation: ground truth (default DIR/ground_truth.tum)",
+                                          false, "", "TUM", cmd);
+    TCLAP::ValueArg<std::string> eventsArg(
+        "e", "events", "relocation: the simulator's kidnap events (default DIR/events.txt)", false,
+        "", "TXT", cmd);
     TCLAP::ValueArg<std::string> plot("p", "plot", "write trajectories and error as a PNG", false,
                                       "", "PNG", cmd);
     TCLAP::ValueArg<double> maxDt("", "max-dt", "timestamp association tolerance [s]", false, 0.02,
                                   "S", cmd);
     const auto outcome = config::parseCommandLine(cmd, std::vector<std::string>(argv, argv + argc));
     if (outcome.kind == config::ParseOutcome::Kind::HelpShown) return 0;
+    const bool relocation = files.getValue().size() == 2 && files.getValue()[0] == "relocation";
+    if (!relocation && (truthArg.isSet() || eventsArg.isSet())) {
+        err << "lodestone-eval: --ground-truth and --events belong to 'relocation' (see lodestone-eval --help)\n";
+        return 2;
+    }
+    if (relocation) {
+        return runRelocationEval(files.getValue()[1], truthArg.getValue(), eventsArg.getValue(),
+                                 maxDt.getValue(), out, err);
+    }
     if (outcome.kind == config::ParseOutcome::Kind::UsageError || files.getValue().size() != 2) {
         err << "lodestone-eval: "
             << (outcome.error.empty() ? "expected EST.tum and GT.tum" : outcome.error)

@@ -45,6 +45,14 @@ void CeresGSO::addLoopClosures(const std::vector<LoopClosure>& closures) {
     if (!closures.empty()) closures_since_full_ = true;
 }
 
+void CeresGSO::addRelocationClosures(const std::vector<LoopClosure>& closures,
+                                     const std::set<TNodeID>& movable) {
+    for (const auto& lc : closures) closures_.push_back(lc);
+    if (closures.empty() || movable.empty()) return;
+    closures_since_full_ = true;
+    absorb(solver_->solve(*m_graph, closures_, movable, false), false);
+}
+
 bool CeresGSO::updateState(mrpt::obs::CActionCollection::Ptr, mrpt::obs::CSensoryFrame::Ptr,
                            mrpt::obs::CObservation::Ptr) {
     just_full_ = false;

@@ -30,9 +30,17 @@ void EdgeDecider::registerNewEdge(const TNodeID& from, const TNodeID& to, const 
     lc.to = to;
     lc.constraint = c;
     lc.source = getClassName();
+    lc.matchId = registered_;
     queued_.push_back(lc);
     ++registered_;
     m_just_inserted_lc = true;
+}
+
+void EdgeDecider::registerClosure(TNodeID from, TNodeID to, const Constraint& c,
+                                  std::size_t matchId, bool strong) {
+    registerNewEdge(from, to, c);
+    queued_.back().matchId = matchId;
+    queued_.back().strong = strong;
 }
 
 std::vector<LoopClosure> EdgeDecider::takeNewLoopClosures() {

@@ -130,6 +130,8 @@ void FusedOdometryNRD::take(const odometry::FusedOdometry::Estimate& e) {
                                                   m.timestamp < *down_time_;
                                        }),
                         magnetic_.end());
+        restart_lift_ = *lift_time_;
+        restart_down_ = *down_time_;
         lift_time_.reset();
         down_time_.reset();
         segment_closed_ = false;
@@ -180,6 +182,7 @@ bool FusedOdometryNRD::registerPending() {
                           std::hypot(since_keyframe_.x(), since_keyframe_.y()) >=
                               params_.keyframeDistance ||
                           std::abs(since_keyframe_.phi()) >= params_.keyframeAngle;
+    const bool restart = restart_;
     if (restart_) {
         // Across a kidnap: no idea where the robot went.
         const double w = 1 / (params_.kidnapEdgeSigma * params_.kidnapEdgeSigma);
@@ -192,7 +195,14 @@ bool FusedOdometryNRD::registerPending() {
     m_since_prev_node_PDF = c;
     registerNewNodeAtEnd();  // MRPT's: node at previous + m_since_prev_node_PDF, edge c
     const TNodeID id = m_prev_registered_nodeID;
-    if (nodes_) nodes_->add(id, recordFor(last_time_, keyframe));
+    if (nodes_) {
+        NodeRecord rec = recordFor(last_time_, keyframe);
+        if (restart) {
+            rec.liftTime = restart_lift_;
+            rec.putDownTime = restart_down_;
+        }
+        nodes_->add(id, std::move(rec));
+    }
     if (keyframe) {
         since_keyframe_ = mrpt::poses::CPose2D();
         ++keyframes_;

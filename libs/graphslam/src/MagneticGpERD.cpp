@@ -321,7 +321,8 @@ void MagneticGpERD::addEdge(TNodeID target, std::size_t queryNode,
     z.cov(2, 2) = yawVariance;
     const Constraint c = planarConstraint(z);
     const auto q = static_cast<TNodeID>(queryNode);
-    registerNewEdge(target, q, c);
+    // The edges of one alignment are one piece of evidence for the relocalizer.
+    registerClosure(target, q, c, records_.size(), false);
     rec.edges.emplace_back(target, q);
     rec.constraints.push_back(c);
     constrained_[queryNode] = true;

@@ -77,6 +77,8 @@ void OrbSubmapERD::configure(const mrpt::config::CConfigFileBase& ini) {
     m.phase1Fallback = s.getBool("phase1_fallback", m.phase1Fallback);
     m.fallbackMinInliers = static_cast<std::size_t>(
         s.getInt("phase1_fallback_min_inliers", static_cast<int>(m.fallbackMinInliers)));
+    p.strongInliers = s.getInt("relocation_strong_inliers", p.strongInliers);
+    if (p.strongInliers < 0) s.fail("relocation_strong_inliers", "must be >= 0");
     p.minSigmaXY = s.getDouble("min_sigma_xy", p.minSigmaXY);
     p.minSigmaYaw = s.getDouble("min_sigma_yaw_deg", p.minSigmaYaw * 180 / M_PI) * M_PI / 180;
     if (p.submapMaxKeyframes < 1) s.fail("submap_max_keyframes", "must be >= 1");
@@ -166,9 +168,12 @@ void OrbSubmapERD::query(TNodeID id, const NodeRecord& rec) {
     if (!best) return;
     const auto& [r, submap] = *best;
     const auto from = static_cast<TNodeID>(r.node);
-    registerNewEdge(
+    const bool strong = params_.strongInliers > 0 &&
+                        r.inliers >= static_cast<std::size_t>(params_.strongInliers);
+    registerClosure(
         from, id,
-        constraintOf(r.nodeToQuery, r.covariance, params_.minSigmaXY, params_.minSigmaYaw));
+        constraintOf(r.nodeToQuery, r.covariance, params_.minSigmaXY, params_.minSigmaYaw),
+        records_.size(), strong);
     records_.push_back({from, id, submap, r.usedPhase2, r.inliers, r.phase2Inliers, r.nodeToQuery});
     ++stats_.accepted;
     stats_.phase2Used += r.usedPhase2;
@@ -227,7 +232,8 @@ JsonObject OrbSubmapERD::describe() const {
         .set("phase1_min_inliers", params_.matcher.phase1.minInliers)
         .set("phase2_min_inliers", params_.matcher.phase2.minInliers)
         .set("phase1_fallback", params_.matcher.phase1Fallback)
-        .set("phase1_fallback_min_inliers", params_.matcher.fallbackMinInliers);
+        .set("phase1_fallback_min_inliers", params_.matcher.fallbackMinInliers)
+        .set("relocation_strong_inliers", params_.strongInliers);
     JsonObject stats;
     stats.set("keyframes", stats_.keyframes)
         .set("submaps", stats_.submaps)

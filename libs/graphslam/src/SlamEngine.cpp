@@ -8,8 +8,12 @@
 namespace lodestone::graphslam {
 
 SlamEngine::SlamEngine(std::unique_ptr<NodeDecider> nrd, std::unique_ptr<EdgeDecider> erd,
-                       std::unique_ptr<GraphOptimizer> gso)
-    : nrd_(std::move(nrd)), erd_(std::move(erd)), gso_(std::move(gso)) {
+                       std::unique_ptr<GraphOptimizer> gso,
+                       relocalization::Relocalizer::Params relocalization)
+    : nrd_(std::move(nrd)),
+      erd_(std::move(erd)),
+      gso_(std::move(gso)),
+      relocalizer_(relocalization) {
     graph_.root = 0;
     for (SlamComponent* c :
          std::initializer_list<SlamComponent*>{nrd_.get(), erd_.get(), gso_.get()}) {
@@ -33,7 +37,8 @@ std::unique_ptr<SlamEngine> SlamEngine::fromConfig(const mrpt::config::CConfigFi
     nrd->configure(ini);
     erd->configure(ini);
     gso->configure(ini);
-    return std::make_unique<SlamEngine>(std::move(nrd), std::move(erd), std::move(gso));
+    return std::make_unique<SlamEngine>(std::move(nrd), std::move(erd), std::move(gso),
+                                        relocalization::Relocalizer::readParams(ini));
 }
 
 std::set<std::string> SlamEngine::requiredObservations() const {
@@ -71,36 +76,37 @@ bool SlamEngine::process(const mrpt::obs::CObservation::Ptr& obs) {
 
 void SlamEngine::afterNodeDecider(bool /*newNode*/) {
     const auto t0 = Clock::now();
-    const auto closures = erd_->takeNewLoopClosures();
-    if (!closures.empty()) {
-        gso_->addLoopClosures(closures);
-        reanchor(closures);
+    for (; relocalizer_seen_ < nodes_.size(); ++relocalizer_seen_) {
+        relocalizer_.addNode(graph_, nodes_, relocalizer_seen_);
     }
+    std::vector<LoopClosure> closures;
+    for (auto& lc : erd_->takeNewLoopClosures()) {
+        if (relocalizer_.sameGroup(lc.from, lc.to)) {
+            closures.push_back(std::move(lc));
+            continue;
+        }
+        // Joins two parts not yet known to be one map: a hypothesis, not an edge.
+        eraseEdge(graph_, lc.from, lc.to, lc.constraint);
+        if (const auto merge = relocalizer_.offer(graph_, lc)) applyMerge(*merge);
+    }
+    if (!closures.empty()) gso_->addLoopClosures(closures);
     gso_->updateState(nullptr, nullptr, nullptr);
     stats_.gsoSeconds += msSince(t0) / 1e3;
 }
 
-void SlamEngine::reanchor(const std::vector<LoopClosure>& closures) {
-    bool moved = false;
-    for (const auto& lc : closures) {
-        if (!nodes_.has(lc.from) || !nodes_.has(lc.to)) continue;
-        const int sFrom = nodes_.at(lc.from).segment, sTo = nodes_.at(lc.to).segment;
-        const bool aFrom = anchored_.count(sFrom) > 0, aTo = anchored_.count(sTo) > 0;
-        if (aFrom == aTo) continue;
-        // T moves the unanchored segment so that pose(to) = pose(from) + z holds.
-        const mrpt::poses::CPose3D& pFrom = graph_.nodes.at(lc.from);
-        const mrpt::poses::CPose3D& pTo = graph_.nodes.at(lc.to);
-        const mrpt::poses::CPose3D& z = lc.constraint.mean;
-        const int segment = aFrom ? sTo : sFrom;
-        const mrpt::poses::CPose3D T = aFrom ? (pFrom + z) + (-pTo) : (pTo + (-z)) + (-pFrom);
-        for (TNodeID id = 0; id < nodes_.size(); ++id) {
-            if (nodes_.at(id).segment == segment) graph_.nodes[id] = T + graph_.nodes.at(id);
-        }
-        anchored_.insert(segment);
-        ++stats_.reanchoredSegments;
-        moved = true;
+void SlamEngine::applyMerge(const relocalization::Relocalizer::Merge& m) {
+    // Only the moved group's nodes change; the group it joins (the map) stays where it is.
+    const mrpt::poses::CPose3D T(m.transform.x(), m.transform.y(), 0, m.transform.phi(), 0, 0);
+    std::set<TNodeID> moved;
+    for (TNodeID id = 0; id < relocalizer_seen_; ++id) {
+        if (relocalizer_.groupOf(id) != m.movedGroup) continue;
+        graph_.nodes[id] = T + graph_.nodes.at(id);
+        moved.insert(id);
     }
-    if (moved) gso_->optimizeGraph();
+    relocalizer_.commit(m, graph_, nodes_);
+    if (m.keptGroup == 0) ++stats_.relocations;
+    for (const auto& lc : m.accepted) graph_.insertEdge(lc.from, lc.to, lc.constraint);
+    gso_->addRelocationClosures(m.accepted, moved);
 }
 
 void SlamEngine::finish() {
@@ -138,7 +144,7 @@ JsonObject SlamEngine::describe() const {
         .set("loop_closures_by_decider", perDecider)
         .set("observations", stats_.observations)
         .set("rgbd_frames", stats_.frames)
-        .set("reanchored_segments", stats_.reanchoredSegments);
+        .set("relocations", stats_.relocations);
     JsonObject timing;
     timing.set("node_decider_s", stats_.nrdSeconds)
         .set("edge_decider_s", stats_.erdSeconds)
@@ -148,7 +154,8 @@ JsonObject SlamEngine::describe() const {
         .set("stage_seconds", timing)
         .set("node_decider", nrd_->describe())
         .set("edge_decider", erd_->describe())
-        .set("optimizer", gso_->describe());
+        .set("optimizer", gso_->describe())
+        .set("relocalization", relocalizer_.describe());
 }
 
 }  // namespace lodestone::graphslam

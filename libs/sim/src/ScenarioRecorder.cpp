@@ -1,4 +1,5 @@
 #include <lodestone/io/ImagesDirectory.h>
+#include <lodestone/io/KidnapEvents.h>
 #include <lodestone/io/RawlogPaths.h>
 #include <lodestone/io/RawlogWriter.h>
 #include <lodestone/io/TumTrajectory.h>
@@ -47,20 +48,7 @@ RecordingSummary recordScenario(SimulatorSource& source, const std::string& outR
     }
 
     // The events file first: it is known before the run.
-    {
-        std::ofstream events(r.events);
-        if (!events) throw std::runtime_error(r.events + ": cannot create");
-        events << "# kidnaps of scenario '" << source.scenario().name << "'\n"
-               << "# index lift_time put_down_time put_down_x put_down_y put_down_yaw"
-                  "  (times [s since the epoch], pose [m, m, rad], world frame)\n";
-        int i = 1;
-        for (const auto& e : source.kidnapEvents()) {
-            char line[200];
-            std::snprintf(line, sizeof(line), "kidnap %d %.6f %.6f %.4f %.4f %.5f\n", i++, e.start,
-                          e.end, e.putDown.x, e.putDown.y, e.putDown.yaw);
-            events << line;
-        }
-    }
+    io::writeKidnapEvents(r.events, source.scenario().name, kidnapRecords(source));
 
     io::RawlogWriter writer(outRawlog, {io::isGzipPath(outRawlog) ? 1 : 0});
     io::TumTrajectoryWriter gt(r.groundTruth);

@@ -60,4 +60,13 @@ std::vector<KidnapEvent> SimulatorSource::kidnapEvents() const {
     return events;
 }
 
+std::vector<io::KidnapEventRecord> kidnapRecords(const SimulatorSource& source) {
+    std::vector<io::KidnapEventRecord> out;
+    int index = 1;
+    for (const auto& e : source.kidnapEvents()) {
+        out.push_back({index++, e.start, e.end, e.putDown.x, e.putDown.y, e.putDown.yaw});
+    }
+    return out;
+}
+
 }  // namespace lodestone::sim

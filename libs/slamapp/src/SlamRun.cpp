@@ -5,6 +5,7 @@
 #include <lodestone/graphslam/FusedOdometryNRD.h>
 #include <lodestone/graphslam/MapExport.h>
 #include <lodestone/graphslam/SlamEngine.h>
+#include <lodestone/io/KidnapEvents.h>
 #include <lodestone/io/RawlogSource.h>
 #include <lodestone/io/TumTrajectory.h>
 #include <lodestone/obs/registerAllClasses.h>
@@ -38,7 +39,8 @@ struct InputError : std::runtime_error {
 constexpr std::size_t kPrescanObservations = 3000;
 
 std::set<std::string> allowedSections() {
-    std::set<std::string> s{"graphslam", "wheel_odometry", "visual_odometry", "odometry_fusion"};
+    std::set<std::string> s{"graphslam", "relocalization", "wheel_odometry", "visual_odometry",
+                            "odometry_fusion"};
     const auto& reg = graphslam::DeciderRegistry::instance();
     for (const auto& names : {reg.nodeDeciders(), reg.edgeDeciders(), reg.optimizers()}) {
         s.insert(names.begin(), names.end());
@@ -172,7 +174,11 @@ SlamRunResult runSlam(const SlamRunOptions& options, std::ostream& out, std::ost
         if (ec || !fs::is_directory(dir)) {
             throw InputError("cannot create output directory '" + options.outDir + "': " + ec.message());
         }
-        if (simulator) simTruth = std::make_unique<io::TumTrajectoryWriter>((dir / "ground_truth.tum").string());
+        if (simulator) {
+            simTruth = std::make_unique<io::TumTrajectoryWriter>((dir / "ground_truth.tum").string());
+            io::writeKidnapEvents((dir / "events.txt").string(), simulator->scenario().name,
+                                  sim::kidnapRecords(*simulator));
+        }
     } catch (const std::exception& e) {
         err << "lodestone-slam: error: " << e.what() << "\n";
         result.exitCode = 1;
@@ -229,6 +235,13 @@ SlamRunResult runSlam(const SlamRunOptions& options, std::ostream& out, std::ost
         const std::string trajectory = (dir / "trajectory.tum").string();
         graphslam::writeNodeTrajectory(trajectory, graph, engine->nodes());
         graph.saveToTextFile((dir / "graph.graph").string());
+        const auto& beforeKidnap = engine->relocalizer().mapAtFirstKidnap();
+        if (!beforeKidnap.empty()) {
+            // What the map was when the first kidnap began: lodestone-eval relocation compares
+            // it with the end of the run (what relocations did to the map).
+            io::TumTrajectoryWriter w((dir / "map_at_first_kidnap.tum").string());
+            for (const auto& [id, pose] : beforeKidnap) w.write(engine->nodes().at(id).timestamp, pose);
+        }
         const std::size_t mapPoints =
             graphslam::writeMapPly((dir / "map.ply").string(), graph, engine->nodes());
         cv::imwrite((dir / "graph.png").string(), plotGraph(graph, closures));
@@ -288,7 +301,8 @@ SlamRunResult runSlam(const SlamRunOptions& options, std::ostream& out, std::ost
         }
         out << "outputs in " << dir.string()
             << ": trajectory.tum graph.graph map.ply report.json graph.png"
-            << (result.ateRmse ? " trajectory.png" : "") << (simulator ? " ground_truth.tum" : "")
+            << (result.ateRmse ? " trajectory.png" : "") << (simulator ? " ground_truth.tum events.txt" : "")
+            << (beforeKidnap.empty() ? "" : " map_at_first_kidnap.tum")
             << "\n";
     } catch (const std::exception& e) {
         err << "lodestone-slam: error writing outputs: " << e.what() << "\n";

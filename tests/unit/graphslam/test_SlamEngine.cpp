@@ -118,7 +118,7 @@ TEST(SlamEngine, AKidnappedSegmentIsReanchoredByItsFirstClosure) {
     ASSERT_GT(closures.size(), 5u);
     auto engine = engineFor(steps, closures);
     runAll(*engine);
-    EXPECT_EQ(engine->stats().reanchoredSegments, 1u);
+    EXPECT_EQ(engine->stats().relocations, 1u);
     EXPECT_EQ(engine->nodes().at(k).segment, 1);
     for (const auto& lc : engine->optimizer().loopClosures()) EXPECT_FALSE(lc.rejected);
     // The optimum of this very graph, found from the true poses: re-anchoring must have led the

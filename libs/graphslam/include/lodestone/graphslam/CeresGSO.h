@@ -34,6 +34,9 @@ class CeresGSO : public GraphOptimizer {
                      mrpt::obs::CSensoryFrame::Ptr observations,
                      mrpt::obs::CObservation::Ptr observation) override;
     void addLoopClosures(const std::vector<LoopClosure>& closures) override;
+    /** Solves the moved group alone against them at once (the map held fixed). */
+    void addRelocationClosures(const std::vector<LoopClosure>& closures,
+                               const std::set<TNodeID>& movable) override;
     void optimizeGraph() override;
     void finish() override;
     bool justFullyOptimizedGraph() const override { return just_full_; }

@@ -26,6 +26,12 @@ class EdgeDecider : public mrpt::graphslam::deciders::CEdgeRegistrationDecider<G
     std::size_t loopClosuresRegistered() const { return registered_; }
 
   protected:
+    /** registerNewEdge with what the relocalizer weighs: closures sharing `matchId` come from
+     * one match (not independent evidence); `strong` when the match alone is convincing by
+     * the decider's own threshold. registerNewEdge gives every closure a match of its own. */
+    void registerClosure(TNodeID from, TNodeID to, const Constraint& c, std::size_t matchId,
+                         bool strong);
+
     std::vector<LoopClosure> queued_;
     std::size_t registered_{0};
 };

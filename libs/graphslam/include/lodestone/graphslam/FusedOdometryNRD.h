@@ -71,6 +71,7 @@ class FusedOdometryNRD : public NodeDecider {
     bool have_estimate_{false};
     bool lifted_{false};
     std::optional<double> lift_time_, down_time_;  // [s] of the kidnap being handled
+    double restart_lift_{NAN}, restart_down_{NAN};  // of the kidnap the next node ends
     bool segment_closed_{false}, close_segment_{false}, restart_{false};
     int segment_{0};
     std::deque<mrpt::obs::CObservation3DRangeScan::Ptr> recent_frames_;  // not yet resolved

@@ -17,6 +17,13 @@ class GraphOptimizer : public mrpt::graphslam::optimizers::CGraphSlamOptimizer<G
     void loadParams(const std::string& source_fname) override;
     /** Loop closures just added to the graph; the next updateState() decides how to solve. */
     virtual void addLoopClosures(const std::vector<LoopClosure>& closures) = 0;
+    /** Closures that join a just-relocated group to the map: only the nodes in `movable` (the
+     * moved group) may follow them now, so a relocation never moves the map; later full
+     * solves treat them as any closure. The default treats them as any closure at once. */
+    virtual void addRelocationClosures(const std::vector<LoopClosure>& closures,
+                                       const std::set<TNodeID>& /*movable*/) {
+        addLoopClosures(closures);
+    }
     /** Solves everything the run still needs (at the end of the data). */
     virtual void finish() = 0;
     /** Re-solves the whole graph now (e.g. after a kidnapped segment was re-anchored). */

@@ -6,6 +6,7 @@
 
 #include <Eigen/Geometry>
 
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -27,6 +28,9 @@ struct NodeRecord {
     /** Continuous-odometry segment: 0 from the start, one more after each kidnap. Nodes of a
      * segment that is not anchored yet hang on a weak edge (see SlamEngine). */
     int segment{0};
+    /** The first node of a segment after a kidnap: when the robot was lifted and put down
+     * [s], as the node decider saw it (NaN when it does not know). */
+    double liftTime{NAN}, putDownTime{NAN};
     bool keyframe{false};  ///< an RGB-D keyframe (a subset of nodes, paper 000 §2.3)
     std::shared_ptr<const KeyframeCloud> cloud;  ///< keyframes only, when maps are kept
     /** Keyframes: the ORB features of the node's frame (optical frame) and where that frame

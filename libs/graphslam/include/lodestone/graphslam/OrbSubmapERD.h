@@ -35,6 +35,9 @@ class OrbSubmapERD : public EdgeDecider {
         int minVotes{12};
         double minSigmaXY{0.01};   ///< [m] floor on a closure's claimed precision
         double minSigmaYaw{0.3 * M_PI / 180};  ///< [rad]
+        /** A match with this many inliers relocates a kidnapped segment on its own (0: never;
+         * relocation then needs a second, independent match that agrees). */
+        int strongInliers{0};
     };
 
     /** One accepted closure, for reports and benchmarks. */

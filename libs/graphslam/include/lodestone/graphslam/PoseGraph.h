@@ -20,6 +20,11 @@ struct LoopClosure {
     TNodeID from{0}, to{0};
     Constraint constraint;
     std::string source;       ///< the matcher that proposed it (its class name)
+    /** Closures from one match event of a matcher share it (e.g. the edges of one magnetic
+     * alignment): they are not independent evidence of a relocation. */
+    std::size_t matchId{0};
+    /** The matcher judged its evidence strong enough to relocate on its own (its threshold). */
+    bool strong{false};
     bool rejected{false};     ///< removed by the optimizer
     double rejectionChi2{0};  ///< its squared Mahalanobis residual when removed
 };

@@ -3,6 +3,7 @@
 #include <lodestone/graphslam/EdgeDecider.h>
 #include <lodestone/graphslam/GraphOptimizer.h>
 #include <lodestone/graphslam/NodeDecider.h>
+#include <lodestone/graphslam/relocalization/Relocalizer.h>
 #include <mrpt/config/CConfigFileBase.h>
 
 #include <memory>
@@ -18,17 +19,18 @@ namespace lodestone::graphslam {
  * full solves).
  *
  * Kidnapped segments: the NRD starts a new segment after a kidnap, tied by a very weak edge.
- * The first loop closure between an anchored segment and one that is not moves the whole
- * unanchored segment rigidly onto the closure (so the solver starts near the answer), marks it
- * anchored and solves the full graph. */
+ * A loop closure joining two segments that are not yet one map is not an edge but a
+ * relocation hypothesis (relocalization::Relocalizer); once verified, the later segment (never
+ * the map) moves rigidly onto the agreeing closures, which then enter the graph. */
 class SlamEngine {
   public:
     SlamEngine(std::unique_ptr<NodeDecider> nrd, std::unique_ptr<EdgeDecider> erd,
-               std::unique_ptr<GraphOptimizer> gso);
+               std::unique_ptr<GraphOptimizer> gso,
+               relocalization::Relocalizer::Params relocalization = {});
 
     /** Builds the deciders named in `[graphslam] node_decider / edge_decider / optimizer` and
-     * configures each from its own section. Unknown names, sections or keys throw
-     * config::ConfigError. */
+     * configures each from its own section, the relocalizer from `[relocalization]`. Unknown
+     * names, sections or keys throw config::ConfigError. */
     static std::unique_ptr<SlamEngine> fromConfig(const mrpt::config::CConfigFileBase& ini);
 
     /** One observation through NRD, ERD and optimizer. Returns true if a node was added. */
@@ -39,6 +41,7 @@ class SlamEngine {
     const Graph& graph() const { return graph_; }
     Graph& graph() { return graph_; }
     const NodeStore& nodes() const { return nodes_; }
+    const relocalization::Relocalizer& relocalizer() const { return relocalizer_; }
     NodeDecider& nodeDecider() { return *nrd_; }
     EdgeDecider& edgeDecider() { return *erd_; }
     GraphOptimizer& optimizer() { return *gso_; }
@@ -51,7 +54,7 @@ class SlamEngine {
         double nrdSeconds{0}, erdSeconds{0}, gsoSeconds{0};
         std::vector<float> nodeMs;   ///< engine time spent per node (between registrations)
         std::vector<float> frameMs;  ///< engine time per RGB-D observation
-        std::size_t reanchoredSegments{0};
+        std::size_t relocations{0};  ///< merges of a kidnapped segment into the map
     };
     const Stats& stats() const { return stats_; }
     /** Engine statistics and every component's describe() for report.json. */
@@ -59,14 +62,16 @@ class SlamEngine {
 
   private:
     void afterNodeDecider(bool newNode);
-    void reanchor(const std::vector<LoopClosure>& closures);
+    /** Moves the merged group rigidly and hands the optimizer the closures that join it. */
+    void applyMerge(const relocalization::Relocalizer::Merge& m);
 
     Graph graph_;
     NodeStore nodes_;
     std::unique_ptr<NodeDecider> nrd_;
     std::unique_ptr<EdgeDecider> erd_;
     std::unique_ptr<GraphOptimizer> gso_;
-    std::set<int> anchored_{0};
+    relocalization::Relocalizer relocalizer_;
+    TNodeID relocalizer_seen_{0};
     Stats stats_;
     double since_node_ms_{0};
 };

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <lodestone/io/DataSource.h>
+#include <lodestone/io/KidnapEvents.h>
 #include <lodestone/sim/MotionPlan.h>
 #include <lodestone/sim/Scenario.h>
 #include <lodestone/sim/SimSensor.h>
@@ -47,5 +48,8 @@ class SimulatorSource : public io::DataSource {
     std::vector<std::unique_ptr<SimSensor>> sensors_;
     std::int64_t last_time_ns_{0};
 };
+
+/** The source's kidnaps as the events file lists them (index from 1). */
+std::vector<io::KidnapEventRecord> kidnapRecords(const SimulatorSource& source);
 
 }  // namespace lodestone::sim

@@ -1,0 +1,274 @@
+#include <lodestone/config/IniSection.h>
+#include <lodestone/graphslam/relocalization/Relocalizer.h>
+
+#include <algorithm>
+
+namespace lodestone::graphslam::relocalization {
+
+Relocalizer::Params Relocalizer::readParams(const mrpt::config::CConfigFileBase& ini) {
+    Params p;
+    config::IniSection s(ini, "relocalization", config::sourceName(ini));
+    const double chi2 = s.getDouble("consistency_chi2", 0);
+    if (chi2 < 0) s.fail("consistency_chi2", "must be >= 0");
+    if (chi2 > 0) p.consistencyChi2 = chi2;
+    p.independentTravel = s.getDouble("independent_travel", p.independentTravel);
+    p.mapSigmaXY = s.getDouble("map_sigma_xy", p.mapSigmaXY);
+    p.mapSigmaYaw = s.getDouble("map_sigma_yaw_deg", p.mapSigmaYaw * 180 / M_PI) * M_PI / 180;
+    const int maxHyp = s.getInt("max_hypotheses", static_cast<int>(p.maxHypotheses));
+    if (!(p.independentTravel >= 0)) s.fail("independent_travel", "must be >= 0");
+    if (!(p.mapSigmaXY > 0)) s.fail("map_sigma_xy", "must be > 0");
+    if (!(p.mapSigmaYaw > 0)) s.fail("map_sigma_yaw_deg", "must be > 0");
+    if (maxHyp < 2) s.fail("max_hypotheses", "must be >= 2");
+    p.maxHypotheses = static_cast<std::size_t>(maxHyp);
+    s.finish();
+    return p;
+}
+
+int Relocalizer::find(int segment) const {
+    while (parent_.at(segment) != segment) segment = parent_[segment];
+    return segment;
+}
+
+std::pair<int, int> Relocalizer::keptAndMoved(int g1, int g2) {
+    // Groups are named by their first segment: the map is 0, and the later group moves.
+    return {std::min(g1, g2), std::max(g1, g2)};
+}
+
+void Relocalizer::addNode(const Graph& graph, const NodeStore& nodes, TNodeID id) {
+    const NodeRecord& rec = nodes.at(id);
+    const int seg = rec.segment;
+    while (static_cast<int>(parent_.size()) <= seg) parent_.push_back(static_cast<int>(parent_.size()));
+    const bool starts = id == 0 || segment_.back() != seg;
+    double step = 0, pv = 0, yv = 0;
+    if (!starts) {
+        const auto e = graph.edges.find({id - 1, id});
+        if (e != graph.edges.end()) {
+            step = std::hypot(e->second.mean.x(), e->second.mean.y());
+            const Matrix3 c = planarCovariance(e->second);
+            pv = c(0, 0) + c(1, 1);
+            yv = c(2, 2);
+        }
+    }
+    segment_.push_back(seg);
+    travel_.push_back(starts ? 0.0 : travel_.back() + step);
+    positionVar_.push_back(starts ? 0.0 : positionVar_.back() + pv);
+    yawVar_.push_back(starts ? 0.0 : yawVar_.back() + yv);
+    if (starts && id > 0) {
+        if (kidnaps_.empty()) {
+            for (TNodeID k = 0; k < id; ++k) {
+                if (find(segment_[k]) == 0) map_at_first_kidnap_.emplace_back(k, graph.nodes.at(k));
+            }
+        }
+        KidnapRecord k;
+        k.segment = seg;
+        k.firstNode = id;
+        k.liftTime = rec.liftTime;
+        k.putDownTime = rec.putDownTime;
+        kidnaps_.push_back(k);
+    }
+}
+
+Matrix3 Relocalizer::relativeCovariance(const Graph& graph, TNodeID i, TNodeID j,
+                                        bool moving) const {
+    Matrix3 floor = Matrix3::Zero();
+    floor.diagonal() << params_.mapSigmaXY * params_.mapSigmaXY,
+        params_.mapSigmaXY * params_.mapSigmaXY, params_.mapSigmaYaw * params_.mapSigmaYaw;
+    if (!moving || segment_[i] != segment_[j]) return floor;
+    // Within one segment of the moved group: its odometry since the segment began, summed
+    // (position variance plus the heading's lever arm over the distance between the nodes).
+    const double pv = std::abs(positionVar_[j] - positionVar_[i]);
+    const double yv = std::abs(yawVar_[j] - yawVar_[i]);
+    const auto& a = graph.nodes.at(i);
+    const auto& b = graph.nodes.at(j);
+    const double d2 = (a.x() - b.x()) * (a.x() - b.x()) + (a.y() - b.y()) * (a.y() - b.y());
+    Matrix3 c = Matrix3::Zero();
+    c.diagonal() << pv / 2 + yv * d2, pv / 2 + yv * d2, yv;
+    return c + floor;
+}
+
+Hypothesis Relocalizer::hypothesisOf(const Graph& graph, const Pending& p) const {
+    Hypothesis h;
+    h.a = planar(graph.nodes.at(p.a));
+    h.u = planar(graph.nodes.at(p.u));
+    h.z = planar(p.closure.constraint.mean);
+    h.cov = planarCovariance(p.closure.constraint);
+    h.uIsTo = p.uIsTo;
+    return h;
+}
+
+bool Relocalizer::independent(const Pending& x, const Pending& y) const {
+    if (x.closure.source != y.closure.source) return true;
+    if (x.closure.matchId == y.closure.matchId) return false;
+    if (segment_[x.u] != segment_[y.u]) return true;
+    return std::abs(travel_[x.u] - travel_[y.u]) >= params_.independentTravel;
+}
+
+bool Relocalizer::consistent(const Graph& graph, const Pending& x, const Pending& y) const {
+    const double chi2 =
+        pairwiseChi2(hypothesisOf(graph, x), hypothesisOf(graph, y),
+                     relativeCovariance(graph, x.u, y.u, true), relativeCovariance(graph, x.a, y.a, false));
+    return chi2 <= params_.consistencyChi2;
+}
+
+std::optional<Relocalizer::Merge> Relocalizer::offer(const Graph& graph, const LoopClosure& lc) {
+    ++offered_;
+    const int gFrom = groupOf(lc.from), gTo = groupOf(lc.to);
+    if (gFrom == gTo) return std::nullopt;  // the engine's to judge, not a relocation
+    const auto [kept, moved] = keptAndMoved(gFrom, gTo);
+    Pending h;
+    h.closure = lc;
+    h.uIsTo = gTo == moved;
+    h.u = h.uIsTo ? lc.to : lc.from;
+    h.a = h.uIsTo ? lc.from : lc.to;
+    const auto samePair = [&](const Pending& p) {
+        return groupOf(p.a) == kept && groupOf(p.u) == moved;
+    };
+    std::vector<const Pending*> agreeing;  // consistent with h
+    const Pending* partner = nullptr;      // consistent and independent
+    for (const auto& p : pending_) {
+        if (!samePair(p) || !consistent(graph, h, p)) continue;
+        agreeing.push_back(&p);
+        if (!partner && independent(h, p)) partner = &p;
+    }
+    for (auto& k : kidnaps_) {
+        if (find(k.segment) == moved) ++k.hypotheses;
+    }
+    if (h.closure.strong || partner) {
+        // The agreeing set: h, its partner, and whatever agrees with both.
+        std::vector<Pending> set{h};
+        if (partner) set.push_back(*partner);
+        for (const Pending* p : agreeing) {
+            if (p != partner && (!partner || consistent(graph, *partner, *p))) set.push_back(*p);
+        }
+        std::vector<Hypothesis> hs;
+        for (const auto& p : set) hs.push_back(hypothesisOf(graph, p));
+        const auto& h0 = hs.front();
+        Pose2 T = fitTransform(hs, impliedTransform(h0.a, h0.u, h0.z, h0.uIsTo));
+        // Judged at the fitted move; the verification must survive without whoever fails.
+        std::vector<Pending> kept_;
+        std::vector<Hypothesis> keptHs;
+        for (std::size_t k = 0; k < set.size(); ++k) {
+            if (chi2After(hs[k], T) <= params_.consistencyChi2) {
+                kept_.push_back(set[k]);
+                keptHs.push_back(hs[k]);
+            }
+        }
+        bool verified = false;
+        for (std::size_t x = 0; x < kept_.size() && !verified; ++x) {
+            verified = kept_[x].closure.strong;
+            for (std::size_t y = x + 1; y < kept_.size() && !verified; ++y)
+                verified = independent(kept_[x], kept_[y]);
+        }
+        if (verified) {
+            if (keptHs.size() != hs.size()) T = fitTransform(keptHs, T);
+            Merge m;
+            m.keptGroup = kept;
+            m.movedGroup = moved;
+            m.transform = T;
+            for (const auto& p : kept_) {
+                m.accepted.push_back(p.closure);
+                m.sources.insert(p.closure.source);
+            }
+            const auto inSet = [&](const Pending& p) {
+                return std::any_of(kept_.begin(), kept_.end(), [&](const Pending& q) {
+                    return q.closure.from == p.closure.from && q.closure.to == p.closure.to &&
+                           q.closure.constraint.mean == p.closure.constraint.mean;
+                });
+            };
+            // Every other pending hypothesis of the pair is judged at the move, then dropped.
+            for (auto it = pending_.begin(); it != pending_.end();) {
+                if (!samePair(*it)) {
+                    ++it;
+                    continue;
+                }
+                if (!inSet(*it)) {
+                    if (chi2After(hypothesisOf(graph, *it), T) <= params_.consistencyChi2) {
+                        m.accepted.push_back(it->closure);
+                    } else {
+                        ++m.rejected;
+                    }
+                }
+                it = pending_.erase(it);
+            }
+            return m;
+        }
+    }
+    pending_.push_back(h);
+    // Bounded: a group put down somewhere never mapped keeps proposing look-alikes.
+    std::size_t ofPair = 0;
+    for (const auto& p : pending_) ofPair += samePair(p);
+    if (ofPair > params_.maxHypotheses) {
+        const auto oldest = std::find_if(pending_.begin(), pending_.end(), samePair);
+        pending_.erase(oldest);
+        ++dropped_;
+    }
+    return std::nullopt;
+}
+
+void Relocalizer::commit(const Merge& m, const Graph& graph, const NodeStore& nodes) {
+    ++merges_;
+    rejectedTotal_ += m.rejected;
+    const bool intoMap = m.keptGroup == 0;
+    for (auto& k : kidnaps_) {
+        if (find(k.segment) != m.movedGroup) continue;
+        k.mergedWith = m.keptGroup;
+        k.rejected += m.rejected;
+        if (!intoMap || k.relocated) continue;
+        // The segment's latest node: where the robot was when it found itself on the map.
+        TNodeID last = k.firstNode;
+        for (TNodeID id = k.firstNode; id < segment_.size(); ++id) {
+            if (segment_[id] == k.segment) last = id;
+        }
+        k.relocated = true;
+        k.node = last;
+        k.relocationTime = nodes.at(last).timestamp;
+        k.travel = travel_[last];
+        k.pose = graph.nodes.at(last);
+        k.sources = m.sources;
+        k.agreeing = m.accepted.size();
+    }
+    parent_[m.movedGroup] = m.keptGroup;
+}
+
+JsonObject Relocalizer::describe() const {
+    JsonObject params;
+    params.set("consistency_chi2", params_.consistencyChi2)
+        .set("independent_travel", params_.independentTravel)
+        .set("map_sigma_xy", params_.mapSigmaXY)
+        .set("map_sigma_yaw_deg", params_.mapSigmaYaw * 180 / M_PI)
+        .set("max_hypotheses", params_.maxHypotheses);
+    std::vector<JsonObject> kidnaps;
+    for (const auto& k : kidnaps_) {
+        std::string sources;
+        for (const auto& s : k.sources) sources += (sources.empty() ? "" : "+") + s;
+        JsonObject o;
+        o.set("segment", k.segment)
+            .set("first_node", static_cast<long long>(k.firstNode))
+            .set("lift_time", k.liftTime)
+            .set("put_down_time", k.putDownTime)
+            .set("relocated", k.relocated)
+            .set("merged_with_segment", k.mergedWith)
+            .set("hypotheses", k.hypotheses)
+            .set("rejected_hypotheses", k.rejected);
+        if (k.relocated) {
+            o.set("relocation_time", k.relocationTime)
+                .set("travel_to_relocation_m", k.travel)
+                .set("node", static_cast<long long>(k.node))
+                .set("x", k.pose.x())
+                .set("y", k.pose.y())
+                .set("yaw", k.pose.yaw())
+                .set("deciders", sources)
+                .set("agreeing_closures", k.agreeing);
+        }
+        kidnaps.push_back(o);
+    }
+    JsonObject stats;
+    stats.set("hypotheses_offered", offered_)
+        .set("merges", merges_)
+        .set("rejected_hypotheses", rejectedTotal_)
+        .set("dropped_hypotheses", dropped_)
+        .set("pending_hypotheses", pending_.size());
+    return JsonObject().set("params", params).set("stats", stats).set("kidnaps", kidnaps);
+}
+
+}  // namespace lodestone::graphslam::relocalization
