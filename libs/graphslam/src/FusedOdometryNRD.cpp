@@ -25,6 +25,8 @@ void FusedOdometryNRD::configure(const mrpt::config::CConfigFileBase& ini) {
     p.mapPixelStep = s.getInt("map_pixel_step", p.mapPixelStep);
     p.mapMaxDepth = s.getDouble("map_max_depth", p.mapMaxDepth);
     p.kidnapEdgeSigma = s.getDouble("kidnap_edge_sigma", p.kidnapEdgeSigma);
+    p.useWheelDrop = s.getBool("kidnap_wheel_drop", p.useWheelDrop);
+    p.detection = kidnap::KidnapDetector::readParams(ini);
     if (!(p.nodeDistance > 0)) s.fail("node_distance", "must be > 0");
     if (!(p.nodeAngle > 0)) s.fail("node_angle_deg", "must be > 0");
     if (p.keyframeDistance < p.nodeDistance) s.fail("keyframe_distance", "must be >= node_distance");
@@ -33,6 +35,9 @@ void FusedOdometryNRD::configure(const mrpt::config::CConfigFileBase& ini) {
     s.finish();
     params_ = p;
     odometry_ = std::make_unique<odometry::FusedOdometry>(params_.odometry);
+    detector_.reset();
+    if (params_.detection.motion || params_.detection.magnetic)
+        detector_ = std::make_unique<kidnap::KidnapDetector>(params_.detection);
 }
 
 void FusedOdometryNRD::setWheelGeometry(double wheelBase, double wheelRadius, double ticksPerRev) {
@@ -61,26 +66,23 @@ bool FusedOdometryNRD::updateState(mrpt::obs::CActionCollection::Ptr /*action*/,
 
 bool FusedOdometryNRD::finish() {
     just_registered_.reset();
-    for (const auto& e : odometry_->flush()) take(e);
+    for (auto& e : odometry_->flush()) {
+        if (detector_) onDetectorEvent(detector_->onFrame(e));
+        held_.push_back(std::move(e));
+    }
+    release(INFINITY);
     return registerPending();
 }
 
-void FusedOdometryNRD::consume(const mrpt::obs::CObservation::Ptr& obs) {
-    if (auto drop = std::dynamic_pointer_cast<obs::CObservationWheelDrop>(obs)) {
-        onWheelDrop(drop->lifted(), mrpt::Clock::toDouble(drop->timestamp));
-        return;
-    }
-    if (auto mag = std::dynamic_pointer_cast<obs::CObservationMagnetometer>(obs)) {
-        magnetic_.push_back({mrpt::Clock::toDouble(mag->timestamp), mag->sensorLabel, mag->field,
-                             mag->sensorPose});
-        return;
-    }
-    if (auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(obs)) {
-        ++frames_;
-        recent_frames_.push_back(scan);
-    }
-    for (const auto& e : odometry_->process(obs)) {
-        if (e.visual.frameFeatures) recent_features_[e.timestamp] = e.visual.frameFeatures;
+void FusedOdometryNRD::onDetectorEvent(const std::optional<kidnap::KidnapDetector::Event>& ev) {
+    if (ev) onWheelDrop(ev->lifted, ev->time);
+}
+
+void FusedOdometryNRD::release(double now) {
+    const double latency = detector_ ? params_.detection.latency : 0.0;
+    while (!held_.empty() && held_.front().timestamp <= now - latency) {
+        const auto e = std::move(held_.front());
+        held_.pop_front();
         take(e);
         // Frames up to this one are resolved: a node can no longer be placed at an older one.
         while (!recent_frames_.empty() &&
@@ -91,6 +93,38 @@ void FusedOdometryNRD::consume(const mrpt::obs::CObservation::Ptr& obs) {
             recent_features_.erase(recent_features_.begin());
         }
     }
+}
+
+void FusedOdometryNRD::consume(const mrpt::obs::CObservation::Ptr& obs) {
+    const double now = mrpt::Clock::toDouble(obs->timestamp);
+    if (auto drop = std::dynamic_pointer_cast<obs::CObservationWheelDrop>(obs)) {
+        if (params_.useWheelDrop) onWheelDrop(drop->lifted(), now);
+        return;
+    }
+    if (auto mag = std::dynamic_pointer_cast<obs::CObservationMagnetometer>(obs)) {
+        magnetic_.push_back({now, mag->sensorLabel, mag->field, mag->sensorPose});
+        if (detector_) {
+            if (detector_sensor_.empty()) detector_sensor_ = mag->sensorLabel;
+            if (mag->sensorLabel == detector_sensor_) {
+                const double norm = std::sqrt(mag->field.x * mag->field.x +
+                                              mag->field.y * mag->field.y +
+                                              mag->field.z * mag->field.z);
+                onDetectorEvent(detector_->onMagnetic(now, norm));
+            }
+        }
+        release(now);
+        return;
+    }
+    if (auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(obs)) {
+        ++frames_;
+        recent_frames_.push_back(scan);
+    }
+    for (auto& e : odometry_->process(obs)) {
+        if (e.visual.frameFeatures) recent_features_[e.timestamp] = e.visual.frameFeatures;
+        if (detector_) onDetectorEvent(detector_->onFrame(e));
+        held_.push_back(std::move(e));
+    }
+    release(now);
 }
 
 void FusedOdometryNRD::onWheelDrop(bool lifted, double t) {
@@ -247,6 +281,9 @@ JsonObject FusedOdometryNRD::describe() const {
         .set("keyframe_angle_deg", params_.keyframeAngle * 180 / M_PI)
         .set("map_pixel_step", params_.mapPixelStep)
         .set("kidnap_edge_sigma", params_.kidnapEdgeSigma)
+        .set("kidnap_wheel_drop", params_.useWheelDrop)
+        .set("kidnap_detection_motion", params_.detection.motion)
+        .set("kidnap_detection_magnetic", params_.detection.magnetic)
         .set("odometry_method", params_.odometry.method)
         .set("wheel_base", params_.odometry.wheels.wheelBase)
         .set("wheel_radius", params_.odometry.wheels.wheelRadius)
@@ -257,6 +294,14 @@ JsonObject FusedOdometryNRD::describe() const {
         .set("kidnaps", kidnaps_)
         .set("keyframes", keyframes_)
         .set("segments", segment_ + 1);
+    if (detector_) {
+        const auto& d = detector_->stats();
+        stats.set("detected_lifts", d.lifts)
+            .set("detected_by_motion", d.byMotion)
+            .set("detected_by_rise", d.byRise)
+            .set("detected_by_magnetic", d.byMagnetic)
+            .set("detected_put_downs", d.putDowns);
+    }
     return JsonObject().set("class", getClassName()).set("params", params).set("stats", stats);
 }
 

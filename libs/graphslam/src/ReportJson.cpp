@@ -10,7 +10,7 @@ namespace {
 std::string number(double v) {
     if (!std::isfinite(v)) return "null";
     char buf[32];
-    std::snprintf(buf, sizeof buf, "%.10g", v);
+    std::snprintf(buf, sizeof buf, "%.15g", v);  // 15: epoch timestamps keep their ms
     return buf;
 }
 }  // namespace

@@ -117,7 +117,8 @@ Eigen::Vector2d FusedOdometry::travelAt(double t) const {
     return {wheel_history_.back().left, wheel_history_.back().right};
 }
 
-mrpt::poses::CPosePDFGaussian FusedOdometry::visualOnRobot(const Pending& p) const {
+mrpt::poses::CPosePDFGaussian FusedOdometry::visualOnRobot(const Pending& p, double* rise,
+                                                          double* riseVariance) const {
     // Robot-frame motion: A T A^-1, with A the optical frame on the robot.
     const Eigen::Isometry3d& A = p.T_robot_optical;
     const Eigen::Isometry3d T = A * p.vo.T_ref_cur * A.inverse();
@@ -138,6 +139,8 @@ mrpt::poses::CPosePDFGaussian FusedOdometry::visualOnRobot(const Pending& p) con
     for (int i = 0; i < 3; ++i) {
         for (int j = 0; j < 3; ++j) m.cov(i, j) = C(idx[i], idx[j]);
     }
+    if (rise) *rise = T.translation().z();
+    if (riseVariance) *riseVariance = C(5, 5);
     return m;
 }
 
@@ -157,6 +160,7 @@ FusedOdometry::Estimate FusedOdometry::fromPoseSample(double t, const mrpt::pose
     // No fusion: the source is already an odometry; every method reports it.
     e.poses.assign(fusions_.size(), pose_estimate_);
     e.increments.assign(fusions_.size(), increment);
+    e.wheel = increment;  // the base's own odometry plays the encoders' part
     return e;
 }
 
@@ -177,7 +181,11 @@ FusedOdometry::Estimate FusedOdometry::resolve(const Pending& p) {
         const Eigen::Vector2d d = travel - last_frame_travel_;
         step.wheel = DiffDriveOdometry::stepFromOrigin(d[0], d[1], params_.wheels);
         const bool visualMotion = p.vo.success;
-        const auto robotMotion = visualMotion ? visualOnRobot(p) : mrpt::poses::CPosePDFGaussian();
+        const auto robotMotion = visualMotion
+                                     ? visualOnRobot(p, &e.visualRise, &e.visualRiseVariance)
+                                     : mrpt::poses::CPosePDFGaussian();
+        e.wheel = step.wheel;
+        if (visualMotion) e.visualSinceReference = robotMotion;
         for (std::size_t m = 0; m < fusions_.size(); ++m) {
             OdometryStep s = step;
             if (visualMotion) {

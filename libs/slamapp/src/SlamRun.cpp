@@ -39,8 +39,8 @@ struct InputError : std::runtime_error {
 constexpr std::size_t kPrescanObservations = 3000;
 
 std::set<std::string> allowedSections() {
-    std::set<std::string> s{"graphslam", "relocalization", "wheel_odometry", "visual_odometry",
-                            "odometry_fusion"};
+    std::set<std::string> s{"graphslam",       "relocalization",  "kidnap_detection",
+                            "wheel_odometry",  "visual_odometry", "odometry_fusion"};
     const auto& reg = graphslam::DeciderRegistry::instance();
     for (const auto& names : {reg.nodeDeciders(), reg.edgeDeciders(), reg.optimizers()}) {
         s.insert(names.begin(), names.end());

@@ -40,3 +40,10 @@ TEST(ReportJson, SettingAKeyAgainReplacesIt) {
     o.set("a", 1).set("a", 2);
     EXPECT_EQ(o.str(), "{\n  \"a\": 2\n}");
 }
+
+TEST(ReportJson, EpochTimestampsKeepTheirMilliseconds) {
+    // report.json carries relocation times; ten significant digits would round them to seconds.
+    JsonObject o;
+    o.set("t", 1700000511.533328);
+    EXPECT_NE(o.str().find("1700000511.53333"), std::string::npos) << o.str();
+}

@@ -42,7 +42,8 @@ std::string loadError(const std::string& from, const std::string& to) {
 
 TEST(Scenario, EveryShippedScenarioLoads) {
     for (const char* name :
-         {"office", "paper_loop", "paper_loop_qvga", "paper_kidnap", "corridor"}) {
+         {"office", "paper_loop", "paper_loop_qvga", "paper_kidnap", "paper_kidnap_unmapped",
+          "corridor", "corridor_kidnap"}) {
         const auto path = kConfigDir + "/" + name + ".ini";
         Scenario sc;
         ASSERT_NO_THROW(sc = Scenario::load(path)) << path;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <lodestone/graphslam/NodeDecider.h>
+#include <lodestone/graphslam/kidnap/KidnapDetector.h>
 #include <lodestone/odometry/FusedOdometry.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 
@@ -16,9 +17,13 @@ namespace lodestone::graphslam {
  * interval); keyframes, a subset spaced by `keyframe_distance` / `keyframe_angle_deg`, carry the
  * RGB-D data (paper 000 §2.3).
  *
- * Kidnapping (CObservationWheelDrop): while the robot is lifted its odometry is ignored; the
- * first node after it is put down starts a new segment, tied to the last node by a very weak
- * edge (`kidnap_edge_sigma`) until a loop closure re-anchors it (SlamEngine).
+ * Kidnapping: the wheel-drop sensor (CObservationWheelDrop, `kidnap_wheel_drop`) and/or
+ * kidnap::KidnapDetector (VO or magnetometers against the encoders, [kidnap_detection]) say
+ * when the robot was lifted and put down; while lifted its odometry is ignored; the first node
+ * after the put-down starts a new segment, tied to the last node by a very weak edge
+ * (`kidnap_edge_sigma`) until a verified relocation joins it to the map (SlamEngine). With the
+ * detector on, odometry is held back `latency` seconds so that a lift detected late still ends
+ * the odometry edges where it happened.
  *
  * Each node keeps the magnetometer readings since the previous one; each keyframe its ORB
  * features (from the visual odometry's pass) and, for map.ply, a coloured cloud.
@@ -35,6 +40,8 @@ class FusedOdometryNRD : public NodeDecider {
         int mapPixelStep{8};     ///< keyframe clouds for map.ply: every n-th pixel (0: none)
         double mapMaxDepth{4.0};  ///< [m]
         double kidnapEdgeSigma{100.0};  ///< [m, rad] of the edge across a kidnap
+        bool useWheelDrop{true};        ///< take kidnaps from CObservationWheelDrop
+        kidnap::KidnapDetector::Params detection;  ///< [kidnap_detection]
         odometry::FusedOdometry::Params odometry;
     };
 
@@ -59,6 +66,9 @@ class FusedOdometryNRD : public NodeDecider {
   private:
     void consume(const mrpt::obs::CObservation::Ptr& obs);
     void take(const odometry::FusedOdometry::Estimate& e);
+    /** Takes the held-back estimates older than `now` - latency (all for `now` = infinity). */
+    void release(double now);
+    void onDetectorEvent(const std::optional<kidnap::KidnapDetector::Event>& ev);
     void onWheelDrop(bool lifted, double t);
     bool registerPending();
     NodeRecord recordFor(double timestamp, bool keyframe);
@@ -77,6 +87,9 @@ class FusedOdometryNRD : public NodeDecider {
     std::deque<mrpt::obs::CObservation3DRangeScan::Ptr> recent_frames_;  // not yet resolved
     std::deque<MagneticSample> magnetic_;  // since the last node
     std::map<double, std::shared_ptr<const vision::FrameFeatures>> recent_features_;
+    std::unique_ptr<kidnap::KidnapDetector> detector_;  // null when off
+    std::deque<odometry::FusedOdometry::Estimate> held_;  // waiting out the detector's latency
+    std::string detector_sensor_;  // the magnetometer the detector listens to
     std::size_t frames_{0}, frames_lifted_{0}, kidnaps_{0}, keyframes_{0};
 };
 

@@ -59,6 +59,13 @@ class FusedOdometry {
          * first frame). Composing them gives `poses`; a pose graph takes these. */
         std::vector<mrpt::poses::CPosePDFGaussian> increments;
         vision::VoResult visual;
+        /** The frame's own wheel step (encoders alone; zero on the first frame). */
+        mrpt::poses::CPosePDFGaussian wheel;
+        /** When VO succeeded: the robot's motion since VO's reference frame
+         * (visual.referenceTimestamp), planar part with covariance, and how far the robot rose
+         * [m] with its variance: a wheeled robot does not rise (kidnap detection). */
+        std::optional<mrpt::poses::CPosePDFGaussian> visualSinceReference;
+        double visualRise{0}, visualRiseVariance{0};
     };
 
     /** `methods` defaults to {params.method}. */
@@ -87,7 +94,10 @@ class FusedOdometry {
     Eigen::Vector2d travelAt(double t) const;
     Estimate resolve(const Pending& p);
     Estimate fromPoseSample(double t, const mrpt::poses::CPose2D& pose);
-    mrpt::poses::CPosePDFGaussian visualOnRobot(const Pending& p) const;
+    /** VO's motion in the robot frame, projected on the plane; `rise` / `riseVariance`, when
+     * given, get its vertical part. */
+    mrpt::poses::CPosePDFGaussian visualOnRobot(const Pending& p, double* rise = nullptr,
+                                                double* riseVariance = nullptr) const;
 
     Params params_;
     std::vector<std::string> method_names_;
