@@ -86,13 +86,15 @@ RelocationEvaluation evaluateRelocations(const std::vector<ReportedKidnap>& repo
         const auto ate = absoluteTrajectoryError(trajectory, truth, o.maxDt);
         if (ate.pairs >= 3) e.runAte = ate.rmse;
     }
-    // The map frame against the truth: aligned on what was mapped before the first lift.
+    // The map frame against the truth: aligned on what was mapped before the first lift, as
+    // it was then when known (relocations attach to that map; what later solves do to it is
+    // the map-damage figure), else as it is at the end.
     const double firstLift = events.empty() ? INFINITY : events.front().liftTime;
     std::vector<io::TumPose> before;
     for (const auto& p : trajectory) {
         if (p.timestamp < firstLift) before.push_back(p);
     }
-    const auto preLift = absoluteTrajectoryError(before, truth, o.maxDt);
+    const auto preLift = absoluteTrajectoryError(mapBefore.size() >= 3 ? mapBefore : before, truth, o.maxDt);
     const bool aligned = preLift.pairs >= 3;
     if (!mapBefore.empty()) {
         const auto then = absoluteTrajectoryError(mapBefore, truth, o.maxDt);

@@ -110,6 +110,22 @@ TEST(Relocalizer, TwoIndependentAgreeingMatchesMoveTheSegmentAndJudgeTheRest) {
     }
 }
 
+TEST(Relocalizer, AgreeingClosuresThatLeaveTheHeadingFreeWait) {
+    // Magnetic-like closures: 0.2 m across, 10 deg in heading, all on one straight line. Two
+    // of them 1.5 m apart agree but leave the heading to +-8 deg: no merge yet.
+    KidnapFixture f;
+    const auto loose = [&](TNodeID mapNode, TNodeID segNode) {
+        LoopClosure lc = f.closure(mapNode, segNode, 0, false, "Magnetic");
+        lc.constraint.cov_inv = graphslam::planarInformation(0.2, 10 * M_PI / 180);
+        return lc;
+    };
+    EXPECT_FALSE(f.reloc.offer(f.graph, loose(2, kMapNodes + 2)));
+    EXPECT_FALSE(f.reloc.offer(f.graph, loose(8, kMapNodes + 8)));
+    EXPECT_NE(f.reloc.describe().str().find("\"undetermined_merges\": 1"), std::string::npos);
+    // A tight one that agrees pins it down.
+    EXPECT_TRUE(f.reloc.offer(f.graph, f.closure(14, kMapNodes + 14)));
+}
+
 TEST(Relocalizer, AStrongMatchRelocatesAlone) {
     KidnapFixture f;
     const auto m = f.reloc.offer(f.graph, f.closure(5, kMapNodes + 5, 0, true));

@@ -101,10 +101,17 @@ double chi2After(const Hypothesis& h, const Pose2& T) {
     return r.dot(h.cov.ldlt().solve(r));
 }
 
-Pose2 fitTransform(const std::vector<Hypothesis>& hs, const Pose2& start) {
+Matrix3 movedPoseCovariance(const Pose2& T, const Matrix3& covT, const Pose2& u) {
+    const Matrix3 J =
+        jacobian([&](const Vector3& v) { return vectorOf(moved(poseOf(v), u)); }, vectorOf(T));
+    return J * covT * J.transpose();
+}
+
+Pose2 fitTransform(const std::vector<Hypothesis>& hs, const Pose2& start, Matrix3* covariance) {
     Vector3 t = vectorOf(start);
+    Matrix3 H = Matrix3::Identity();
     for (int iteration = 0; iteration < 20; ++iteration) {
-        Matrix3 H = Matrix3::Zero();
+        H = Matrix3::Zero();
         Vector3 g = Vector3::Zero();
         for (const auto& h : hs) {
             const Matrix3 W = h.cov.ldlt().solve(Matrix3::Identity());
@@ -120,6 +127,7 @@ Pose2 fitTransform(const std::vector<Hypothesis>& hs, const Pose2& start) {
         t[2] = mrpt::math::wrapToPi(t[2]);
         if (step.head<2>().norm() < 1e-7 && std::abs(step[2]) < 1e-9) break;
     }
+    if (covariance) *covariance = H.ldlt().solve(Matrix3::Identity());
     return poseOf(t);
 }
 

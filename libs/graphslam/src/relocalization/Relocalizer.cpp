@@ -1,6 +1,7 @@
 #include <lodestone/config/IniSection.h>
 #include <lodestone/graphslam/relocalization/Relocalizer.h>
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 
 namespace lodestone::graphslam::relocalization {
@@ -19,6 +20,9 @@ Relocalizer::Params Relocalizer::readParams(const mrpt::config::CConfigFileBase&
     if (!(p.mapSigmaXY > 0)) s.fail("map_sigma_xy", "must be > 0");
     if (!(p.mapSigmaYaw > 0)) s.fail("map_sigma_yaw_deg", "must be > 0");
     if (maxHyp < 2) s.fail("max_hypotheses", "must be >= 2");
+    p.maxSigmaXY = s.getDouble("max_sigma_xy", p.maxSigmaXY);
+    p.maxSigmaYaw = s.getDouble("max_sigma_yaw_deg", p.maxSigmaYaw * 180 / M_PI) * M_PI / 180;
+    if (!(p.maxSigmaXY > 0) || !(p.maxSigmaYaw > 0)) s.fail("max_sigma_xy", "must be > 0");
     p.maxHypotheses = static_cast<std::size_t>(maxHyp);
     s.finish();
     return p;
@@ -159,8 +163,21 @@ std::optional<Relocalizer::Merge> Relocalizer::offer(const Graph& graph, const L
             for (std::size_t y = x + 1; y < kept_.size() && !verified; ++y)
                 verified = independent(kept_[x], kept_[y]);
         }
+        Matrix3 covT = Matrix3::Identity();
+        if (verified) T = fitTransform(keptHs, T, &covT);
         if (verified) {
-            if (keptHs.size() != hs.size()) T = fitTransform(keptHs, T);
+            // Determined enough where the robot is now (the newest closure's moving end)?
+            const Matrix3 c = movedPoseCovariance(T, covT, hs.front().u);
+            const double sxy = std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(
+                                             c.topLeftCorner<2, 2>())
+                                             .eigenvalues()
+                                             .maxCoeff());
+            if (sxy > params_.maxSigmaXY || std::sqrt(c(2, 2)) > params_.maxSigmaYaw) {
+                verified = false;
+                ++undetermined_;
+            }
+        }
+        if (verified) {
             Merge m;
             m.keptGroup = kept;
             m.movedGroup = moved;
@@ -236,7 +253,9 @@ JsonObject Relocalizer::describe() const {
         .set("independent_travel", params_.independentTravel)
         .set("map_sigma_xy", params_.mapSigmaXY)
         .set("map_sigma_yaw_deg", params_.mapSigmaYaw * 180 / M_PI)
-        .set("max_hypotheses", params_.maxHypotheses);
+        .set("max_hypotheses", params_.maxHypotheses)
+        .set("max_sigma_xy", params_.maxSigmaXY)
+        .set("max_sigma_yaw_deg", params_.maxSigmaYaw * 180 / M_PI);
     std::vector<JsonObject> kidnaps;
     for (const auto& k : kidnaps_) {
         std::string sources;
@@ -267,6 +286,7 @@ JsonObject Relocalizer::describe() const {
         .set("merges", merges_)
         .set("rejected_hypotheses", rejectedTotal_)
         .set("dropped_hypotheses", dropped_)
+        .set("undetermined_merges", undetermined_)
         .set("pending_hypotheses", pending_.size());
     return JsonObject().set("params", params).set("stats", stats).set("kidnaps", kidnaps);
 }

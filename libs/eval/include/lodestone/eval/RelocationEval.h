@@ -32,8 +32,8 @@ struct RelocationVerdict {
     bool relocated{false};
     double secondsToRelocation{NAN};  ///< from the true put-down
     double travelToRelocation{NAN};   ///< [m] the segment's odometry
-    double positionError{NAN};        ///< [m] relocated pose vs truth, map aligned on the
-    double yawError{NAN};             ///< [rad] ... pre-kidnap nodes of the final trajectory
+    double positionError{NAN};        ///< [m] relocated pose vs truth, the map aligned on its
+    double yawError{NAN};             ///< [rad] ... pre-kidnap nodes as they were at the lift
     bool wrong{false};                ///< error > `wrongDistance` or > `wrongYaw`
     std::string deciders;
 };

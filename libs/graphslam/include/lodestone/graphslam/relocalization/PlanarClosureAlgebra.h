@@ -50,8 +50,12 @@ double pairwiseChi2(const Hypothesis& i, const Hypothesis& j, const Matrix3& odo
                     const Matrix3& mapCov);
 
 /** The move T of a group that best satisfies the given closures (Gauss-Newton on SE(2),
- * weighted by their information), starting from `start`. */
-Pose2 fitTransform(const std::vector<Hypothesis>& hs, const Pose2& start);
+ * weighted by their information), starting from `start`; `covariance`, when given, gets that
+ * of T's x, y, yaw (the inverse of the normal matrix). */
+Pose2 fitTransform(const std::vector<Hypothesis>& hs, const Pose2& start,
+                   Matrix3* covariance = nullptr);
+/** Covariance of T (+) u given T's: how well a move pins down a pose of the moved group. */
+Matrix3 movedPoseCovariance(const Pose2& T, const Matrix3& covT, const Pose2& u);
 /** Squared Mahalanobis residual of hypothesis h after its u end is moved by T. */
 double chi2After(const Hypothesis& h, const Pose2& T);
 

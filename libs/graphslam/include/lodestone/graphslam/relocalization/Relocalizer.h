@@ -22,6 +22,11 @@ struct RelocalizerParams {
     double mapSigmaXY{0.05};          ///< [m] relative pose of two nodes of one group ...
     double mapSigmaYaw{M_PI / 180};   ///< [rad] ... once merged or optimized
     std::size_t maxHypotheses{400};   ///< pending per pair of groups (oldest dropped)
+    /** The agreeing closures must pin the moved group's latest pose down this well (1 sigma of
+     * the fitted move): closures along one straight line may agree and still leave the heading
+     * free (magnetic ones claim 10 deg), and a heading error swings the whole segment. */
+    double maxSigmaXY{0.05};          ///< [m]
+    double maxSigmaYaw{2 * M_PI / 180};  ///< [rad]
 };
 
 /** Global relocalization after a kidnap, keeping the map intact (paper 000 §2.4).
@@ -37,11 +42,13 @@ struct RelocalizerParams {
  *    least `independent_travel` apart along the segment and from different matches); or
  *  - one hypothesis its matcher marked strong (evidence over that matcher's INI threshold).
  * The move is then fitted to the agreeing hypotheses; each is judged at it (a wrong one is
- * dropped), as is every other pending hypothesis of the pair; only those that agree become
- * edges. The kept group never moves: only the moved group's nodes change, rigidly.
+ * dropped), and the fit must pin the moved group's pose down (`max_sigma_xy`,
+ * `max_sigma_yaw_deg`), else the hypotheses wait for more; every other pending hypothesis of
+ * the pair is judged at the move; only those that agree become edges. The kept group never moves: only the moved group's nodes change, rigidly.
  *
  * INI section [relocalization]: consistency_chi2 (0: chi-square 99.9 % for 3 dof),
- * independent_travel [m], map_sigma_xy [m], map_sigma_yaw_deg, max_hypotheses. */
+ * independent_travel [m], map_sigma_xy [m], map_sigma_yaw_deg, max_hypotheses, max_sigma_xy [m],
+ * max_sigma_yaw_deg. */
 class Relocalizer {
   public:
     using Params = RelocalizerParams;
@@ -116,7 +123,7 @@ class Relocalizer {
     std::deque<Pending> pending_;
     std::vector<KidnapRecord> kidnaps_;
     std::vector<std::pair<TNodeID, mrpt::poses::CPose3D>> map_at_first_kidnap_;
-    std::size_t offered_{0}, merges_{0}, rejectedTotal_{0}, dropped_{0};
+    std::size_t offered_{0}, merges_{0}, rejectedTotal_{0}, dropped_{0}, undetermined_{0};
 };
 
 }  // namespace lodestone::graphslam::relocalization
