@@ -41,7 +41,7 @@ Vector3 residualAfter(const Hypothesis& h, const Pose2& T) {
     return h.uIsTo ? closureResidual(h.a, u, h.z) : closureResidual(u, h.a, h.z);
 }
 
-/** Where hypothesis h puts its u end, in the anchored frame, from its a end moved by m. */
+/** Where a closure from anchored pose `a` puts its moving end, in the anchored frame. */
 Pose2 mapPoseOfU(const Pose2& a, const Pose2& z, bool uIsTo) {
     return uIsTo ? a + z : a + inverse(z);
 }

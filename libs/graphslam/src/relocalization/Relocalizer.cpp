@@ -149,19 +149,19 @@ std::optional<Relocalizer::Merge> Relocalizer::offer(const Graph& graph, const L
         const auto& h0 = hs.front();
         Pose2 T = fitTransform(hs, impliedTransform(h0.a, h0.u, h0.z, h0.uIsTo));
         // Judged at the fitted move; the verification must survive without whoever fails.
-        std::vector<Pending> kept_;
+        std::vector<Pending> survivors;
         std::vector<Hypothesis> keptHs;
         for (std::size_t k = 0; k < set.size(); ++k) {
             if (chi2After(hs[k], T) <= params_.consistencyChi2) {
-                kept_.push_back(set[k]);
+                survivors.push_back(set[k]);
                 keptHs.push_back(hs[k]);
             }
         }
         bool verified = false;
-        for (std::size_t x = 0; x < kept_.size() && !verified; ++x) {
-            verified = kept_[x].closure.strong;
-            for (std::size_t y = x + 1; y < kept_.size() && !verified; ++y)
-                verified = independent(kept_[x], kept_[y]);
+        for (std::size_t x = 0; x < survivors.size() && !verified; ++x) {
+            verified = survivors[x].closure.strong;
+            for (std::size_t y = x + 1; y < survivors.size() && !verified; ++y)
+                verified = independent(survivors[x], survivors[y]);
         }
         Matrix3 covT = Matrix3::Identity();
         if (verified) T = fitTransform(keptHs, T, &covT);
@@ -182,12 +182,12 @@ std::optional<Relocalizer::Merge> Relocalizer::offer(const Graph& graph, const L
             m.keptGroup = kept;
             m.movedGroup = moved;
             m.transform = T;
-            for (const auto& p : kept_) {
+            for (const auto& p : survivors) {
                 m.accepted.push_back(p.closure);
                 m.sources.insert(p.closure.source);
             }
             const auto inSet = [&](const Pending& p) {
-                return std::any_of(kept_.begin(), kept_.end(), [&](const Pending& q) {
+                return std::any_of(survivors.begin(), survivors.end(), [&](const Pending& q) {
                     return q.closure.from == p.closure.from && q.closure.to == p.closure.to &&
                            q.closure.constraint.mean == p.closure.constraint.mean;
                 });
