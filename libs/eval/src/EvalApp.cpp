@@ -1,4 +1,5 @@
 #include <lodestone/config/CommandLine.h>
+#include <lodestone/eval/ClosureEval.h>
 #include <lodestone/eval/EvalApp.h>
 #include <lodestone/eval/RelocationEval.h>
 #include <lodestone/eval/TrajectoryPlot.h>
@@ -35,6 +36,24 @@ int runRelocationEval(const std::string& dir, std::string truthPath, std::string
     return 0;
 }
 
+int runClosureEval(const std::string& dir, std::string truthPath, double maxDt, double radius,
+                   std::ostream& out, std::ostream& err) {
+    try {
+        if (truthPath.empty()) truthPath = dir + "/ground_truth.tum";
+        const auto closures = readClosureLog(dir + "/closures.csv");
+        const auto trajectory = io::readTumTrajectory(dir + "/trajectory.tum");
+        const auto truth = io::readTumTrajectory(truthPath);
+        ClosureEvalOptions options;
+        options.maxDt = maxDt;
+        options.radius = radius;
+        out << formatClosureQuality(evaluateClosures(closures, trajectory, truth, options), options);
+    } catch (const std::exception& e) {
+        err << "lodestone-eval: error: " << e.what() << "\n";
+        return 1;
+    }
+    return 0;
+}
+
 }  // namespace
 
 int runEvalApp(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
@@ -43,13 +62,16 @@ int runEvalApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
         "  lodestone-eval EST.tum GT.tum            ATE and RPE\n"
         "  lodestone-eval relocation SLAM_OUT_DIR   kidnaps of a lodestone-slam run, judged\n"
         "      (reads report.json, trajectory.tum, map_at_first_kidnap.tum, and the ground\n"
-        "      truth and events that lodestone-slam --sim writes there, unless given)",
+        "      truth and events that lodestone-slam --sim writes there, unless given)\n"
+        "  lodestone-eval closures SLAM_OUT_DIR     each loop closer's proposals judged against\n"
+        "      the truth: precision, recall of revisits, recall at 100 % precision (reads\n"
+        "      closures.csv, trajectory.tum and ground_truth.tum unless --ground-truth)",
         ' ', "");
     TCLAP::UnlabeledMultiArg<std::string> files(
-        "EST_GT", "EST.tum then GT.tum (TUM format), or: relocation SLAM_OUT_DIR", true, "EST GT",
+        "EST_GT", "EST.tum then GT.tum (TUM format), or: relocation|closures SLAM_OUT_DIR", true, "EST GT",
         cmd);
     TCLAP::ValueArg<std::string> truthArg("g", "ground-truth",
-                                          "relocation: ground truth (default DIR/ground_truth.tum)",
+                                          "relocation, closures: ground truth (default DIR/ground_truth.tum)",
                                           false, "", "TUM", cmd);
     TCLAP::ValueArg<std::string> eventsArg(
         "e", "events", "relocation: the simulator's kidnap events (default DIR/events.txt)", false,
@@ -58,22 +80,36 @@ int runEvalApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
                                       "", "PNG", cmd);
     TCLAP::ValueArg<double> maxDt("", "max-dt", "timestamp association tolerance [s]", false, 0.02,
                                   "S", cmd);
+    TCLAP::ValueArg<double> radius("", "radius",
+                                   "closures: a closure is right within this of the truth [m]",
+                                   false, 0.5, "M", cmd);
     const auto outcome = config::parseCommandLine(cmd, std::vector<std::string>(argv, argv + argc));
     if (outcome.kind == config::ParseOutcome::Kind::HelpShown) return 0;
-    const bool relocation = files.getValue().size() == 2 && files.getValue()[0] == "relocation";
-    if (!relocation && (truthArg.isSet() || eventsArg.isSet())) {
-        err << "lodestone-eval: --ground-truth and --events belong to 'relocation' (see lodestone-eval --help)\n";
-        return 2;
-    }
-    if (relocation) {
-        return runRelocationEval(files.getValue()[1], truthArg.getValue(), eventsArg.getValue(),
-                                 maxDt.getValue(), out, err);
-    }
     if (outcome.kind == config::ParseOutcome::Kind::UsageError || files.getValue().size() != 2) {
         err << "lodestone-eval: "
             << (outcome.error.empty() ? "expected EST.tum and GT.tum" : outcome.error)
             << " (see lodestone-eval --help)\n";
         return 2;
+    }
+    const bool relocation = files.getValue().size() == 2 && files.getValue()[0] == "relocation";
+    const bool closures = files.getValue().size() == 2 && files.getValue()[0] == "closures";
+    if ((!relocation && !closures && truthArg.isSet()) || (!relocation && eventsArg.isSet()) ||
+        (!closures && radius.isSet())) {
+        err << "lodestone-eval: --ground-truth belongs to 'relocation' and 'closures', --events "
+               "to 'relocation', --radius to 'closures' (see lodestone-eval --help)\n";
+        return 2;
+    }
+    if (closures) {
+        if (!(radius.getValue() > 0)) {
+            err << "lodestone-eval: --radius must be > 0\n";
+            return 2;
+        }
+        return runClosureEval(files.getValue()[1], truthArg.getValue(), maxDt.getValue(),
+                              radius.getValue(), out, err);
+    }
+    if (relocation) {
+        return runRelocationEval(files.getValue()[1], truthArg.getValue(), eventsArg.getValue(),
+                                 maxDt.getValue(), out, err);
     }
     try {
         const auto est = io::readTumTrajectory(files.getValue()[0]);

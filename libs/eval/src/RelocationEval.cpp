@@ -22,18 +22,6 @@ double wrap(double a) { return std::remainder(a, 2 * M_PI); }
 
 double yawOf(const Eigen::Matrix3d& R) { return std::atan2(R(1, 0), R(0, 0)); }
 
-/** The ground-truth pose nearest `t`, if one lies within `maxDt`. */
-const io::TumPose* truthAt(const std::vector<io::TumPose>& truth, double t, double maxDt) {
-    const auto it = std::lower_bound(truth.begin(), truth.end(), t,
-                                     [](const io::TumPose& p, double v) { return p.timestamp < v; });
-    const io::TumPose* best = nullptr;
-    for (auto c : {it, it == truth.begin() ? it : it - 1}) {
-        if (c == truth.end()) continue;
-        if (!best || std::abs(c->timestamp - t) < std::abs(best->timestamp - t)) best = &*c;
-    }
-    return best && std::abs(best->timestamp - t) <= maxDt ? best : nullptr;
-}
-
 }  // namespace
 
 std::vector<ReportedKidnap> readReportedKidnaps(const std::string& reportJson) {
@@ -174,6 +162,21 @@ std::string formatRelocationEvaluation(const RelocationEvaluation& e) {
     std::snprintf(line, sizeof line, "\nrelocated %zu of %zu, wrong %zu, false detections %zu\n",
                   relocated, e.kidnaps.size(), wrong, e.falseDetections);
     out += line;
+    double seconds = 0, metres = 0, worstSeconds = 0, worstMetres = 0;
+    for (const auto& v : e.kidnaps) {
+        if (!v.relocated) continue;
+        seconds += v.secondsToRelocation;
+        metres += v.travelToRelocation;
+        worstSeconds = std::max(worstSeconds, v.secondsToRelocation);
+        worstMetres = std::max(worstMetres, v.travelToRelocation);
+    }
+    if (relocated) {
+        std::snprintf(line, sizeof line,
+                      "put-down to relocation: mean %.1f s (max %.1f), mean %.2f m of travel (max %.2f)\n",
+                      seconds / double(relocated), worstSeconds, metres / double(relocated),
+                      worstMetres);
+        out += line;
+    }
     if (e.mapAteBefore && e.mapAteAfter) {
         std::snprintf(line, sizeof line,
                       "map before the first lift: ATE %.4f m then, %.4f m at the end (change %+.4f m)\n",

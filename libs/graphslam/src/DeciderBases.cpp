@@ -37,10 +37,11 @@ void EdgeDecider::registerNewEdge(const TNodeID& from, const TNodeID& to, const 
 }
 
 void EdgeDecider::registerClosure(TNodeID from, TNodeID to, const Constraint& c,
-                                  std::size_t matchId, bool strong) {
+                                  std::size_t matchId, bool strong, double score) {
     registerNewEdge(from, to, c);
     queued_.back().matchId = matchId;
     queued_.back().strong = strong;
+    queued_.back().score = score;
 }
 
 std::vector<LoopClosure> EdgeDecider::takeNewLoopClosures() {

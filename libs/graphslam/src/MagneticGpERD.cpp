@@ -322,7 +322,7 @@ void MagneticGpERD::addEdge(TNodeID target, std::size_t queryNode,
     const Constraint c = planarConstraint(z);
     const auto q = static_cast<TNodeID>(queryNode);
     // The edges of one alignment are one piece of evidence for the relocalizer.
-    registerClosure(target, q, c, records_.size(), false);
+    registerClosure(target, q, c, records_.size(), false, -rec.normalizedRms);
     rec.edges.emplace_back(target, q);
     rec.constraints.push_back(c);
     constrained_[queryNode] = true;

@@ -173,7 +173,7 @@ void OrbSubmapERD::query(TNodeID id, const NodeRecord& rec) {
     registerClosure(
         from, id,
         constraintOf(r.nodeToQuery, r.covariance, params_.minSigmaXY, params_.minSigmaYaw),
-        records_.size(), strong);
+        records_.size(), strong, static_cast<double>(r.inliers));
     records_.push_back({from, id, submap, r.usedPhase2, r.inliers, r.phase2Inliers, r.nodeToQuery});
     ++stats_.accepted;
     stats_.phase2Used += r.usedPhase2;

@@ -81,7 +81,8 @@ void SlamEngine::afterNodeDecider(bool /*newNode*/) {
     }
     std::vector<LoopClosure> closures;
     for (auto& lc : erd_->takeNewLoopClosures()) {
-        if (relocalizer_.sameGroup(lc.from, lc.to)) {
+        proposals_.push_back({lc, !relocalizer_.sameGroup(lc.from, lc.to)});
+        if (!proposals_.back().hypothesis) {
             closures.push_back(std::move(lc));
             continue;
         }

@@ -1,6 +1,7 @@
 #include <lodestone/config/IniSection.h>
 #include <lodestone/eval/TrajectoryError.h>
 #include <lodestone/eval/TrajectoryPlot.h>
+#include <lodestone/graphslam/ClosureLog.h>
 #include <lodestone/graphslam/DeciderRegistry.h>
 #include <lodestone/graphslam/FusedOdometryNRD.h>
 #include <lodestone/graphslam/MapExport.h>
@@ -235,6 +236,7 @@ SlamRunResult runSlam(const SlamRunOptions& options, std::ostream& out, std::ost
         const std::string trajectory = (dir / "trajectory.tum").string();
         graphslam::writeNodeTrajectory(trajectory, graph, engine->nodes());
         graph.saveToTextFile((dir / "graph.graph").string());
+        graphslam::writeClosureLog((dir / "closures.csv").string(), *engine);
         const auto& beforeKidnap = engine->relocalizer().mapAtFirstKidnap();
         if (!beforeKidnap.empty()) {
             // What the map was when the first kidnap began: lodestone-eval relocation compares
@@ -300,7 +302,7 @@ SlamRunResult runSlam(const SlamRunOptions& options, std::ostream& out, std::ost
             out << line;
         }
         out << "outputs in " << dir.string()
-            << ": trajectory.tum graph.graph map.ply report.json graph.png"
+            << ": trajectory.tum graph.graph closures.csv map.ply report.json graph.png"
             << (result.ateRmse ? " trajectory.png" : "") << (simulator ? " ground_truth.tum events.txt" : "")
             << (beforeKidnap.empty() ? "" : " map_at_first_kidnap.tum")
             << "\n";

@@ -14,6 +14,10 @@ std::vector<std::pair<std::size_t, std::size_t>> associate(const std::vector<io:
                                                            const std::vector<io::TumPose>& gt,
                                                            double maxDt = 0.02);
 
+/** The ground-truth pose nearest `t` (`truth` sorted by time), if one lies within `maxDt`;
+ * else nullptr. */
+const io::TumPose* truthAt(const std::vector<io::TumPose>& truth, double t, double maxDt);
+
 /** Absolute trajectory error (TUM RGB-D benchmark): the estimate rigidly aligned to the ground
  * truth (Horn's method: least squares over the associated positions, no scale), then the
  * translational differences. */

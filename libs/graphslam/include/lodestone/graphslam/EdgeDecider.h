@@ -28,9 +28,11 @@ class EdgeDecider : public mrpt::graphslam::deciders::CEdgeRegistrationDecider<G
   protected:
     /** registerNewEdge with what the relocalizer weighs: closures sharing `matchId` come from
      * one match (not independent evidence); `strong` when the match alone is convincing by
-     * the decider's own threshold. registerNewEdge gives every closure a match of its own. */
+     * the decider's own threshold; `score` is the decider's measure of the evidence (higher
+     * is stronger, see LoopClosure::score). registerNewEdge gives every closure a match of its
+     * own. */
     void registerClosure(TNodeID from, TNodeID to, const Constraint& c, std::size_t matchId,
-                         bool strong);
+                         bool strong, double score);
 
     std::vector<LoopClosure> queued_;
     std::size_t registered_{0};

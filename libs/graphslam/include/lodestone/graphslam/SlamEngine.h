@@ -57,6 +57,14 @@ class SlamEngine {
         std::size_t relocations{0};  ///< merges of a kidnapped segment into the map
     };
     const Stats& stats() const { return stats_; }
+
+    /** A loop closure as the edge decider proposed it, before the relocalizer or the optimizer
+     * judged it: what benchmarks score each matcher on (see ClosureLog.h). */
+    struct Proposal {
+        LoopClosure closure;
+        bool hypothesis{false};  ///< it joined two groups (a relocation hypothesis)
+    };
+    const std::vector<Proposal>& proposals() const { return proposals_; }
     /** Engine statistics and every component's describe() for report.json. */
     JsonObject describe() const;
 
@@ -73,6 +81,7 @@ class SlamEngine {
     relocalization::Relocalizer relocalizer_;
     TNodeID relocalizer_seen_{0};
     Stats stats_;
+    std::vector<Proposal> proposals_;
     double since_node_ms_{0};
 };
 

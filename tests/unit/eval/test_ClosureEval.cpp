@@ -1,0 +1,119 @@
+#include <gtest/gtest.h>
+#include <lodestone/eval/ClosureEval.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+
+using namespace lodestone;
+
+namespace {
+
+/** Truth: two laps of a 4 m x 4 m square at 0.1 m per node (one node per second), except that
+ * on the second lap the north side runs 1 m outside the first: the second lap's revisits are
+ * two passes, before and after that side. The estimate is the truth (closures are judged on
+ * the truth alone). */
+struct TwoLaps {
+    std::vector<io::TumPose> truth;
+    TwoLaps() {
+        const double side = 4.0, step = 0.1;
+        const int perSide = static_cast<int>(std::lround(side / step));
+        int t = 0;
+        for (int lap = 0; lap < 2; ++lap) {
+            for (int s = 0; s < 4; ++s) {
+                for (int k = 0; k < perSide; ++k, ++t) {
+                    const double a = k * step;
+                    double x = 0, y = 0, yaw = s * M_PI / 2;
+                    if (s == 0) x = a;
+                    if (s == 1) x = side, y = a;
+                    if (s == 2) x = side - a, y = side + (lap == 1 ? 1.0 : 0.0);
+                    if (s == 3) x = 0, y = side - a;
+                    truth.push_back({double(t), mrpt::poses::CPose3D(x, y, 0, yaw, 0, 0)});
+                }
+            }
+        }
+    }
+    /** A closure from node `from` to `to`, measured as the truth has it, then moved by `error`
+     * metres along the x of `from`. */
+    eval::ReportedClosure closure(int from, int to, double score, double error = 0,
+                                  const char* source = "A") const {
+        eval::ReportedClosure c;
+        c.fromNode = from;
+        c.toNode = to;
+        c.fromTime = truth[std::size_t(from)].timestamp;
+        c.toTime = truth[std::size_t(to)].timestamp;
+        c.source = source;
+        c.score = score;
+        c.measured = truth[std::size_t(to)].pose - truth[std::size_t(from)].pose;
+        c.measured.x_incr(error);
+        return c;
+    }
+};
+
+}  // namespace
+
+TEST(ClosureEval, RevisitPassesAndRecallAtFullPrecision) {
+    TwoLaps run;
+    // Lap 2 starts at node 160: east side 200-239 is the first pass, north 240-279 is 1 m off
+    // (no revisit), west 280-319 the second pass (with 160-239 joined to the first).
+    std::vector<eval::ReportedClosure> closures = {
+        run.closure(10, 170, 50),          // right, pass 1
+        run.closure(290 - 160, 290, 20),   // right, pass 2, but scores below the wrong one
+        run.closure(50, 210, 30, 2.0),     // wrong by 2 m
+        run.closure(60, 220, 40, 0.3),     // right (0.3 m within 0.5)
+        run.closure(20, 180, 10, 0.0, "B"),
+    };
+    const auto q = eval::evaluateClosures(closures, run.truth, run.truth);
+    ASSERT_EQ(q.size(), 2u);
+    const auto& a = q[0];
+    EXPECT_EQ(a.source, "A");
+    EXPECT_EQ(a.passes, 2u);
+    EXPECT_EQ(a.proposals, 4u);
+    EXPECT_EQ(a.right, 3u);
+    EXPECT_EQ(a.wrong, 1u);
+    EXPECT_NEAR(a.maxError, 2.0, 1e-9);
+    EXPECT_NEAR(a.threshold, 30, 1e-12);
+    EXPECT_EQ(a.passesDetected, 2u);
+    EXPECT_EQ(a.passesAt100, 1u);  // pass 2's closure scores 20 < 30
+    EXPECT_NEAR(a.recallAt100(), 0.5, 1e-12);
+    const auto& b = q[1];
+    EXPECT_EQ(b.wrong, 0u);
+    EXPECT_TRUE(std::isnan(b.threshold));
+    EXPECT_EQ(b.passesAt100, 1u);
+    const auto table = eval::formatClosureQuality(q, {});
+    EXPECT_NE(table.find("| A | 4 | 3 | 1 |"), std::string::npos) << table;
+}
+
+TEST(ClosureEval, ATurnedMeasurementIsWrongWhereItLands) {
+    TwoLaps run;
+    auto c = run.closure(10, 170, 50);
+    // 0.3 rad of heading error alone leaves the position right: only where `to` lands counts.
+    c.measured = mrpt::poses::CPose3D(c.measured.x(), c.measured.y(), 0, c.measured.yaw() + 0.3, 0, 0);
+    auto q = eval::evaluateClosures({c}, run.truth, run.truth);
+    EXPECT_EQ(q[0].right, 1u);
+    // A closure to a node 3 m further along is wrong.
+    q = eval::evaluateClosures({run.closure(10, 200, 50, 3.0)}, run.truth, run.truth);
+    EXPECT_EQ(q[0].wrong, 1u);
+}
+
+TEST(ClosureEval, AMalformedLogNamesFileAndLine) {
+    const std::string path = ::testing::TempDir() + "closures_bad.csv";
+    {
+        std::ofstream f(path);
+        f << "from_node,to_node,from_time,to_time,source,match_id,score,strong,hypothesis,kept,"
+             "x,y,z,yaw,pitch,roll\n"
+          << "1,2,0.5,1.5,A,0,3,0,0,1,0.1,0,0,0,0,0\n"
+          << "1,2,0.5,nan,A,0,3,0,0,1,0.1,0,0,0,0,0\n";
+    }
+    try {
+        eval::readClosureLog(path);
+        FAIL() << "no error";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find(path + ": line 3"), std::string::npos) << e.what();
+    }
+    {
+        std::ofstream f(path);
+        f << "something else\n";
+    }
+    EXPECT_THROW(eval::readClosureLog(path), std::runtime_error);
+}
