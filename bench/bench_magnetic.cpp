@@ -144,8 +144,8 @@ int recordings(const std::string& data, const std::string& out, int seeds,
                         [=] { return io::readKokWalk(data + "/kok/" + w + ".csv"); }});
     }
     std::printf(
-        "| recording | path [m] | seeds | ATE odometry [m] | ATE magnetic [m] | magnetic / "
-        "odometry | "
+        "| recording | path [m] | seeds | ATE odometry [m] | ATE magnetic [m]: median / worst | "
+        "magnetic / odometry: median / worst | "
         "closure edges per run | closure error: median / max [m] | > 0.5 m | along the path: "
         "median / max [m] | > 0.5 m | real-time factor | path within 0.2 m of an earlier pass: "
         "same direction / reversed / crossing [m] |\n");
@@ -202,10 +202,11 @@ int recordings(const std::string& data, const std::string& out, int seeds,
             ratio.push_back(ate[1] / ate[0]);
         }
         std::printf(
-            "| %s | %.1f | %d | %.3f | %.3f | %.2f | %.1f | %.3f / %.3f | %zu | %.3f / %.3f | %zu "
-            "| %.0fx | %.1f / %.1f / %.1f |\n",
+            "| %s | %.1f | %d | %.3f | %.3f / %.3f | %.2f / %.2f | %.1f | %.3f / %.3f | %zu | %.3f / "
+            "%.3f | %zu | %.0fx | %.1f / %.1f / %.1f |\n",
             rec.name.c_str(), recording.pathLength(), seeds, median(odo), median(mag),
-            median(ratio), double(edges) / seeds, median(med),
+            *std::max_element(mag.begin(), mag.end()), median(ratio),
+            *std::max_element(ratio.begin(), ratio.end()), double(edges) / seeds, median(med),
             *std::max_element(worst.begin(), worst.end()), over, median(amed),
             *std::max_element(aworst.begin(), aworst.end()), aover, median(rt), seen.same,
             seen.reversed, seen.crossing);

@@ -2,13 +2,13 @@
 # Magnetic loop closure benchmarks (MagneticGpERD, config_ini/magnetic_only.ini), printed as
 # markdown tables:
 #   1. Aalto invensense trials 1-9 and Kok & Solin's walks, read in place from
-#      ../shared/data/magnetic, each imported with the drift model for seeds 1..5 and run through
+#      ../shared/data/magnetic, each imported with the drift model for seeds 1..N (10) and run through
 #      lodestone-slam's code path with odometry_only.ini and magnetic_only.ini: median ATEs,
 #      closures and their errors against the ground truth, and how much of each path comes back
 #      near an earlier pass; then Kok's walks with the path alignment (eq. 3 alone), the vector
 #      field feature, and the pre-fit hyperparameters instead;
 #   2. time per new supernode with 1 000 and 10 000 supernodes stored.
-# Usage: scripts/bench/magnetic.sh [SEEDS]   (default 5; about 40 s in all)
+# Usage: scripts/bench/magnetic.sh [SEEDS]   (default 10; about a minute in all)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 data="$root/../shared/data/magnetic"
@@ -22,7 +22,7 @@ if [ -d "$data" ]; then
     echo "#### Magnetic SLAM on real recordings (median over seeds; one core)"
     echo
     # (the optimizer logs its rejections on stdout: kept out of the table)
-    "${pin[@]}" "$bin/bench_magnetic" recordings "$data" "$out" "${1:-5}" 2> /dev/null | grep -v "^\["
+    "${pin[@]}" "$bin/bench_magnetic" recordings "$data" "$out" "${1:-10}" 2> /dev/null | grep -v "^\["
     echo
     echo "#### Kok walks: the alignment and the field feature compared (magnetic_only.ini with one key changed)"
     echo
@@ -32,7 +32,7 @@ if [ -d "$data" ]; then
         for kv in $variant; do sed -i "s|^${kv%%=*} *=[^;]*|${kv%%=*} = ${kv#*=} |" "$ini"; done
         echo "$variant:"
         echo
-        "${pin[@]}" "$bin/bench_magnetic" recordings "$data" "$out" "${1:-5}" "$ini" kok 2> /dev/null | grep -v "^\["
+        "${pin[@]}" "$bin/bench_magnetic" recordings "$data" "$out" "${1:-10}" "$ini" kok 2> /dev/null | grep -v "^\["
         echo
     done
 else

@@ -68,7 +68,18 @@ std::vector<std::pair<std::size_t, std::size_t>> revisitPasses(
         }
         std::size_t j = i;
         while (j + 1 < revisit.size() && revisit[j + 1]) ++j;
-        if (travel[j] - travel[i] >= o.minPassLength) passes.emplace_back(i, j);
+        // A long revisit (a whole lap driven again) is many places to recognise: cut it into
+        // pieces of `pieceLength`, the last one joined to its predecessor when short.
+        if (travel[j] - travel[i] >= o.minPassLength) {
+            std::size_t start = i;
+            for (std::size_t k = i; k <= j; ++k) {
+                if (travel[k] - travel[start] >= o.pieceLength && travel[j] - travel[k] >= o.minPassLength) {
+                    passes.emplace_back(start, k - 1);
+                    start = k;
+                }
+            }
+            passes.emplace_back(start, j);
+        }
         i = j + 1;
     }
     return passes;
@@ -189,11 +200,12 @@ std::string formatClosureQuality(const std::vector<MatcherQuality>& qs,
         out += line;
     }
     std::snprintf(line, sizeof line,
-                  "\nright: the measured pose lands within %.2f m of the truth; a pass: a revisit "
-                  "(nodes within %.2f m and %.0f deg of a place passed %.1f m of travel before) "
-                  "at least %.1f m long; recall: passes with a right closure, at 100 %% "
-                  "precision: scoring above every wrong one\n",
-                  o.radius, o.radius, o.revisitYaw * 180 / M_PI, o.minGap, o.minPassLength);
+                  "\nright: the measured pose lands within %.2f m of the truth; a pass: %.1f m "
+                  "(or less, down to %.1f m) of revisit, nodes within %.2f m and %.0f deg of a "
+                  "place passed %.1f m of travel before; recall: passes with a right closure "
+                  "ending in them, at 100 %% precision: scoring above every wrong one\n",
+                  o.radius, o.pieceLength, o.minPassLength, o.radius, o.revisitYaw * 180 / M_PI,
+                  o.minGap);
     out += line;
     return out;
 }

@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "Stopwatch.h"
 
@@ -20,6 +21,7 @@ void MagneticGpERD::rebuild() {
     index_ = std::make_unique<magnetic::SupernodeIndex>(
         track_->channels(), track_->samplesPerSupernode(), params_.indexBins);
     matcher_ = std::make_unique<magnetic::BundleMatcher>(params_.bundle);
+    uncertainty_ = closure::PathUncertainty(params_.uncertainty);
 }
 
 void MagneticGpERD::configure(const mrpt::config::CConfigFileBase& ini) {
@@ -40,10 +42,16 @@ void MagneticGpERD::configure(const mrpt::config::CConfigFileBase& ini) {
     p.maxCost = s.getDouble("max_cost", p.maxCost);
     p.minSpread = s.getDouble("min_spread", p.minSpread);
     p.minTravelGap = s.getDouble("min_travel_gap", p.minTravelGap);
-    p.searchRadius = s.getDouble("search_radius", p.searchRadius);
-    p.driftPerMetre = s.getDouble("drift_per_metre", p.driftPerMetre);
-    p.maxGateRadius = s.getDouble("max_gate_radius", p.maxGateRadius);
+    p.gateChi2 = s.getDouble("gate_chi2", p.gateChi2);
+    p.uncertainty.headingBias = s.getDouble("gate_heading_drift", p.uncertainty.headingBias);
+    p.uncertainty.floor = s.getDouble("gate_floor", p.uncertainty.floor);
     p.sameplaceRadius = s.getDouble("same_place_radius", p.sameplaceRadius);
+    p.ambiguityLogRatio = s.getDouble("ambiguity_log_ratio", p.ambiguityLogRatio);
+    if (!(p.gateChi2 > 0)) s.fail("gate_chi2", "must be > 0");
+    if (!(p.uncertainty.headingBias >= 0)) s.fail("gate_heading_drift", "must be >= 0");
+    if (!(p.uncertainty.floor > 0)) s.fail("gate_floor", "must be > 0");
+    if (!(p.sameplaceRadius > 0)) s.fail("same_place_radius", "must be > 0");
+    if (!(p.ambiguityLogRatio >= 0)) s.fail("ambiguity_log_ratio", "must be >= 0");
     p.bundle.minChain =
         static_cast<std::size_t>(s.getInt("min_chain", static_cast<int>(p.bundle.minChain)));
     p.bundle.offsetTolerance = s.getDouble("offset_tolerance", p.bundle.offsetTolerance);
@@ -112,14 +120,17 @@ void MagneticGpERD::onNode(TNodeID id) {
     const NodeRecord& rec = nodes_->at(id);
     double step = 0, heading = m_graph->nodes.at(id).yaw();
     double t0 = rec.timestamp;
+    const Constraint* odometry = nullptr;
     if (id > 0) {
         const auto e = m_graph->edges.find({id - 1, id});
         // No travel across a kidnap: the edge there says nothing of the path.
         if (e != m_graph->edges.end() && rec.segment == segment_.back()) {
             step = std::hypot(e->second.mean.x(), e->second.mean.y());
+            odometry = &e->second;
         }
         t0 = nodes_->at(id - 1).timestamp;
     }
+    uncertainty_.addNode(id, odometry, id > 0 ? m_graph->nodes.at(id - 1).yaw() : 0.0);
     const double s0 = travel_.empty() ? 0.0 : travel_.back();
     travel_.push_back(s0 + step);
     segment_.push_back(rec.segment);
@@ -170,16 +181,20 @@ void MagneticGpERD::query(const magnetic::Supernode& q) {
     if (q.spread < params_.minSpread) {
         ++stats_.flatSupernodes;
     } else {
-        const double radius = params_.searchRadius +
-                              params_.driftPerMetre * (travel_[qNode] - travel_at_last_closure_);
-        const bool gated = radius <= params_.maxGateRadius;
         const auto here = positionOf(qNode);
         for (const std::size_t id : index_->nearest(q, params_.candidates)) {
             const auto& t = track_->supernodes()[id];
-            const auto tNode = static_cast<TNodeID>(samples[(t.first + t.last) / 2].node);
-            // Across segments the graph's positions are not yet comparable (kidnap).
-            if (gated && t.segment == q.segment && (positionOf(tNode) - here).norm() > radius)
-                continue;
+            // Where the robot can be: the two supernodes' ends inside the gate of the pose
+            // uncertainty. Across segments the graph's positions are not yet comparable
+            // (kidnap): everywhere.
+            if (t.segment == q.segment) {
+                const auto there = positionOf(static_cast<TNodeID>(samples[t.last - 1].node));
+                const Eigen::Vector2d d(here.x - there.x, here.y - there.y);
+                if (uncertainty_.gateDistance2(qNode, d) > params_.gateChi2) {
+                    ++stats_.gatedOut;
+                    continue;
+                }
+            }
             const float cost = magnetic::SupernodeTrack::cost(q, t);
             if (cost > params_.maxCost) continue;
             matches.push_back({q.id, id, samples[t.first].s - qTravel, cost});
@@ -187,22 +202,41 @@ void MagneticGpERD::query(const magnetic::Supernode& q) {
     }
     unindexed_.push_back(q.id);
     if (!matches.empty()) ++stats_.matchedSupernodes;
-    auto bundles = matcher_->add(q.id, matches, follows);
+    const auto bundles = matcher_->add(q.id, matches, follows);
     if (!bundles.empty()) {
         ++stats_.bundles;
-        // Several bundles: the same place seen on several earlier passes (fine) or look-alike
-        // places (aliasing). Which, the graph says: their targets must lie together.
-        const auto where = [&](const magnetic::BundleMatch& b) {
-            return positionOf(
-                static_cast<TNodeID>(samples[track_->supernodes()[b.lastTarget].last - 1].node));
-        };
-        bool agree = true;
-        for (const auto& b : bundles)
-            agree = agree && (where(b) - where(bundles.front())).norm() <= params_.sameplaceRadius;
-        if (agree) {
-            align(bundles);  // the cheapest first
-        } else {
+        // Several places: the same place seen on several earlier passes lies together (fine);
+        // look-alike places do not - the likelier by the GP wins, if clearly.
+        const auto places = groupByPlace(bundles);
+        // Every place is scored on the same query readings (the shortest window), so that
+        // their likelihoods compare.
+        std::size_t qBegin = 0;
+        for (const auto& place : places) qBegin = std::max(qBegin, windowStart(place.front()));
+        std::optional<PathFit> best;
+        std::size_t bestPlace = 0;
+        double runnerUp = -std::numeric_limits<double>::infinity();
+        for (std::size_t k = 0; k < places.size(); ++k) {
+            auto fit = fitAlongPath(places[k].front(), qBegin);
+            if (!fit) continue;
+            if (!best || fit->shift.logLikelihood > best->shift.logLikelihood) {
+                if (best) runnerUp = best->shift.logLikelihood;
+                best = fit;
+                bestPlace = k;
+            } else {
+                runnerUp = std::max(runnerUp, fit->shift.logLikelihood);
+            }
+        }
+        if (!best) {
+            ++stats_.gpRejected;
+        } else if ((best->shift.logLikelihood - runnerUp) /
+                       std::max(1.0, best->shift.normalizedRms * best->shift.normalizedRms) <
+                   params_.ambiguityLogRatio) {
+            // (a fit worse than the GP's noise model - normalized RMS over 1 - makes every
+            // likelihood difference less telling: the ratio is deflated by that dispersion)
             ++stats_.ambiguous;
+        } else {
+            if (places.size() > 1) ++stats_.resolved;
+            align(places[bestPlace], *best);
         }
     }
     stats_.queryMs.push_back(msSince(t0));
@@ -219,16 +253,41 @@ bool MagneticGpERD::nodeAtTravel(double s, int segment, TNodeID& k, double& frac
     return true;
 }
 
-void MagneticGpERD::align(const std::vector<magnetic::BundleMatch>& bundles) {
-    const magnetic::BundleMatch& b = bundles.front();
-    const double cost = b.meanCost;
+std::vector<std::vector<magnetic::BundleMatch>> MagneticGpERD::groupByPlace(
+    const std::vector<magnetic::BundleMatch>& bundles) const {
+    const auto& samples = track_->samples();
+    const auto where = [&](const magnetic::BundleMatch& b) {
+        return positionOf(
+            static_cast<TNodeID>(samples[track_->supernodes()[b.lastTarget].last - 1].node));
+    };
+    std::vector<std::vector<magnetic::BundleMatch>> places;
+    for (const auto& b : bundles) {
+        const auto p = where(b);
+        const auto same = std::find_if(places.begin(), places.end(), [&](const auto& place) {
+            return (where(place.front()) - p).norm() <= params_.sameplaceRadius;
+        });
+        if (same == places.end()) {
+            places.push_back({b});
+        } else {
+            same->push_back(b);
+        }
+    }
+    return places;
+}
+
+std::size_t MagneticGpERD::windowStart(const magnetic::BundleMatch& b) const {
+    const auto& sn = track_->supernodes();
+    const std::size_t qEnd = sn[b.lastQuery].last;
+    const auto window =
+        static_cast<std::size_t>(std::lround(params_.gpWindow / params_.track.step));
+    return std::max(sn[b.firstQuery].first, qEnd > window ? qEnd - window : 0);
+}
+
+std::optional<MagneticGpERD::PathFit> MagneticGpERD::fitAlongPath(const magnetic::BundleMatch& b,
+                                                                  std::size_t qBegin) const {
     const auto& samples = track_->samples();
     const auto& sn = track_->supernodes();
     const std::size_t qEnd = sn[b.lastQuery].last;
-    const std::size_t qChainStart = sn[b.firstQuery].first;
-    const auto window =
-        static_cast<std::size_t>(std::lround(params_.gpWindow / params_.track.step));
-    const std::size_t qBegin = std::max(qChainStart, qEnd > window ? qEnd - window : 0);
     const int tSegment = sn[b.lastTarget].segment;
     // Target readings over the query window's travel moved by the offset, plus the scan range.
     const double margin = params_.shift.maxShift + 2 * params_.track.step;
@@ -240,12 +299,12 @@ void MagneticGpERD::align(const std::vector<magnetic::BundleMatch>& bundles) {
     std::vector<double> tx;
     std::vector<Eigen::VectorXf> ty;
     for (auto it = first; it != samples.end() && it->s <= hi; ++it) {
-        if (it->segment != tSegment) return;  // the target stretch crosses a kidnap
+        if (it->segment != tSegment) return std::nullopt;  // the target stretch crosses a kidnap
         tx.push_back(it->s);
         ty.push_back(it->value);
     }
     const double expected = (hi - lo) / params_.track.step;
-    if (tx.size() < 0.9 * expected) return;  // a gap in the target's readings
+    if (tx.size() < 0.9 * expected) return std::nullopt;  // a gap in the target's readings
     const int C = track_->channels();
     Eigen::MatrixXd T(static_cast<Eigen::Index>(tx.size()), C);
     for (std::size_t i = 0; i < tx.size(); ++i)
@@ -258,8 +317,19 @@ void MagneticGpERD::align(const std::vector<magnetic::BundleMatch>& bundles) {
     }
     magnetic::GaussianProcess1D gp(params_.gp);
     gp.fit(tx, T);
-    const auto shift = magnetic::scanShift(gp, qx, Q, params_.shift);
-    if (!shift.valid || shift.normalizedRms > params_.maxNormalizedRms) {
+    PathFit fit;
+    fit.qBegin = qBegin;
+    fit.qEnd = qEnd;
+    fit.shift = magnetic::scanShift(gp, qx, Q, params_.shift);
+    if (!fit.shift.valid) return std::nullopt;
+    return fit;
+}
+
+void MagneticGpERD::align(const std::vector<magnetic::BundleMatch>& bundles, const PathFit& fit) {
+    const magnetic::BundleMatch& b = bundles.front();
+    const auto& shift = fit.shift;
+    const std::size_t qBegin = fit.qBegin, qEnd = fit.qEnd;
+    if (shift.normalizedRms > params_.maxNormalizedRms) {
         ++stats_.gpRejected;
         return;
     }
@@ -270,16 +340,13 @@ void MagneticGpERD::align(const std::vector<magnetic::BundleMatch>& bundles) {
     rec.shift = shift.shift;
     rec.shiftSigma = shift.sigma;
     rec.normalizedRms = shift.normalizedRms;
-    rec.cost = cost;
+    rec.cost = b.meanCost;
     if (params_.alignment == Params::Alignment::Plane) {
         if (!alignInPlane(bundles, qBegin, qEnd, shift.shift, rec)) ++stats_.planeRejected;
     } else {
         addPathEdges(b, qBegin, qEnd, shift, rec);
     }
-    if (!rec.edges.empty()) {
-        travel_at_last_closure_ = travel_.back();
-        records_.push_back(std::move(rec));
-    }
+    if (!rec.edges.empty()) records_.push_back(std::move(rec));
 }
 
 void MagneticGpERD::addPathEdges(const magnetic::BundleMatch& b, std::size_t qBegin,
@@ -323,6 +390,13 @@ void MagneticGpERD::addEdge(TNodeID target, std::size_t queryNode,
     const auto q = static_cast<TNodeID>(queryNode);
     // The edges of one alignment are one piece of evidence for the relocalizer.
     registerClosure(target, q, c, records_.size(), false, -rec.normalizedRms);
+    // The query node is now known as well as the closure says (in the map frame).
+    const double yaw = m_graph->nodes.at(target).yaw();
+    const Eigen::Matrix2d R = Eigen::Rotation2Dd(yaw).toRotationMatrix();
+    Eigen::Matrix3d pinned = Eigen::Matrix3d::Zero();
+    pinned.topLeftCorner<2, 2>() = R * positionCov * R.transpose();
+    pinned(2, 2) = yawVariance;
+    uncertainty_.pin(q, pinned);
     rec.edges.emplace_back(target, q);
     rec.constraints.push_back(c);
     constrained_[queryNode] = true;
@@ -440,6 +514,11 @@ JsonObject MagneticGpERD::describe() const {
         .set("supernode_length", params_.track.length)
         .set("supernode_stride", params_.track.stride)
         .set("max_cost", params_.maxCost)
+        .set("gate_chi2", params_.gateChi2)
+        .set("gate_heading_drift", params_.uncertainty.headingBias)
+        .set("gate_floor", params_.uncertainty.floor)
+        .set("same_place_radius", params_.sameplaceRadius)
+        .set("ambiguity_log_ratio", params_.ambiguityLogRatio)
         .set("min_spread", params_.minSpread)
         .set("min_chain", params_.bundle.minChain)
         .set("gp_window", params_.gpWindow)
@@ -462,8 +541,10 @@ JsonObject MagneticGpERD::describe() const {
         .set("supernodes", stats_.supernodes)
         .set("flat_supernodes", stats_.flatSupernodes)
         .set("matched_supernodes", stats_.matchedSupernodes)
+        .set("gated_out", stats_.gatedOut)
         .set("bundles", stats_.bundles)
         .set("ambiguous_bundles", stats_.ambiguous)
+        .set("resolved_by_likelihood", stats_.resolved)
         .set("gp_rejected", stats_.gpRejected)
         .set("alignments", stats_.alignments)
         .set("plane_rejected", stats_.planeRejected)

@@ -104,10 +104,13 @@ void SlamEngine::applyMerge(const relocalization::Relocalizer::Merge& m) {
         graph_.nodes[id] = T + graph_.nodes.at(id);
         moved.insert(id);
     }
-    relocalizer_.commit(m, graph_, nodes_);
     if (m.keptGroup == 0) ++stats_.relocations;
     for (const auto& lc : m.accepted) graph_.insertEdge(lc.from, lc.to, lc.constraint);
     gso_->addRelocationClosures(m.accepted, moved);
+    // Recorded after the moved group was solved against its closures (the map held fixed):
+    // the relocated pose is the engine's estimate then, not the rigid move's first guess,
+    // which a long segment's own drift can leave off at its far end.
+    relocalizer_.commit(m, graph_, nodes_);
 }
 
 void SlamEngine::finish() {

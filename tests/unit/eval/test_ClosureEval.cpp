@@ -60,10 +60,12 @@ TEST(ClosureEval, RevisitPassesAndRecallAtFullPrecision) {
         run.closure(10, 170, 50),          // right, pass 1
         run.closure(290 - 160, 290, 20),   // right, pass 2, but scores below the wrong one
         run.closure(50, 210, 30, 2.0),     // wrong by 2 m
-        run.closure(60, 220, 40, 0.3),     // right (0.3 m within 0.5)
+        run.closure(65, 225, 40, 0.3),     // right (0.3 m within 0.5)
         run.closure(20, 180, 10, 0.0, "B"),
     };
-    const auto q = eval::evaluateClosures(closures, run.truth, run.truth);
+    eval::ClosureEvalOptions whole;  // each revisit one pass
+    whole.pieceLength = 100;
+    const auto q = eval::evaluateClosures(closures, run.truth, run.truth, whole);
     ASSERT_EQ(q.size(), 2u);
     const auto& a = q[0];
     EXPECT_EQ(a.source, "A");
@@ -80,8 +82,15 @@ TEST(ClosureEval, RevisitPassesAndRecallAtFullPrecision) {
     EXPECT_EQ(b.wrong, 0u);
     EXPECT_TRUE(std::isnan(b.threshold));
     EXPECT_EQ(b.passesAt100, 1u);
-    const auto table = eval::formatClosureQuality(q, {});
+    const auto table = eval::formatClosureQuality(q, whole);
     EXPECT_NE(table.find("| A | 4 | 3 | 1 |"), std::string::npos) << table;
+
+    // In 2 m pieces: the 8 m revisit is four passes, the 4 m one two; A's right closures end in
+    // pieces 1 (node 170), 4 (225) and 5 (290); only the first two above the wrong score.
+    const auto pieces = eval::evaluateClosures(closures, run.truth, run.truth);
+    EXPECT_EQ(pieces[0].passes, 6u);
+    EXPECT_EQ(pieces[0].passesDetected, 3u);
+    EXPECT_EQ(pieces[0].passesAt100, 2u);
 }
 
 TEST(ClosureEval, ATurnedMeasurementIsWrongWhereItLands) {

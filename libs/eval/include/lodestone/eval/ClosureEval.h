@@ -27,6 +27,7 @@ struct ClosureEvalOptions {
     double revisitYaw{45 * M_PI / 180};  ///< [rad] a revisit faces the same way within this
     double minGap{5.0};          ///< [m] of true travel between a place and its revisit
     double minPassLength{1.0};   ///< [m] shorter revisits are not counted as passes
+    double pieceLength{2.0};     ///< [m] longer revisits are cut into passes this long
     double maxDt{0.02};          ///< [s] timestamp association with the truth
 };
 
@@ -50,7 +51,7 @@ struct MatcherQuality {
  * true pose of `from` must land within `radius` of the true pose of `to`. A revisit pass is a
  * run of consecutive nodes (`trajectory`: every node of the run, in ID order) each within
  * `radius` and `revisitYaw` of the truth of a node at least `minGap` of true travel earlier,
- * `minPassLength` long or more; a matcher detects a pass when a right closure ends inside it.
+ * `minPassLength` long or more, cut into passes of `pieceLength`; a matcher detects a pass when a right closure ends inside it.
  * Recall at 100 % precision (the DBoW2 / FAB-MAP convention): passes detected by right closures
  * scoring above the highest-scoring wrong one, over all passes. */
 std::vector<MatcherQuality> evaluateClosures(const std::vector<ReportedClosure>& closures,

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <lodestone/graphslam/EdgeDecider.h>
+#include <lodestone/graphslam/closure/PathUncertainty.h>
 #include <lodestone/magnetic/BundleMatcher.h>
 #include <lodestone/magnetic/FieldFeatures.h>
 #include <lodestone/magnetic/GpShiftCorrection.h>
@@ -9,6 +10,7 @@
 #include <lodestone/magnetic/SupernodeTrack.h>
 
 #include <deque>
+#include <optional>
 #include <memory>
 #include <vector>
 
@@ -18,10 +20,13 @@ namespace lodestone::graphslam {
  * placed along the path (by time between their node and the previous one), resampled by
  * distance and cut into overlapping supernodes (magnetic::SupernodeTrack). Each new supernode
  * is matched by the L2 cost of eq. (2) against stored ones the robot left at least
- * `min_travel_gap` ago: shortlisted by a KD-tree over the field, and restricted to those near
- * the robot's graph position while the odometry's drift since the last closure is small.
- * Chains of consistent matches form node bundles (magnetic::BundleMatcher); bundles whose
- * targets lie at different places are ambiguous and dropped. The last `gp_window` metres of
+ * `min_travel_gap` ago: shortlisted by a KD-tree over the field, and kept only where the robot
+ * can be: inside a chi-square gate of the pose uncertainty since the last closure
+ * (closure::PathUncertainty; across a kidnap, everywhere). Chains of consistent matches form
+ * node bundles (magnetic::BundleMatcher). Bundles whose targets lie at different places inside
+ * the gate are told apart by likelihood: each place's best bundle is slid along its path by
+ * the GP, and the place that fits by a likelihood ratio of `ambiguity_log_ratio` over every
+ * other wins; otherwise the match is ambiguous and dropped. The last `gp_window` metres of
  * a bundle are aligned along the path by the GP correction of eq. (3) and, if the field fits
  * (normalized residual under `max_normalized_rms`), subdivided into node-to-node edges
  * (§2.3): every `edge_every`-th query node gets an edge from the target node at its corrected
@@ -40,10 +45,18 @@ class MagneticGpERD : public EdgeDecider {
         double maxCost{1.5};          ///< [uT] RMS, eq. (2) per element
         double minSpread{1.0};        ///< [uT] a supernode flatter than this matches nothing
         double minTravelGap{4.0};     ///< [m]
-        double searchRadius{1.5};     ///< [m] position gate ...
-        double driftPerMetre{0.05};   ///< ... growing with travel since the last closure
-        double maxGateRadius{6.0};    ///< [m] beyond this the gate is off (search everywhere)
+        /** Position gate: a stored supernode is a candidate only if its end lies within this
+         * chi-square (2 dof) of the query's end under the pose uncertainty since the last
+         * closure (closure::PathUncertainty). 11.83: 99.73 %, "3 sigma". */
+        double gateChi2{11.83};
+        closure::PathUncertainty::Params uncertainty;
         double sameplaceRadius{1.5};  ///< [m] bundles whose targets are this close agree
+        /** Bundles at different places inside the gate: the place whose best bundle the GP
+         * fits best (all scored on the same query readings) wins if its log-likelihood beats
+         * every other's by this much, deflated by the fit's dispersion (normalized RMS^2 when
+         * over 1); else none does. Two copies of one field differ by up to 7 from resampling
+         * alone (the unit tests), and the test is repeated at every supernode: 10. */
+        double ambiguityLogRatio{10.0};
         magnetic::BundleMatcher::Params bundle;
         double gpWindow{3.0};  ///< [m] of query path aligned by the GP
         magnetic::GpHyperparameters gp{3.0, 0.28, 0.15, 10.0};  // lodestone-magfit on the Kok walks
@@ -73,8 +86,8 @@ class MagneticGpERD : public EdgeDecider {
     };
     struct Stats {
         std::size_t readings{0}, droppedReadings{0}, otherSensors{0}, supernodes{0},
-            flatSupernodes{0}, matchedSupernodes{0}, bundles{0}, ambiguous{0}, gpRejected{0},
-            alignments{0}, edges{0}, planeRejected{0};
+            flatSupernodes{0}, matchedSupernodes{0}, gatedOut{0}, bundles{0}, ambiguous{0},
+            resolved{0}, gpRejected{0}, alignments{0}, edges{0}, planeRejected{0};
         std::vector<double> queryMs;  ///< per supernode: search + bundle + GP [ms]
     };
 
@@ -97,7 +110,20 @@ class MagneticGpERD : public EdgeDecider {
     void rebuild();
     void onNode(TNodeID id);
     void query(const magnetic::Supernode& q);
-    void align(const std::vector<magnetic::BundleMatch>& bundles);
+    /** Query samples [qBegin, end of the bundle) slid along its target's path (eq. 3). */
+    struct PathFit {
+        std::size_t qBegin{0}, qEnd{0};  ///< query samples [qBegin, qEnd)
+        magnetic::ShiftResult shift;
+    };
+    /** The first query sample of a bundle's window: its last `gp_window` metres, within the
+     * chain. */
+    std::size_t windowStart(const magnetic::BundleMatch& b) const;
+    std::optional<PathFit> fitAlongPath(const magnetic::BundleMatch& b, std::size_t qBegin) const;
+    /** Bundles (cheapest first) grouped by where their targets lie in the graph. */
+    std::vector<std::vector<magnetic::BundleMatch>> groupByPlace(
+        const std::vector<magnetic::BundleMatch>& bundles) const;
+    /** One place's bundles (cheapest first) aligned: edges if the field fits. */
+    void align(const std::vector<magnetic::BundleMatch>& bundles, const PathFit& fit);
     /** §2.3 along the path: the bundle subdivided into node-to-node edges on the target's path. */
     void addPathEdges(const magnetic::BundleMatch& b, std::size_t qBegin, std::size_t qEnd,
                       const magnetic::ShiftResult& shift, Record& rec);
@@ -119,7 +145,7 @@ class MagneticGpERD : public EdgeDecider {
     std::vector<double> travel_;     // per node [m]
     std::vector<int> segment_;       // per node
     std::vector<bool> constrained_;  // per node: has a magnetic edge already
-    double travel_at_last_closure_{0};
+    closure::PathUncertainty uncertainty_;
     std::optional<std::size_t> previous_supernode_;
     std::deque<std::size_t> unindexed_;  // supernodes too recent to be matched yet
     TNodeID seen_{0};

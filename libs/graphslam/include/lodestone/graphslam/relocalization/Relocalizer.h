@@ -63,7 +63,7 @@ class Relocalizer {
         double relocationTime{NAN};              ///< [s] timestamp of `node`
         double travel{0};      ///< [m] the segment's odometry from its start to `node`
         TNodeID node{0};       ///< the segment's latest node when it joined the map
-        mrpt::poses::CPose3D pose;  ///< that node's pose right after the move
+        mrpt::poses::CPose3D pose;  ///< that node's pose once the merged group was solved
         std::set<std::string> sources;  ///< matchers of the agreeing hypotheses
         std::size_t agreeing{0}, hypotheses{0}, rejected{0};
         int mergedWith{-1};    ///< the first segment of the group it was merged into

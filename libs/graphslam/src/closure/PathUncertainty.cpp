@@ -1,0 +1,86 @@
+#include <lodestone/graphslam/closure/PathUncertainty.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <stdexcept>
+
+namespace lodestone::graphslam::closure {
+
+namespace {
+/** The x, y, yaw block of an edge's covariance (MRPT order x, y, z, yaw, pitch, roll). */
+Eigen::Matrix3d planarCovariance(const Constraint& c) {
+    constexpr int kAt[3] = {0, 1, 3};
+    Eigen::Matrix3d info;
+    for (int r = 0; r < 3; ++r)
+        for (int k = 0; k < 3; ++k) info(r, k) = c.cov_inv(kAt[r], kAt[k]);
+    const Eigen::LDLT<Eigen::Matrix3d> ldlt(info);
+    if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().array() > 0).all())
+        return Eigen::Matrix3d::Identity() * 1e6;  // no information: anything goes
+    return ldlt.solve(Eigen::Matrix3d::Identity());
+}
+}  // namespace
+
+PathUncertainty::Matrix4 PathUncertainty::startState() const {
+    Matrix4 s = Matrix4::Zero();
+    s(3, 3) = params_.headingBias * params_.headingBias;
+    return s;
+}
+
+void PathUncertainty::addNode(TNodeID id, const Constraint* edge, double previousYaw) {
+    if (id != steps_.size()) throw std::logic_error("PathUncertainty: nodes must come in order");
+    Step s;
+    if (edge && id > 0) {
+        s.segmentStart = false;
+        const Eigen::Vector2d local(edge->mean.x(), edge->mean.y());
+        s.delta = Eigen::Rotation2Dd(previousYaw) * local;
+        s.length = local.norm();
+        s.previousYaw = previousYaw;
+        s.stepCovariance = planarCovariance(*edge);
+    }
+    steps_.push_back(s);
+    sigma_.emplace_back();
+    propagate(id);
+}
+
+void PathUncertainty::propagate(std::size_t from) {
+    for (std::size_t k = from; k < steps_.size(); ++k) {
+        const Step& s = steps_[k];
+        if (s.segmentStart) {
+            sigma_[k] = startState();
+            continue;
+        }
+        // x' = x + R(yaw) d, yaw' = yaw + dyaw + bias * length, bias' = bias.
+        Matrix4 F = Matrix4::Identity();
+        F(0, 2) = -s.delta.y();
+        F(1, 2) = s.delta.x();
+        F(2, 3) = s.length;
+        Eigen::Matrix3d G = Eigen::Matrix3d::Identity();
+        G.topLeftCorner<2, 2>() = Eigen::Rotation2Dd(s.previousYaw).toRotationMatrix();
+        Matrix4 Q = Matrix4::Zero();
+        Q.topLeftCorner<3, 3>() = G * s.stepCovariance * G.transpose();
+        sigma_[k] = F * sigma_[k - 1] * F.transpose() + Q;
+    }
+}
+
+void PathUncertainty::pin(TNodeID id, const Eigen::Matrix3d& covariance) {
+    if (id >= steps_.size()) throw std::out_of_range("PathUncertainty::pin: unknown node");
+    // The pinned node keeps the closure's covariance (or its own, if smaller already); the
+    // bias is not observed by one closure and keeps its prior.
+    Matrix4 s = startState();
+    s.topLeftCorner<3, 3>() = covariance;
+    if (sigma_[id].topLeftCorner<2, 2>().trace() < covariance.topLeftCorner<2, 2>().trace()) return;
+    sigma_[id] = s;
+    if (id + 1 < steps_.size()) propagate(id + 1);
+}
+
+Eigen::Matrix3d PathUncertainty::covariance(TNodeID id) const {
+    return sigma_.at(id).topLeftCorner<3, 3>();
+}
+
+double PathUncertainty::gateDistance2(TNodeID id, const Eigen::Vector2d& d) const {
+    const Eigen::Matrix2d S = sigma_.at(id).topLeftCorner<2, 2>() +
+                              params_.floor * params_.floor * Eigen::Matrix2d::Identity();
+    return d.dot(S.ldlt().solve(d));
+}
+
+}  // namespace lodestone::graphslam::closure

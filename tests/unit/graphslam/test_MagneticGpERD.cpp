@@ -1,0 +1,265 @@
+// MagneticGpERD's candidate gate and ambiguity resolution on a scripted run: a stretch driven
+// east along y = 0 carries a field pattern; a parallel stretch `separation` metres north, also
+// driven east, carries a look-alike. After a long detour the robot drives the south stretch
+// again: its true match is the first south pass; the north one is a decoy, far (outside the
+// position gate) or near (inside), an exact copy (undecidable) or a copy with anomalies of its
+// own (the GP's likelihood tells them apart).
+#include "ScriptedDeciders.h"
+
+#include <lodestone/graphslam/CeresGSO.h>
+#include <lodestone/graphslam/CompositeERD.h>
+#include <lodestone/graphslam/MagneticGpERD.h>
+#include <lodestone/graphslam/SlamEngine.h>
+#include <lodestone/graphslam/closure/PathUncertainty.h>
+#include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/obs/CObservationComment.h>
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+using namespace lodestone;
+
+namespace {
+
+/** A 1-D field pattern along a side: (|B| offset, B_z offset) bumps, 3 per metre. */
+struct Pattern {
+    struct Bump {
+        double at, magnitude, vertical, width;
+    };
+    std::vector<Bump> bumps;
+    Pattern(unsigned seed, double length, double amplitude) {
+        std::mt19937 rng(seed);
+        std::uniform_real_distribution<double> where(0, length), size(-amplitude, amplitude),
+            width(0.15, 0.4);
+        for (int k = 0; k < static_cast<int>(3 * length); ++k)
+            bumps.push_back({where(rng), size(rng), size(rng), width(rng)});
+    }
+    Eigen::Vector2d at(double s) const {
+        Eigen::Vector2d v(0, 0);
+        for (const auto& b : bumps) {
+            const double g = std::exp(-0.5 * (s - b.at) * (s - b.at) / (b.width * b.width));
+            v += Eigen::Vector2d(b.magnitude * g, b.vertical * g);
+        }
+        return v;
+    }
+};
+
+struct Decoy {
+    double separation{20};    ///< [m] north of the south side
+    double extra{0};          ///< [uT] amplitude of the decoy's own anomalies (0: exact copy)
+    bool freshThirdPass{false};  ///< the second south pass sees a new random field instead
+};
+
+struct MagRun {
+    std::unique_ptr<graphslam::SlamEngine> engine;
+    const graphslam::MagneticGpERD* erd{nullptr};
+    std::vector<mrpt::poses::CPose2D> truth;
+};
+
+MagRun run(const Decoy& decoy, const std::string& ini) {
+    const double side = 12.0, step = 0.1, n = decoy.separation;
+    const Pattern south(3, side, 6.0), extra(4, side, decoy.extra), legs(5, 300.0, 6.0),
+        fresh(6, side, 6.0);
+    // The path: east along the south side (y = 0, from 5 m before it); round by the south and
+    // west to the north side (y = n), east along it (the look-alike, its 5 m lead-in the same
+    // as the south side's); a long detour round by the north and west
+    // back to the start; east along the south side again. Every other stretch has a field of
+    // its own. While the robot drives the look-alike the odometry is still sure of itself: the
+    // south side is outside the gate; by the second south pass it has grown.
+    enum class Field { LeadIn, South, Decoy, Legs, Again };
+    struct Leg {
+        double x0, y0, x1, y1;
+        Field field;
+    };
+    const std::vector<Leg> path = {
+        {-5, 0, 0, 0, Field::LeadIn},           {0, 0, side, 0, Field::South},          {side, 0, side, -5, Field::Legs},
+        {side, -5, -5, -5, Field::Legs},        {-5, -5, -5, n, Field::Legs},
+        {-5, n, 0, n, Field::LeadIn},           {0, n, side, n, Field::Decoy},
+        {side, n, side, n + 10, Field::Legs},   {side, n + 10, -10, n + 10, Field::Legs},
+        {-10, n + 10, -10, -10, Field::Legs},   {-10, -10, 0, -10, Field::Legs},
+        {0, -10, 0, 0, Field::Legs},            {0, 0, side, 0, Field::Again}};
+    MagRun r;
+    std::vector<graphslam::NodeRecord> records;
+    double legTravel = 0;  // along the detours, for their own field
+    for (std::size_t li = 0; li < path.size(); ++li) {
+        const auto& leg = path[li];
+        const double len = std::hypot(leg.x1 - leg.x0, leg.y1 - leg.y0);
+        const double yaw = std::atan2(leg.y1 - leg.y0, leg.x1 - leg.x0);
+        const int nodes = static_cast<int>(std::lround(len / step));
+        for (int k = (li == 0 ? 0 : 1); k <= nodes; ++k) {
+            const double s = k * step;
+            graphslam::NodeRecord rec;
+            rec.timestamp = static_cast<double>(records.size());
+            // Ten readings per node (a 100 Hz magnetometer at 1 m/s): many per resampling bin.
+            for (int back = 9; back >= 0; --back) {
+                const double sr = s - back * step / 10;
+                Eigen::Vector2d f;
+                switch (leg.field) {
+                    case Field::LeadIn: f = legs.at(250 + sr); break;  // the same before both
+                    case Field::South: f = south.at(sr); break;
+                    case Field::Decoy: f = south.at(sr) + extra.at(sr); break;
+                    case Field::Again: f = decoy.freshThirdPass ? fresh.at(sr) : south.at(sr); break;
+                    case Field::Legs: f = legs.at(legTravel + sr); break;
+                }
+                graphslam::MagneticSample m;
+                m.timestamp = rec.timestamp - 0.1 * back;
+                m.sensorLabel = "MAG";
+                // The invariant feature is (|B|, B_z): both carry the pattern.
+                m.field = mrpt::math::TVector3D(30 + f.x(), 0, -40 + f.y());
+                rec.magnetic.push_back(m);
+            }
+            records.push_back(rec);
+            r.truth.emplace_back(leg.x0 + (leg.x1 - leg.x0) * s / len,
+                                 leg.y0 + (leg.y1 - leg.y0) * s / len, yaw);
+        }
+        if (leg.field == Field::Legs) legTravel += len;
+    }
+    // Odometry: the truth's increments, with the noise an odometry would claim.
+    std::vector<test::ScriptedNRD::Step> steps;
+    for (std::size_t i = 1; i < r.truth.size(); ++i) {
+        mrpt::poses::CPosePDFGaussian z;
+        z.mean = r.truth[i] - r.truth[i - 1];
+        z.cov.setZero();
+        // (claimed so that the gate, 3 sigma of the drift plus its 0.5 m floor, is narrower
+        // than the separation when the look-alike is first driven, wider on the second south
+        // pass)
+        z.cov(0, 0) = z.cov(1, 1) = 2e-4;
+        z.cov(2, 2) = 2e-6;
+        steps.push_back({graphslam::planarConstraint(z), 0});
+    }
+    auto erd = std::make_unique<graphslam::MagneticGpERD>();
+    erd->configure(mrpt::config::CConfigFileMemory(ini));
+    r.erd = erd.get();
+    auto composite = std::make_unique<graphslam::CompositeERD>();
+    composite->addChild(std::move(erd));
+    r.engine = std::make_unique<graphslam::SlamEngine>(
+        std::make_unique<test::ScriptedNRD>(steps, records), std::move(composite),
+        std::make_unique<graphslam::CeresGSO>());
+    const auto tick = mrpt::obs::CObservationComment::Create();
+    while (r.engine->process(tick)) {
+    }
+    r.engine->finish();
+    return r;
+}
+
+const std::string kIni =
+    "[MagneticGpERD]\nalignment = path\ngate_heading_drift = 0\n";
+
+/** Every closure of the run: how many land within `tolerance` of the truth, how many tie a
+ * node to the look-alike (y near the separation). */
+struct Verdict {
+    std::size_t closures{0}, right{0}, toDecoy{0};
+};
+Verdict judge(const MagRun& r, double tolerance = 0.3) {
+    Verdict v;
+    for (const auto& rec : r.erd->records()) {
+        for (std::size_t k = 0; k < rec.edges.size(); ++k) {
+            const auto [target, query] = rec.edges[k];
+            ++v.closures;
+            const auto& m = rec.constraints[k].mean;
+            const auto implied =
+                r.truth[target] + mrpt::poses::CPose2D(m.x(), m.y(), m.yaw());
+            const double error = std::hypot(implied.x() - r.truth[query].x(),
+                                            implied.y() - r.truth[query].y());
+            v.right += error <= tolerance;
+            v.toDecoy += std::abs(r.truth[target].y() - r.truth[query].y()) > 1.0;
+        }
+    }
+    return v;
+}
+
+}  // namespace
+
+TEST(PathUncertainty, MatchesMonteCarloOfTheOdometryModel) {
+    // A straight drive of 200 steps of 0.1 m with per-step noise and a heading drift per metre.
+    graphslam::closure::PathUncertainty::Params p;
+    p.headingBias = 0.0005;
+    graphslam::closure::PathUncertainty u(p);
+    mrpt::poses::CPosePDFGaussian z;
+    z.mean = mrpt::poses::CPose2D(0.1, 0, 0);
+    z.cov.setZero();
+    z.cov(0, 0) = 4e-6;
+    z.cov(1, 1) = 1e-6;
+    z.cov(2, 2) = 2e-6;
+    const auto edge = graphslam::planarConstraint(z);
+    const int steps = 200;
+    u.addNode(0, nullptr, 0);
+    for (int k = 1; k <= steps; ++k) u.addNode(static_cast<graphslam::TNodeID>(k), &edge, 0);
+
+    std::mt19937 rng(7);
+    std::normal_distribution<double> g(0, 1);
+    const int samples = 4000;
+    Eigen::MatrixXd end(samples, 3);
+    for (int s = 0; s < samples; ++s) {
+        const double bias = p.headingBias * g(rng);
+        double x = 0, y = 0, th = 0;
+        for (int k = 0; k < steps; ++k) {
+            const double dx = 0.1 + std::sqrt(4e-6) * g(rng), dy = 1e-3 * g(rng);
+            x += std::cos(th) * dx - std::sin(th) * dy;
+            y += std::sin(th) * dx + std::cos(th) * dy;
+            th += std::sqrt(2e-6) * g(rng) + bias * 0.1;
+        }
+        end.row(s) << x, y, th;
+    }
+    const Eigen::RowVector3d mean = end.colwise().mean();
+    const Eigen::MatrixXd c = end.rowwise() - mean;
+    const Eigen::Matrix3d mc = (c.transpose() * c) / (samples - 1);
+    const Eigen::Matrix3d model = u.covariance(steps);
+    for (int i : {0, 1, 2}) EXPECT_NEAR(model(i, i), mc(i, i), 0.1 * mc(i, i)) << i;
+    EXPECT_NEAR(model(1, 2), mc(1, 2), 0.1 * std::abs(mc(1, 2)));
+
+    // A closure pins a node: it and the nodes after it start again from its covariance.
+    u.pin(150, Eigen::Matrix3d::Identity() * 1e-6);
+    EXPECT_LT(u.covariance(150)(1, 1), 2e-6);
+    EXPECT_LT(u.covariance(steps)(1, 1), 0.1 * model(1, 1));
+    // The gate: 3 sigma across the path plus the floor.
+    const double sy = std::sqrt(u.covariance(steps)(1, 1) + p.floor * p.floor);
+    EXPECT_LT(u.gateDistance2(steps, Eigen::Vector2d(0, 3.0 * sy)), 9.5);
+    EXPECT_GT(u.gateDistance2(steps, Eigen::Vector2d(0, 3.0 * sy)), 8.5);
+    // A new segment starts certain.
+    u.addNode(steps + 1, nullptr, 0);
+    EXPECT_LT((u.covariance(steps + 1).topLeftCorner<2, 2>().norm()), 1e-12);
+}
+
+TEST(MagneticGpERD, ALookAlikeOutsideTheGateIsNotMatchedNorMakesTheTrueOneAmbiguous) {
+    Decoy d;
+    d.separation = 20;
+    const auto r = run(d, kIni);
+    const auto v = judge(r);
+    EXPECT_GT(v.closures, 10u);
+    EXPECT_EQ(v.toDecoy, 0u);
+    EXPECT_EQ(v.right, v.closures);
+    EXPECT_GT(r.erd->stats().gatedOut, 0u);
+}
+
+TEST(MagneticGpERD, InsideTheGateTheLikelierPlaceIsChosen) {
+    Decoy d;
+    d.separation = 2.5;
+    d.extra = 1.0;  // the decoy has anomalies of its own: the GP fits the true place better
+    const auto r = run(d, kIni);
+    const auto v = judge(r);
+    EXPECT_GT(r.erd->stats().resolved, 0u);
+    EXPECT_GT(v.closures, 10u);
+    EXPECT_EQ(v.toDecoy, 0u);
+    EXPECT_EQ(v.right, v.closures);
+}
+
+TEST(MagneticGpERD, TwoEquallyLikelyPlacesInsideTheGateGiveNoClosure) {
+    Decoy d;
+    d.separation = 2.5;
+    d.extra = 0;  // an exact copy: nothing tells them apart
+    const auto r = run(d, kIni);
+    const auto v = judge(r);
+    EXPECT_GT(r.erd->stats().ambiguous, 0u);
+    EXPECT_EQ(v.toDecoy, 0u);
+    EXPECT_EQ(v.closures, 0u);
+}
+
+TEST(MagneticGpERD, AFieldNeverSeenBeforeGivesNoClosure) {
+    Decoy d;
+    d.separation = 20;
+    d.freshThirdPass = true;
+    const auto r = run(d, kIni);
+    EXPECT_EQ(judge(r).closures, 0u);
+}
