@@ -52,6 +52,8 @@ std::vector<ReportedKidnap> readReportedKidnaps(const std::string& reportJson) {
         r.liftTime = numberOr(k, "lift_time", NAN);
         r.putDownTime = numberOr(k, "put_down_time", NAN);
         r.relocated = k.value("relocated", false);
+        r.mergedLate = k.value("merged_after_segment_ended", false);
+        r.mergeTime = numberOr(k, "merge_time", NAN);
         r.relocationTime = numberOr(k, "relocation_time", NAN);
         r.travel = numberOr(k, "travel_to_relocation_m", NAN);
         r.x = numberOr(k, "x", 0);
@@ -119,6 +121,8 @@ RelocationEvaluation evaluateRelocations(const std::vector<ReportedKidnap>& repo
             used[k] = true;
             v.detected = true;
             v.relocated = r.relocated;
+            v.mergedLate = r.mergedLate;
+            if (r.mergedLate) v.secondsToMerge = r.mergeTime - ev.putDownTime;
             if (!r.relocated) break;
             v.secondsToRelocation = r.relocationTime - ev.putDownTime;
             v.travelToRelocation = r.travel;
@@ -150,8 +154,14 @@ std::string formatRelocationEvaluation(const RelocationEvaluation& e) {
         relocated += v.relocated;
         wrong += v.wrong;
         if (!v.relocated) {
-            std::snprintf(line, sizeof line, "| %d | %s | no | | | | | | |\n", v.index,
-                          v.detected ? "yes" : "no");
+            char note[96] = "";
+            if (v.mergedLate) {
+                std::snprintf(note, sizeof note,
+                              "not while in it: merged %.0f s after put-down by a later pass",
+                              v.secondsToMerge);
+            }
+            std::snprintf(line, sizeof line, "| %d | %s | no | | | | | | %s |\n", v.index,
+                          v.detected ? "yes" : "no", note);
         } else {
             std::snprintf(line, sizeof line, "| %d | yes | yes | %.1f | %.2f | %.3f | %.2f | %s | %s |\n",
                           v.index, v.secondsToRelocation, v.travelToRelocation, v.positionError,

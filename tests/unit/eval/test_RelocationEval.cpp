@@ -102,3 +102,19 @@ TEST(RelocationEval, ReadsTheReportAndNamesABadOne) {
     }
     std::remove(path.c_str());
 }
+
+TEST(RelocationEval, ASegmentMergedOnlyAfterItEndedIsNotRelocated) {
+    KidnapRun r;
+    auto late = r.relocatedAt(9, 0);
+    late.relocated = false;
+    late.mergedLate = true;
+    late.mergeTime = 40.0;
+    const auto e = eval::evaluateRelocations({late}, r.estimate, {}, r.truth, r.events);
+    EXPECT_TRUE(e.kidnaps[0].detected);
+    EXPECT_FALSE(e.kidnaps[0].relocated);
+    EXPECT_FALSE(e.kidnaps[0].wrong);
+    EXPECT_NEAR(e.kidnaps[0].secondsToMerge, 34.0, 1e-9);
+    const std::string table = eval::formatRelocationEvaluation(e);
+    EXPECT_NE(table.find("relocated 0 of 1"), std::string::npos) << table;
+    EXPECT_NE(table.find("merged 34 s after put-down by a later pass"), std::string::npos) << table;
+}

@@ -203,3 +203,31 @@ TEST(Relocalizer, TheEngineMovesOnlyTheKidnappedSegment) {
     EXPECT_EQ(engine.graph().edges.count({wrong.from, wrong.to}), 0u);
     EXPECT_LT(graphslam::positionRmse(engine.graph(), s.truth), 0.15);
 }
+
+TEST(Relocalizer, ASegmentMergedAfterItEndedWasNotRelocated) {
+    // Segment 1 ends with a second kidnap before any match; segment 2 opens. A later match of
+    // segment 1's places still merges it, but the robot was never relocated while in it.
+    KidnapFixture f;
+    const TNodeID first2 = 2 * kMapNodes;
+    Constraint weak;
+    weak.cov_inv = graphslam::planarInformation(100, 100);
+    for (TNodeID id = first2; id < first2 + 5; ++id) {
+        f.graph.nodes[id] = f.graph.nodes.at(id - 1);
+        f.graph.insertEdge(id - 1, id, weak);
+        graphslam::NodeRecord r;
+        r.timestamp = id;
+        r.segment = 2;
+        f.nodes.add(id, r);
+        f.reloc.addNode(f.graph, f.nodes, id);
+    }
+    EXPECT_FALSE(f.reloc.offer(f.graph, f.closure(2, kMapNodes + 2)));
+    const auto m = f.reloc.offer(f.graph, f.closure(8, kMapNodes + 8, 0, false, "Magnetic"));
+    ASSERT_TRUE(m.has_value());
+    f.reloc.commit(*m, f.graph, f.nodes);
+    const auto& k = f.reloc.kidnaps().front();
+    EXPECT_FALSE(k.relocated);
+    EXPECT_TRUE(k.mergedLate);
+    EXPECT_EQ(k.mergeTime, double(first2 + 4));  // the newest node's time: when it was decided
+    EXPECT_NE(f.reloc.describe().str().find("\"merged_after_segment_ended\": true"),
+              std::string::npos);
+}

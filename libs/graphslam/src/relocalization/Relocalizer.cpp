@@ -230,13 +230,16 @@ void Relocalizer::commit(const Merge& m, const Graph& graph, const NodeStore& no
         if (find(k.segment) != m.movedGroup) continue;
         k.mergedWith = m.keptGroup;
         k.rejected += m.rejected;
-        if (!intoMap || k.relocated) continue;
-        // The segment's latest node: where the robot was when it found itself on the map.
+        if (!intoMap || k.relocated || k.mergedLate) continue;
+        // The segment's latest node: where the robot was when it found itself on the map -
+        // unless the segment had ended (another kidnap) before this merge.
         TNodeID last = k.firstNode;
         for (TNodeID id = k.firstNode; id < segment_.size(); ++id) {
             if (segment_[id] == k.segment) last = id;
         }
-        k.relocated = true;
+        k.mergeTime = nodes.at(static_cast<TNodeID>(segment_.size() - 1)).timestamp;
+        k.relocated = last + 1 == segment_.size();
+        k.mergedLate = !k.relocated;
         k.node = last;
         k.relocationTime = nodes.at(last).timestamp;
         k.travel = travel_[last];
@@ -266,6 +269,8 @@ JsonObject Relocalizer::describe() const {
             .set("lift_time", k.liftTime)
             .set("put_down_time", k.putDownTime)
             .set("relocated", k.relocated)
+            .set("merged_after_segment_ended", k.mergedLate)
+            .set("merge_time", k.mergeTime)
             .set("merged_with_segment", k.mergedWith)
             .set("hypotheses", k.hypotheses)
             .set("rejected_hypotheses", k.rejected);

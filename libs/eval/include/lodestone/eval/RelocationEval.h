@@ -16,6 +16,9 @@ struct ReportedKidnap {
     long long firstNode{-1};  ///< node ID (= line of trajectory.tum) opening the segment
     double liftTime{NAN}, putDownTime{NAN};
     bool relocated{false};
+    /** Merged into the map only after the segment ended (not relocated while in it). */
+    bool mergedLate{false};
+    double mergeTime{NAN};
     double relocationTime{NAN}, travel{NAN};
     double x{0}, y{0}, yaw{0};  ///< relocated pose, map frame
     std::string deciders;
@@ -30,6 +33,8 @@ struct RelocationVerdict {
     int index{0};              ///< the events file's
     bool detected{false};      ///< a segment of the run started with this kidnap
     bool relocated{false};
+    bool mergedLate{false};           ///< the segment joined the map only after it ended
+    double secondsToMerge{NAN};       ///< then: from the true put-down to that merge
     double secondsToRelocation{NAN};  ///< from the true put-down
     double travelToRelocation{NAN};   ///< [m] the segment's odometry
     double positionError{NAN};        ///< [m] relocated pose vs truth, the map aligned on its

@@ -59,7 +59,11 @@ class Relocalizer {
         int segment{0};
         TNodeID firstNode{0};
         double liftTime{NAN}, putDownTime{NAN};  ///< [s] from the node decider, if it knows
-        bool relocated{false};                   ///< joined the map
+        bool relocated{false};  ///< joined the map while the robot was still in the segment
+        /** Joined the map only after the segment had ended (a later kidnap), through a later
+         * pass of the map by its places: the robot was never relocated while in it. */
+        bool mergedLate{false};
+        double mergeTime{NAN};  ///< [s] data time of the merge (either kind)
         double relocationTime{NAN};              ///< [s] timestamp of `node`
         double travel{0};      ///< [m] the segment's odometry from its start to `node`
         TNodeID node{0};       ///< the segment's latest node when it joined the map
