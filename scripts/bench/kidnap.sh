@@ -117,7 +117,7 @@ for r in "${runs[@]}"; do
     name=${r%%	*}
     [ -f "$out/$name.failed" ] && continue
     awk -v run="$name" '
-        /^relocated / { rel = $2 " of " $4; wrong = $6; fd = $9; sub(/,/, "", wrong) }
+        /^relocated / { rel = $2 " of " $4; wrong = $6; fd = $9; sub(/,/, "", rel); sub(/,/, "", wrong) }
         /^put-down to relocation/ { s = $5 " / " $8; m = $10 " / " $15; gsub(/[(),]/, "", s); gsub(/[(),]/, "", m) }
         /^map before the first lift/ { ch = $16 }
         /^whole run/ { ate = $4 }
