@@ -195,9 +195,9 @@ void MagneticGpERD::query(const magnetic::Supernode& q) {
                     continue;
                 }
             }
-            const float cost = magnetic::SupernodeTrack::cost(q, t);
+            const auto [cost, first] = track_->alignedCost(q, t, track_->halfStrideSamples());
             if (cost > params_.maxCost) continue;
-            matches.push_back({q.id, id, samples[t.first].s - qTravel, cost});
+            matches.push_back({q.id, id, samples[first].s - qTravel, cost});
         }
     }
     unindexed_.push_back(q.id);

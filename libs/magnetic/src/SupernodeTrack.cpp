@@ -67,4 +67,35 @@ float SupernodeTrack::cost(const Supernode& a, const Supernode& b) {
     return std::sqrt((shape + level) / float(a.vector.size()));
 }
 
+float SupernodeTrack::costAt(const Supernode& q, std::size_t first) const {
+    const std::size_t n = per_supernode_;
+    if (first + n > samples_.size() || q.vector.size() != static_cast<Eigen::Index>(n) * channels_)
+        return std::numeric_limits<float>::infinity();
+    const int segment = samples_[first].segment;
+    if (samples_[first + n - 1].segment != segment) return std::numeric_limits<float>::infinity();
+    Eigen::VectorXf mean = Eigen::VectorXf::Zero(channels_);
+    for (std::size_t i = 0; i < n; ++i) mean += samples_[first + i].value;
+    mean /= float(n);
+    float shape = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const auto qi = q.vector.segment(static_cast<Eigen::Index>(i) * channels_, channels_);
+        shape += (qi - (samples_[first + i].value - mean)).squaredNorm();
+    }
+    const float level = (q.mean - mean).squaredNorm() * float(n);
+    return std::sqrt((shape + level) / float(q.vector.size()));
+}
+
+std::pair<float, std::size_t> SupernodeTrack::alignedCost(const Supernode& q, const Supernode& t,
+                                                          std::size_t maxShift) const {
+    std::pair<float, std::size_t> best{cost(q, t), t.first};
+    for (std::size_t k = 1; k <= maxShift; ++k) {
+        for (const std::size_t first : {t.first + k, t.first >= k ? t.first - k : t.first}) {
+            if (first == t.first) continue;
+            const float c = costAt(q, first);
+            if (c < best.first) best = {c, first};
+        }
+    }
+    return best;
+}
+
 }  // namespace lodestone::magnetic

@@ -101,6 +101,49 @@ TEST(SupernodeTrack, CostIsTheRmsOfTheFieldDifference) {
     EXPECT_NEAR(SupernodeTrack::cost(sa[0], sa[0]), 0.0, 1e-6);
 }
 
+TEST(SupernodeTrack, ARevisitHalfAStrideOutOfPhaseStillMatchesOnceSlid) {
+    // One track: a stretch of field, a different stretch, then the first again, started
+    // 0.125 m (half the 0.25 m stride) later in phase, so no stored supernode lines up with
+    // the revisit's within less than half a stride.
+    const lodestone::test::SyntheticField field(5, 30.0, 6.0), other(6, 30.0, 6.0);
+    SupernodeTrack t({0.05, 2.0, 0.25}, 2);
+    std::vector<Supernode> first, revisit;
+    double s = 0;
+    const auto drive = [&](const lodestone::test::SyntheticField& f, double from, double length,
+                           std::vector<Supernode>* keep) {
+        for (double x = from; x < from + length; x += 0.005, s += 0.005) {
+            for (auto& n : t.add(s, f.at(x), 0, 0))
+                if (keep) keep->push_back(n);
+        }
+    };
+    drive(field, 0.0, 10.0, &first);
+    drive(other, 0.0, 5.0, nullptr);
+    drive(field, 0.125, 8.0, &revisit);
+    ASSERT_GT(revisit.size(), 10u);
+    double plain = 0, slid = 0;
+    std::size_t count = 0;
+    for (const auto& q : revisit) {
+        // The stored supernode nearest the same place, by the true phase.
+        float best = INFINITY, bestSlid = INFINITY;
+        for (const auto& c : first) {
+            best = std::min(best, SupernodeTrack::cost(q, c));
+            bestSlid = std::min(bestSlid, t.alignedCost(q, c, t.halfStrideSamples()).first);
+        }
+        plain += best;
+        slid += bestSlid;
+        ++count;
+    }
+    plain /= double(count);
+    slid /= double(count);
+    // Half a stride out of phase costs about max_cost (1.5 uT) on this steep field; slid by
+    // whole samples (0.05 m), what is left is the resampling's own phase error (<= 0.025 m).
+    EXPECT_GT(plain, 1.0);
+    EXPECT_LT(slid, 0.5 * plain);
+    EXPECT_LT(slid, 1.0) << plain;
+    // Off the track, or across a segment boundary: no cost.
+    EXPECT_TRUE(std::isinf(t.costAt(revisit.back(), t.samples().size())));
+}
+
 TEST(SupernodeIndex, FindsTheRevisitedStretchAmongManyAndAnUnseenFieldIsFar) {
     const lodestone::test::SyntheticField field(3, 200.0), other(99, 20.0);
     SupernodeTrack track({0.05, 2.0, 0.25}, 2);

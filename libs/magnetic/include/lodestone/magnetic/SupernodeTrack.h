@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 namespace lodestone::magnetic {
@@ -54,6 +55,19 @@ class SupernodeTrack {
     /** The L2 cost of eq. (2) between two supernodes' shape vectors, as an RMS per element
      * [uT] so that it reads the same for any length; +inf when their sizes differ. */
     static float cost(const Supernode& a, const Supernode& b);
+
+    /** cost() of `q` against the stored samples [first, first + samplesPerSupernode()), mean
+     * removed as a supernode's are; +inf when that window leaves the track or spans two
+     * segments. */
+    float costAt(const Supernode& q, std::size_t first) const;
+    /** Supernodes are cut every `stride`: a revisit lines up with one of them only within
+     * stride / 2, and on a field that changes within decimetres that phase error alone can
+     * cost more than a match may. The best costAt over `t` slid by up to `maxShift` samples
+     * either way, and the first sample where it is. */
+    std::pair<float, std::size_t> alignedCost(const Supernode& q, const Supernode& t,
+                                              std::size_t maxShift) const;
+    /** Half the stride in samples, rounded up: the slide alignedCost needs. */
+    std::size_t halfStrideSamples() const { return (stride_samples_ + 1) / 2; }
 
   private:
     void emitIfDue(std::vector<Supernode>& out);
