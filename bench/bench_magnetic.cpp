@@ -299,8 +299,10 @@ int timing() {
             const auto t0 = std::chrono::steady_clock::now();
             float best = 1e9;
             for (const auto id : index.nearest(probe, 20)) {
-                best =
-                    std::min(best, magnetic::SupernodeTrack::cost(probe, track.supernodes()[id]));
+                // (as the ERD costs a candidate: at its best alignment within half a stride)
+                best = std::min(best, track.alignedCost(probe, track.supernodes()[id],
+                                                        track.halfStrideSamples())
+                                          .first);
             }
             const auto t1 = std::chrono::steady_clock::now();
             // The alignment the ERD runs on a bundle: GP over 3 m + margins, scan +-0.5 m.
