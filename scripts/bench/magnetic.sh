@@ -5,8 +5,8 @@
 #      ../shared/data/magnetic, each imported with the drift model for seeds 1..N (10) and run through
 #      lodestone-slam's code path with odometry_only.ini and magnetic_only.ini: median ATEs,
 #      closures and their errors against the ground truth, and how much of each path comes back
-#      near an earlier pass; then Kok's walks with the path alignment (eq. 3 alone), the vector
-#      field feature, and the pre-fit hyperparameters instead;
+#      near an earlier pass; then Kok's walks with the plane alignment, the vector field feature,
+#      and the pre-fit hyperparameters instead;
 #   2. time per new supernode with 1 000 and 10 000 supernodes stored.
 # Usage: scripts/bench/magnetic.sh [SEEDS]   (default 10; about a minute in all)
 set -euo pipefail
@@ -26,7 +26,7 @@ if [ -d "$data" ]; then
     echo
     echo "#### Kok walks: the alignment and the field feature compared (magnetic_only.ini with one key changed)"
     echo
-    for variant in "alignment=path" "field_mode=vector" "alignment=path gp_sigma_f=4.0 gp_length_scale=0.3 gp_sigma_n=0.5"; do
+    for variant in "alignment=plane" "field_mode=vector" "gp_sigma_f=4.0 gp_length_scale=0.3 gp_sigma_n=0.5"; do
         ini="$out/variant.ini"
         cp "$root/config_ini/magnetic_only.ini" "$ini"
         for kv in $variant; do sed -i "s|^${kv%%=*} *=[^;]*|${kv%%=*} = ${kv#*=} |" "$ini"; done
