@@ -53,7 +53,8 @@ std::vector<std::pair<std::size_t, std::size_t>> revisitPasses(
         for (std::size_t j = 0; j < i && travel[i] - travel[j] >= o.minGap; ++j) {
             if (!gt[j]) continue;
             const double d = gt[i]->pose.distanceTo(gt[j]->pose);
-            const double dyaw = std::abs(std::remainder(gt[i]->pose.yaw() - gt[j]->pose.yaw(), 2 * M_PI));
+            const double dyaw =
+                std::abs(std::remainder(gt[i]->pose.yaw() - gt[j]->pose.yaw(), 2 * M_PI));
             if (d <= o.radius && dyaw <= o.revisitYaw) {
                 revisit[i] = true;
                 break;
@@ -73,7 +74,8 @@ std::vector<std::pair<std::size_t, std::size_t>> revisitPasses(
         if (travel[j] - travel[i] >= o.minPassLength) {
             std::size_t start = i;
             for (std::size_t k = i; k <= j; ++k) {
-                if (travel[k] - travel[start] >= o.pieceLength && travel[j] - travel[k] >= o.minPassLength) {
+                if (travel[k] - travel[start] >= o.pieceLength &&
+                    travel[j] - travel[k] >= o.minPassLength) {
                     passes.emplace_back(start, k - 1);
                     start = k;
                 }
@@ -111,9 +113,9 @@ std::vector<ReportedClosure> readClosureLog(const std::string& path) {
         r.score = number(c[6], where);
         r.hypothesis = number(c[8], where) != 0;
         r.kept = number(c[9], where) != 0;
-        r.measured = mrpt::poses::CPose3D(number(c[10], where), number(c[11], where),
-                                          number(c[12], where), number(c[13], where),
-                                          number(c[14], where), number(c[15], where));
+        r.measured =
+            mrpt::poses::CPose3D(number(c[10], where), number(c[11], where), number(c[12], where),
+                                 number(c[13], where), number(c[14], where), number(c[15], where));
         out.push_back(r);
     }
     return out;
@@ -125,9 +127,11 @@ std::vector<MatcherQuality> evaluateClosures(const std::vector<ReportedClosure>&
                                              const ClosureEvalOptions& o) {
     const auto passes = revisitPasses(trajectory, truth, o);
     const auto passOf = [&](long long node) -> std::ptrdiff_t {
-        const auto it = std::upper_bound(
-            passes.begin(), passes.end(), static_cast<std::size_t>(node),
-            [](std::size_t v, const std::pair<std::size_t, std::size_t>& p) { return v < p.first; });
+        const auto it =
+            std::upper_bound(passes.begin(), passes.end(), static_cast<std::size_t>(node),
+                             [](std::size_t v, const std::pair<std::size_t, std::size_t>& p) {
+                                 return v < p.first;
+                             });
         if (it == passes.begin()) return -1;
         const auto& p = *(it - 1);
         return static_cast<std::size_t>(node) <= p.second ? (it - 1) - passes.begin() : -1;
@@ -190,7 +194,8 @@ std::string formatClosureQuality(const std::vector<MatcherQuality>& qs,
     char line[512];
     for (const auto& q : qs) {
         char threshold[32] = "none wrong";
-        if (!std::isnan(q.threshold)) std::snprintf(threshold, sizeof threshold, "> %.4g", q.threshold);
+        if (!std::isnan(q.threshold))
+            std::snprintf(threshold, sizeof threshold, "> %.4g", q.threshold);
         std::snprintf(line, sizeof line,
                       "| %s | %zu | %zu | %zu | %.3f | %.3f / %.3f | %zu (%zu) | %zu (%zu) | %zu | "
                       "%.3f | %.3f | %s |\n",

@@ -57,10 +57,10 @@ TEST(ClosureEval, RevisitPassesAndRecallAtFullPrecision) {
     // Lap 2 starts at node 160: east side 200-239 is the first pass, north 240-279 is 1 m off
     // (no revisit), west 280-319 the second pass (with 160-239 joined to the first).
     std::vector<eval::ReportedClosure> closures = {
-        run.closure(10, 170, 50),          // right, pass 1
-        run.closure(290 - 160, 290, 20),   // right, pass 2, but scores below the wrong one
-        run.closure(50, 210, 30, 2.0),     // wrong by 2 m
-        run.closure(65, 225, 40, 0.3),     // right (0.3 m within 0.5)
+        run.closure(10, 170, 50),         // right, pass 1
+        run.closure(290 - 160, 290, 20),  // right, pass 2, but scores below the wrong one
+        run.closure(50, 210, 30, 2.0),    // wrong by 2 m
+        run.closure(65, 225, 40, 0.3),    // right (0.3 m within 0.5)
         run.closure(20, 180, 10, 0.0, "B"),
     };
     eval::ClosureEvalOptions whole;  // each revisit one pass
@@ -97,7 +97,8 @@ TEST(ClosureEval, ATurnedMeasurementIsWrongWhereItLands) {
     TwoLaps run;
     auto c = run.closure(10, 170, 50);
     // 0.3 rad of heading error alone leaves the position right: only where `to` lands counts.
-    c.measured = mrpt::poses::CPose3D(c.measured.x(), c.measured.y(), 0, c.measured.yaw() + 0.3, 0, 0);
+    c.measured =
+        mrpt::poses::CPose3D(c.measured.x(), c.measured.y(), 0, c.measured.yaw() + 0.3, 0, 0);
     auto q = eval::evaluateClosures({c}, run.truth, run.truth);
     EXPECT_EQ(q[0].right, 1u);
     // A closure to a node 3 m further along is wrong.

@@ -4,8 +4,7 @@
 // again: its true match is the first south pass; the north one is a decoy, far (outside the
 // position gate) or near (inside), an exact copy (undecidable) or a copy with anomalies of its
 // own (the GP's likelihood tells them apart).
-#include "ScriptedDeciders.h"
-
+#include <gtest/gtest.h>
 #include <lodestone/graphslam/CeresGSO.h>
 #include <lodestone/graphslam/CompositeERD.h>
 #include <lodestone/graphslam/MagneticGpERD.h>
@@ -14,9 +13,9 @@
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/obs/CObservationComment.h>
 
-#include <gtest/gtest.h>
-
 #include <random>
+
+#include "ScriptedDeciders.h"
 
 using namespace lodestone;
 
@@ -46,8 +45,8 @@ struct Pattern {
 };
 
 struct Decoy {
-    double separation{20};    ///< [m] north of the south side
-    double extra{0};          ///< [uT] amplitude of the decoy's own anomalies (0: exact copy)
+    double separation{20};       ///< [m] north of the south side
+    double extra{0};             ///< [uT] amplitude of the decoy's own anomalies (0: exact copy)
     bool freshThirdPass{false};  ///< the second south pass sees a new random field instead
 };
 
@@ -72,13 +71,19 @@ MagRun run(const Decoy& decoy, const std::string& ini) {
         double x0, y0, x1, y1;
         Field field;
     };
-    const std::vector<Leg> path = {
-        {-5, 0, 0, 0, Field::LeadIn},           {0, 0, side, 0, Field::South},          {side, 0, side, -5, Field::Legs},
-        {side, -5, -5, -5, Field::Legs},        {-5, -5, -5, n, Field::Legs},
-        {-5, n, 0, n, Field::LeadIn},           {0, n, side, n, Field::Decoy},
-        {side, n, side, n + 10, Field::Legs},   {side, n + 10, -10, n + 10, Field::Legs},
-        {-10, n + 10, -10, -10, Field::Legs},   {-10, -10, 0, -10, Field::Legs},
-        {0, -10, 0, 0, Field::Legs},            {0, 0, side, 0, Field::Again}};
+    const std::vector<Leg> path = {{-5, 0, 0, 0, Field::LeadIn},
+                                   {0, 0, side, 0, Field::South},
+                                   {side, 0, side, -5, Field::Legs},
+                                   {side, -5, -5, -5, Field::Legs},
+                                   {-5, -5, -5, n, Field::Legs},
+                                   {-5, n, 0, n, Field::LeadIn},
+                                   {0, n, side, n, Field::Decoy},
+                                   {side, n, side, n + 10, Field::Legs},
+                                   {side, n + 10, -10, n + 10, Field::Legs},
+                                   {-10, n + 10, -10, -10, Field::Legs},
+                                   {-10, -10, 0, -10, Field::Legs},
+                                   {0, -10, 0, 0, Field::Legs},
+                                   {0, 0, side, 0, Field::Again}};
     MagRun r;
     std::vector<graphslam::NodeRecord> records;
     double legTravel = 0;  // along the detours, for their own field
@@ -96,11 +101,21 @@ MagRun run(const Decoy& decoy, const std::string& ini) {
                 const double sr = s - back * step / 10;
                 Eigen::Vector2d f;
                 switch (leg.field) {
-                    case Field::LeadIn: f = legs.at(250 + sr); break;  // the same before both
-                    case Field::South: f = south.at(sr); break;
-                    case Field::Decoy: f = south.at(sr) + extra.at(sr); break;
-                    case Field::Again: f = decoy.freshThirdPass ? fresh.at(sr) : south.at(sr); break;
-                    case Field::Legs: f = legs.at(legTravel + sr); break;
+                    case Field::LeadIn:
+                        f = legs.at(250 + sr);
+                        break;  // the same before both
+                    case Field::South:
+                        f = south.at(sr);
+                        break;
+                    case Field::Decoy:
+                        f = south.at(sr) + extra.at(sr);
+                        break;
+                    case Field::Again:
+                        f = decoy.freshThirdPass ? fresh.at(sr) : south.at(sr);
+                        break;
+                    case Field::Legs:
+                        f = legs.at(legTravel + sr);
+                        break;
                 }
                 graphslam::MagneticSample m;
                 m.timestamp = rec.timestamp - 0.1 * back;
@@ -143,8 +158,7 @@ MagRun run(const Decoy& decoy, const std::string& ini) {
     return r;
 }
 
-const std::string kIni =
-    "[MagneticGpERD]\nalignment = path\ngate_heading_drift = 0\n";
+const std::string kIni = "[MagneticGpERD]\nalignment = path\ngate_heading_drift = 0\n";
 
 /** Every closure of the run: how many land within `tolerance` of the truth, how many tie a
  * node to the look-alike (y near the separation). */
@@ -158,10 +172,9 @@ Verdict judge(const MagRun& r, double tolerance = 0.3) {
             const auto [target, query] = rec.edges[k];
             ++v.closures;
             const auto& m = rec.constraints[k].mean;
-            const auto implied =
-                r.truth[target] + mrpt::poses::CPose2D(m.x(), m.y(), m.yaw());
-            const double error = std::hypot(implied.x() - r.truth[query].x(),
-                                            implied.y() - r.truth[query].y());
+            const auto implied = r.truth[target] + mrpt::poses::CPose2D(m.x(), m.y(), m.yaw());
+            const double error =
+                std::hypot(implied.x() - r.truth[query].x(), implied.y() - r.truth[query].y());
             v.right += error <= tolerance;
             v.toDecoy += std::abs(r.truth[target].y() - r.truth[query].y()) > 1.0;
         }

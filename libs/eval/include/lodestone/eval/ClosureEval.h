@@ -23,25 +23,25 @@ struct ReportedClosure {
 std::vector<ReportedClosure> readClosureLog(const std::string& path);
 
 struct ClosureEvalOptions {
-    double radius{0.5};          ///< [m] a detection is right within this of the truth
+    double radius{0.5};                  ///< [m] a detection is right within this of the truth
     double revisitYaw{45 * M_PI / 180};  ///< [rad] a revisit faces the same way within this
-    double minGap{5.0};          ///< [m] of true travel between a place and its revisit
-    double minPassLength{1.0};   ///< [m] shorter revisits are not counted as passes
-    double pieceLength{2.0};     ///< [m] longer revisits are cut into passes this long
-    double maxDt{0.02};          ///< [s] timestamp association with the truth
+    double minGap{5.0};                  ///< [m] of true travel between a place and its revisit
+    double minPassLength{1.0};           ///< [m] shorter revisits are not counted as passes
+    double pieceLength{2.0};             ///< [m] longer revisits are cut into passes this long
+    double maxDt{0.02};                  ///< [s] timestamp association with the truth
 };
 
 /** One matcher's detection quality against the ground truth. */
 struct MatcherQuality {
     std::string source;
     std::size_t proposals{0}, right{0}, wrong{0}, judged{0};
-    std::size_t kept{0}, keptWrong{0};            ///< in the final graph
+    std::size_t kept{0}, keptWrong{0};              ///< in the final graph
     std::size_t hypotheses{0}, hypothesesWrong{0};  ///< joined two groups (after kidnaps)
-    double medianError{NAN}, maxError{NAN};       ///< [m] position error of the right ones ... all
-    std::size_t passes{0};           ///< true revisit passes (same for every matcher)
-    std::size_t passesDetected{0};   ///< with a right detection at any score
-    std::size_t passesAt100{0};      ///< with a right detection scoring above every wrong one
-    double threshold{NAN};           ///< the highest wrong score (none wrong: NaN)
+    double medianError{NAN}, maxError{NAN};  ///< [m] position error of the right ones ... all
+    std::size_t passes{0};                   ///< true revisit passes (same for every matcher)
+    std::size_t passesDetected{0};           ///< with a right detection at any score
+    std::size_t passesAt100{0};  ///< with a right detection scoring above every wrong one
+    double threshold{NAN};       ///< the highest wrong score (none wrong: NaN)
     double recall() const { return passes ? double(passesDetected) / double(passes) : NAN; }
     double recallAt100() const { return passes ? double(passesAt100) / double(passes) : NAN; }
     double precision() const { return judged ? double(right) / double(judged) : NAN; }
@@ -51,9 +51,9 @@ struct MatcherQuality {
  * true pose of `from` must land within `radius` of the true pose of `to`. A revisit pass is a
  * run of consecutive nodes (`trajectory`: every node of the run, in ID order) each within
  * `radius` and `revisitYaw` of the truth of a node at least `minGap` of true travel earlier,
- * `minPassLength` long or more, cut into passes of `pieceLength`; a matcher detects a pass when a right closure ends inside it.
- * Recall at 100 % precision (the DBoW2 / FAB-MAP convention): passes detected by right closures
- * scoring above the highest-scoring wrong one, over all passes. */
+ * `minPassLength` long or more, cut into passes of `pieceLength`; a matcher detects a pass when a
+ * right closure ends inside it. Recall at 100 % precision (the DBoW2 / FAB-MAP convention): passes
+ * detected by right closures scoring above the highest-scoring wrong one, over all passes. */
 std::vector<MatcherQuality> evaluateClosures(const std::vector<ReportedClosure>& closures,
                                              const std::vector<io::TumPose>& trajectory,
                                              const std::vector<io::TumPose>& truth,
