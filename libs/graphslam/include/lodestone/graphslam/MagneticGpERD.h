@@ -10,8 +10,8 @@
 #include <lodestone/magnetic/SupernodeTrack.h>
 
 #include <deque>
-#include <optional>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace lodestone::graphslam {
@@ -19,9 +19,9 @@ namespace lodestone::graphslam {
 /** Magnetic loop closure, paper 000 §2.2-2.3. The magnetometer readings the nodes keep are
  * placed along the path (by time between their node and the previous one), resampled by
  * distance and cut into overlapping supernodes (magnetic::SupernodeTrack). Each new supernode
- * is matched by the L2 cost of eq. (2) against stored ones the robot left at least
- * `min_travel_gap` ago: shortlisted by a KD-tree over the field, and kept only where the robot
- * can be: inside a chi-square gate of the pose uncertainty since the last closure
+ * is matched by the L2 cost of eq. (2) (at the best alignment within half a stride) against
+ * stored ones the robot left at least `min_travel_gap` ago: shortlisted by a KD-tree over the
+ * field, and kept only where the robot can be: inside a chi-square gate of the pose uncertainty since the last closure
  * (closure::PathUncertainty; across a kidnap, everywhere). Chains of consistent matches form
  * node bundles (magnetic::BundleMatcher). Bundles whose targets lie at different places inside
  * the gate are told apart by likelihood: each place's best bundle is slid along its path by
