@@ -21,9 +21,9 @@ namespace lodestone::graphslam {
  * distance and cut into overlapping supernodes (magnetic::SupernodeTrack). Each new supernode
  * is matched by the L2 cost of eq. (2) (at the best alignment within half a stride) against
  * stored ones the robot left at least `min_travel_gap` ago: shortlisted by a KD-tree over the
- * field, and kept only where the robot can be: inside a chi-square gate of the pose uncertainty since the last closure
- * (closure::PathUncertainty; across a kidnap, everywhere). Chains of consistent matches form
- * node bundles (magnetic::BundleMatcher). Bundles whose targets lie at different places inside
+ * field, and kept only where the robot can be: inside a chi-square gate of the pose
+ * uncertainty since the last closure (closure::PathUncertainty; across a kidnap, everywhere).
+ * Chains of consistent matches form node bundles (magnetic::BundleMatcher). Bundles whose targets lie at different places inside
  * the gate are told apart by likelihood: each place's best bundle is slid along its path by
  * the GP, and the place that fits by a likelihood ratio of `ambiguity_log_ratio` over every
  * other wins; otherwise the match is ambiguous and dropped. The last `gp_window` metres of
