@@ -23,15 +23,17 @@ namespace lodestone::graphslam {
  * stored ones the robot left at least `min_travel_gap` ago: shortlisted by a KD-tree over the
  * field, and kept only where the robot can be: inside a chi-square gate of the pose
  * uncertainty since the last closure (closure::PathUncertainty; across a kidnap, everywhere).
- * Chains of consistent matches form node bundles (magnetic::BundleMatcher). Bundles whose targets lie at different places inside
- * the gate are told apart by likelihood: each place's best bundle is slid along its path by
- * the GP, and the place that fits by a likelihood ratio of `ambiguity_log_ratio` over every
- * other wins; otherwise the match is ambiguous and dropped. The last `gp_window` metres of
- * a bundle are aligned along the path by the GP correction of eq. (3) and, if the field fits
- * (normalized residual under `max_normalized_rms`), subdivided into node-to-node edges
- * (§2.3): every `edge_every`-th query node gets an edge from the target node at its corrected
- * travel, with the along-track sigma of the GP scan and loose cross-track and heading sigmas
- * (a field sequence says where along a path the robot is, little about across it).
+ * Chains of consistent matches form node bundles (magnetic::BundleMatcher). Bundles whose
+ * targets lie at different places inside the gate are told apart by likelihood: each place's
+ * best bundle is slid along its path by the GP, and the place that fits by a likelihood ratio
+ * of `ambiguity_log_ratio` over every other wins; otherwise the match is ambiguous and
+ * dropped. The last `gp_window` metres of a bundle are aligned along the path by the GP
+ * correction of eq. (3) and, if the field fits (normalized residual under
+ * `max_normalized_rms`), subdivided into node-to-node edges (§2.3): every `edge_every`-th
+ * query node gets an edge from the target node at its corrected travel, with the along-track
+ * sigma of the GP scan and loose cross-track and heading sigmas (a field sequence says where
+ * along a path the robot is, little about across it); or, with `alignment = plane`, moved in
+ * the plane against every earlier pass found there (MagneticGpERDAlignment.cpp).
  * NaN, infinite or saturated readings are dropped and counted. INI section [MagneticGpERD]. */
 class MagneticGpERD : public EdgeDecider {
   public:
