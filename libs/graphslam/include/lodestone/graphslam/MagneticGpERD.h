@@ -66,11 +66,11 @@ class MagneticGpERD : public EdgeDecider {
         double maxNormalizedRms{2.0};
         /** path: paper 000 eq. (3), the query slid along the target's path (across it the
          * edges stay loose); plane: then moved in the plane against a 2-D GP of every earlier
-         * pass the bundles found there (PlanarAlignment), which is meant to correct across
-         * too - measured, it moves stretches sideways by the wrong amount too often (README:
-         * every closure over 0.5 m off on Kok's walks and the long walk came from it), so
-         * path is the default. */
-        enum class Alignment { Path, Plane } alignment{Alignment::Path};
+         * pass the bundles found there (PlanarAlignment), which also corrects across and pins
+         * the heading - what a relocation needs; measured, its sideways correction is also
+         * wrong too often on walks beside earlier passes, so magnetic_only.ini uses path
+         * (README: the magnetic results). */
+        enum class Alignment { Path, Plane } alignment{Alignment::Plane};
         magnetic::PlanarAlignmentParams plane;
         double planeMargin{0.5};  ///< [m] of target path either side of the query window
         int planeSubsample{2};    ///< every n-th target reading into the 2-D GP
