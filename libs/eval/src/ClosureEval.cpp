@@ -1,37 +1,16 @@
 #include <lodestone/eval/ClosureEval.h>
 #include <lodestone/eval/TrajectoryError.h>
+#include <lodestone/io/CsvTable.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <set>
-#include <sstream>
 #include <stdexcept>
 
 namespace lodestone::eval {
 
 namespace {
-
-std::vector<std::string> splitCsv(const std::string& line) {
-    std::vector<std::string> out;
-    std::stringstream ss(line);
-    std::string cell;
-    while (std::getline(ss, cell, ',')) out.push_back(cell);
-    return out;
-}
-
-double number(const std::string& cell, const std::string& where) {
-    std::size_t used = 0;
-    double v = 0;
-    try {
-        v = std::stod(cell, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (used != cell.size() || cell.empty() || !std::isfinite(v))
-        throw std::runtime_error(where + ": '" + cell + "' is not a finite number");
-    return v;
-}
 
 /** Revisit passes over the run's nodes: runs of consecutive revisit nodes, as node-ID ranges. */
 std::vector<std::pair<std::size_t, std::size_t>> revisitPasses(
@@ -90,32 +69,36 @@ std::vector<std::pair<std::size_t, std::size_t>> revisitPasses(
 }  // namespace
 
 std::vector<ReportedClosure> readClosureLog(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw std::runtime_error(path + ": cannot open closure log");
-    std::string line;
-    if (!std::getline(in, line) || line.rfind("from_node,to_node,", 0) != 0)
-        throw std::runtime_error(path + ": line 1: not a lodestone-slam closures.csv header");
+    {
+        std::ifstream in(path);
+        std::string header;
+        if (!in) throw std::runtime_error(path + ": cannot open closure log");
+        if (!std::getline(in, header) || header.rfind("from_node,to_node,", 0) != 0)
+            throw std::runtime_error(path + ": line 1: not a lodestone-slam closures.csv header");
+    }
+    constexpr std::size_t kSource = 4;
+    const auto table = io::CsvTable::read(path, 16, 1, {kSource});
     std::vector<ReportedClosure> out;
-    for (int n = 2; std::getline(in, line); ++n) {
-        if (line.empty()) continue;
-        const std::string where = path + ": line " + std::to_string(n);
-        const auto c = splitCsv(line);
-        if (c.size() != 16) {
-            throw std::runtime_error(where + ": " + std::to_string(c.size()) +
-                                     " fields, expected 16");
-        }
+    for (std::size_t i = 0; i < table.rows(); ++i) {
+        const auto v = [&](std::size_t column) {
+            const double x = table.at(i, column);
+            if (!std::isfinite(x)) {
+                throw std::runtime_error(path + ": line " + std::to_string(table.lineOf(i)) +
+                                         ": column " + std::to_string(column + 1) +
+                                         " is not a finite number");
+            }
+            return x;
+        };
         ReportedClosure r;
-        r.fromNode = static_cast<long long>(number(c[0], where));
-        r.toNode = static_cast<long long>(number(c[1], where));
-        r.fromTime = number(c[2], where);
-        r.toTime = number(c[3], where);
-        r.source = c[4];
-        r.score = number(c[6], where);
-        r.hypothesis = number(c[8], where) != 0;
-        r.kept = number(c[9], where) != 0;
-        r.measured =
-            mrpt::poses::CPose3D(number(c[10], where), number(c[11], where), number(c[12], where),
-                                 number(c[13], where), number(c[14], where), number(c[15], where));
+        r.fromNode = static_cast<long long>(v(0));
+        r.toNode = static_cast<long long>(v(1));
+        r.fromTime = v(2);
+        r.toTime = v(3);
+        r.source = table.text(i, kSource);
+        r.score = v(6);
+        r.hypothesis = v(8) != 0;
+        r.kept = v(9) != 0;
+        r.measured = mrpt::poses::CPose3D(v(10), v(11), v(12), v(13), v(14), v(15));
         out.push_back(r);
     }
     return out;

@@ -82,6 +82,20 @@ TEST(CsvTable, NanAndInfAreNumbersKeptForTheUserToJudge) {
     EXPECT_EQ(t.lineOf(1), 2u);
 }
 
+TEST(CsvTable, TextColumnsAreKeptAsWrittenTheRestStillNumbers) {
+    test::TempDir dir;
+    writeText(dir.file("a.csv"), "1,MagneticGpERD,3\n4,Orb,x\n");
+    auto e = errorOf([&] { CsvTable::read(dir.file("a.csv"), 3, 0, {1}); });
+    EXPECT_NE(e.find("a.csv: line 2: column 3"), std::string::npos) << e;
+    writeText(dir.file("b.csv"), "1,MagneticGpERD,3\n4,Orb,6\n");
+    const auto t = CsvTable::read(dir.file("b.csv"), 3, 0, {1});
+    EXPECT_EQ(t.text(0, 1), "MagneticGpERD");
+    EXPECT_EQ(t.text(1, 1), "Orb");
+    EXPECT_TRUE(std::isnan(t.at(1, 1)));
+    EXPECT_EQ(t.at(1, 2), 6.0);
+    EXPECT_EQ(t.text(1, 2), "");  // a numeric column has no text
+}
+
 TEST(AaltoImport, HeadingFollowsTravelAndHoldsWhileStandingFieldTurnsIntoTheRobotFrame) {
     test::TempDir dir;
     writeAaltoTrial(dir.path(), 4);
