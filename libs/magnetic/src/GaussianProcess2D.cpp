@@ -1,6 +1,8 @@
 #include <lodestone/magnetic/GaussianProcess2D.h>
 
 #include <cmath>
+#include <limits>
+#include <vector>
 #include <stdexcept>
 
 namespace lodestone::magnetic {
@@ -66,6 +68,74 @@ Eigen::VectorXd GaussianProcess2D::variances(const Eigen::MatrixX2d& at) const {
     for (Eigen::Index i = 0; i < at.rows(); ++i)
         var[i] = std::max(0.0, f2 + c2 - v.col(i).squaredNorm()) + h_.sigmaN * h_.sigmaN;
     return var;
+}
+
+Eigen::MatrixXd GaussianProcess2D::priorCovariance(const Eigen::MatrixX2d& a) const {
+    const double f2 = h_.sigmaF * h_.sigmaF, c2 = h_.sigmaC * h_.sigmaC,
+                 inv2l2 = 0.5 / (h_.lengthScale * h_.lengthScale);
+    const Eigen::Index m = a.rows();
+    Eigen::MatrixXd K(m, m);
+    for (Eigen::Index i = 0; i < m; ++i) {
+        for (Eigen::Index j = 0; j <= i; ++j)
+            K(i, j) = K(j, i) = c2 + f2 * std::exp(-(a.row(i) - a.row(j)).squaredNorm() * inv2l2);
+        K(i, i) += h_.sigmaN * h_.sigmaN;
+    }
+    return K;
+}
+
+double GaussianProcess2D::gaussianLogDensity(const Eigen::MatrixXd& r,
+                                             const Eigen::LLT<Eigen::MatrixXd>& S) {
+    const Eigen::MatrixXd w = S.matrixL().solve(r);
+    const double logDet = 2 * S.matrixLLT().diagonal().array().log().sum();
+    return -0.5 * (w.squaredNorm() + double(r.cols()) * (logDet + double(r.rows()) * std::log(2 * M_PI)));
+}
+
+double GaussianProcess2D::priorLogLikelihood(const Eigen::MatrixX2d& at, const Eigen::MatrixXd& Y) const {
+    if (at.rows() != Y.rows() || Y.cols() != mean_.cols())
+        throw std::invalid_argument("GaussianProcess2D::priorLogLikelihood: mismatched inputs");
+    const Eigen::LLT<Eigen::MatrixXd> S(priorCovariance(at));
+    return gaussianLogDensity(Y.rowwise() - mean_, S);
+}
+
+double GaussianProcess2D::jointLogLikelihood(const Eigen::MatrixX2d& at, const Eigen::MatrixXd& Y,
+                                             const Eigen::Vector2d& pivot,
+                                             Eigen::Matrix3d* information) const {
+    if (at.rows() != Y.rows() || Y.cols() != mean_.cols())
+        throw std::invalid_argument("GaussianProcess2D::jointLogLikelihood: mismatched inputs");
+    const double f2 = h_.sigmaF * h_.sigmaF, c2 = h_.sigmaC * h_.sigmaC,
+                 inv2l2 = 0.5 / (h_.lengthScale * h_.lengthScale);
+    const Eigen::Index m = at.rows(), n = points_.rows();
+    Eigen::MatrixXd k(n, m);
+    for (Eigen::Index i = 0; i < m; ++i)
+        for (Eigen::Index j = 0; j < n; ++j)
+            k(j, i) = c2 + f2 * std::exp(-(at.row(i) - points_.row(j)).squaredNorm() * inv2l2);
+    const Eigen::MatrixXd v = llt_.matrixL().solve(k);
+    const Eigen::LLT<Eigen::MatrixXd> S(priorCovariance(at) - v.transpose() * v);
+    if (S.info() != Eigen::Success) return -std::numeric_limits<double>::infinity();
+    const Eigen::MatrixXd mu = (k.transpose() * alpha_).rowwise() + mean_;
+    const double ll = gaussianLogDensity(Y - mu, S);
+    if (information) {
+        // d(mean of reading i, channel c) / d(dx, dy, dyaw), stacked per channel: the
+        // information is J^T S^-1 J summed over channels.
+        Eigen::Matrix2d J90;
+        J90 << 0, -1, 1, 0;
+        const Eigen::Index C = mean_.cols();
+        std::vector<Eigen::MatrixXd> J(static_cast<std::size_t>(C), Eigen::MatrixXd(m, 3));
+        Eigen::MatrixX2d grad;
+        for (Eigen::Index i = 0; i < m; ++i) {
+            mean(at.row(i).transpose(), &grad);
+            Eigen::Matrix<double, 2, 3> dp;
+            dp << Eigen::Matrix2d::Identity(), J90 * (at.row(i).transpose() - pivot);
+            const Eigen::MatrixXd g = grad * dp;  // channels x 3
+            for (Eigen::Index c = 0; c < C; ++c) J[static_cast<std::size_t>(c)].row(i) = g.row(c);
+        }
+        information->setZero();
+        for (const auto& Jc : J) {
+            const Eigen::MatrixXd w = S.matrixL().solve(Jc);
+            *information += w.transpose() * w;
+        }
+    }
+    return ll;
 }
 
 }  // namespace lodestone::magnetic

@@ -4,53 +4,16 @@
 #include <gtest/gtest.h>
 #include <lodestone/magnetic/PlanarAlignment.h>
 
+#include "PlaneField.h"
+
 #include <cmath>
 #include <random>
 
 using namespace lodestone::magnetic;
 
+using namespace lodestone::test;
+
 namespace {
-// Two channels over the plane: a constant plus 2-D Gaussian bumps 0.25-0.5 m wide.
-struct PlaneField {
-    explicit PlaneField(unsigned seed) {
-        std::mt19937 rng(seed);
-        std::uniform_real_distribution<double> x(-1, 5), y(-1.5, 1.5), a(-6, 6), w(0.25, 0.5);
-        for (int k = 0; k < 60; ++k) bumps.push_back({x(rng), y(rng), a(rng), a(rng), w(rng)});
-    }
-    Eigen::VectorXd at(const Eigen::Vector2d& p) const {
-        Eigen::VectorXd v(2);
-        v << 50, -40;
-        for (const auto& b : bumps) {
-            const double g = std::exp(-0.5 * (std::pow(p.x() - b[0], 2) + std::pow(p.y() - b[1], 2)) /
-                                      (b[4] * b[4]));
-            v[0] += b[2] * g;
-            v[1] += b[3] * g;
-        }
-        return v;
-    }
-    std::vector<std::array<double, 5>> bumps;
-};
-
-// Readings of `field` along y = `y` for x in [x0, x1) every 0.05 m.
-void pass(const PlaneField& field, double y, double x0, double x1, std::vector<Eigen::Vector2d>& at,
-          std::vector<Eigen::VectorXd>& values) {
-    for (double x = x0; x < x1; x += 0.05) {
-        at.emplace_back(x, y);
-        values.push_back(field.at(at.back()));
-    }
-}
-
-Eigen::MatrixX2d rowsOf(const std::vector<Eigen::Vector2d>& v) {
-    Eigen::MatrixX2d m(static_cast<Eigen::Index>(v.size()), 2);
-    for (std::size_t i = 0; i < v.size(); ++i) m.row(static_cast<Eigen::Index>(i)) = v[i].transpose();
-    return m;
-}
-Eigen::MatrixXd rowsOf(const std::vector<Eigen::VectorXd>& v) {
-    Eigen::MatrixXd m(static_cast<Eigen::Index>(v.size()), v.front().size());
-    for (std::size_t i = 0; i < v.size(); ++i) m.row(static_cast<Eigen::Index>(i)) = v[i].transpose();
-    return m;
-}
-
 GaussianProcess2D targetGp(const PlaneField& field) {
     std::vector<Eigen::Vector2d> at;
     std::vector<Eigen::VectorXd> values;

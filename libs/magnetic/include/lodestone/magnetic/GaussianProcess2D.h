@@ -26,10 +26,27 @@ class GaussianProcess2D {
     /** The same at each row of `points` (m x 2), solved together (much faster than one by one). */
     Eigen::VectorXd variances(const Eigen::MatrixX2d& points) const;
 
+    /** The readings `Y` (m x channels) at `points` (m x 2) judged together, their correlation
+     * given the data included: log p(Y | data), the channels independent. With `information`,
+     * also the Fisher information of a rigid move of the points (dx, dy, dyaw about `pivot`)
+     * under that same joint covariance - readings a few centimetres apart are not independent
+     * evidence, which a sum over readings would pretend. */
+    double jointLogLikelihood(const Eigen::MatrixX2d& points, const Eigen::MatrixXd& Y,
+                              const Eigen::Vector2d& pivot = Eigen::Vector2d::Zero(),
+                              Eigen::Matrix3d* information = nullptr) const;
+    /** log p(Y) under the prior alone (mean: the data's; no data near): what the readings are
+     * worth when the map says nothing of them - the null hypothesis of a map match. */
+    double priorLogLikelihood(const Eigen::MatrixX2d& points, const Eigen::MatrixXd& Y) const;
+
     const GpHyperparameters& hyperparameters() const { return h_; }
     Eigen::Index size() const { return points_.rows(); }
 
   private:
+    /** Prior covariance among `a`'s rows (m x m), reading noise on the diagonal. */
+    Eigen::MatrixXd priorCovariance(const Eigen::MatrixX2d& a) const;
+    /** Gaussian log density of each column of `r` under covariance `S` (shared), summed. */
+    static double gaussianLogDensity(const Eigen::MatrixXd& r, const Eigen::LLT<Eigen::MatrixXd>& S);
+
     GpHyperparameters h_;
     Eigen::MatrixX2d points_;
     Eigen::RowVectorXd mean_;

@@ -1,0 +1,250 @@
+#include <lodestone/magnetic/FieldMapSearch.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace lodestone::magnetic {
+
+std::string toString(FieldMapVerdict v) {
+    switch (v) {
+        case FieldMapVerdict::Accepted: return "accepted";
+        case FieldMapVerdict::NoFit: return "no fit";
+        case FieldMapVerdict::NotAboveNull: return "not above the null";
+        case FieldMapVerdict::TooLoose: return "too loose";
+    }
+    return "?";
+}
+
+namespace {
+
+/** The map's predictive mean and variance on rasters over the region the stretch can be moved
+ * to, read bilinearly: scoring hundreds of translations then costs lookups, not GP
+ * evaluations. The variance changes over a length scale, not over readings: a coarser raster. */
+class PredictiveRaster {
+  public:
+    PredictiveRaster(const GaussianProcess2D& gp, const Eigen::Vector2d& lo, const Eigen::Vector2d& hi,
+                     double step)
+        : mean_(lo, hi, step), variance_(lo, hi, 3 * step) {
+        for (Eigen::Index k = 0; k < mean_.size(); ++k) mean_.values.push_back(gp.mean(mean_.point(k)));
+        Eigen::MatrixX2d at(variance_.size(), 2);
+        for (Eigen::Index k = 0; k < variance_.size(); ++k) at.row(k) = variance_.point(k).transpose();
+        const Eigen::VectorXd v = gp.variances(at);
+        for (Eigen::Index k = 0; k < variance_.size(); ++k)
+            variance_.values.push_back(Eigen::VectorXd::Constant(1, v[k]));
+    }
+    Eigen::VectorXd mean(const Eigen::Vector2d& p) const { return mean_.at(p); }
+    double variance(const Eigen::Vector2d& p) const { return variance_.at(p)[0]; }
+
+  private:
+    struct Lattice {
+        Lattice(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, double s) : origin(lo), step(s) {
+            nx = static_cast<Eigen::Index>(std::ceil((hi.x() - lo.x()) / s)) + 2;
+            ny = static_cast<Eigen::Index>(std::ceil((hi.y() - lo.y()) / s)) + 2;
+        }
+        Eigen::Index size() const { return nx * ny; }
+        Eigen::Vector2d point(Eigen::Index k) const {
+            return origin + step * Eigen::Vector2d(double(k % nx), double(k / nx));
+        }
+        Eigen::VectorXd at(const Eigen::Vector2d& p) const {
+            const Eigen::Vector2d g = (p - origin) / step;
+            const double fx = std::clamp(g.x(), 0.0, double(nx - 1) - 1e-9),
+                         fy = std::clamp(g.y(), 0.0, double(ny - 1) - 1e-9);
+            const auto i = static_cast<Eigen::Index>(fx), j = static_cast<Eigen::Index>(fy);
+            const double a = fx - double(i), b = fy - double(j);
+            return (1 - a) * (1 - b) * cell(i, j) + a * (1 - b) * cell(i + 1, j) +
+                   (1 - a) * b * cell(i, j + 1) + a * b * cell(i + 1, j + 1);
+        }
+        const Eigen::VectorXd& cell(Eigen::Index i, Eigen::Index j) const {
+            return values[static_cast<std::size_t>(j * nx + i)];
+        }
+        Eigen::Vector2d origin;
+        double step;
+        Eigen::Index nx{0}, ny{0};
+        std::vector<Eigen::VectorXd> values;
+    };
+    Lattice mean_, variance_;
+};
+
+struct Optimum {
+    Eigen::Vector3d x;  ///< dx, dy, dyaw about the stretch's centroid
+    Eigen::Matrix3d covariance;
+    double logLikelihood{0}, logPrior{0}, normalizedRms{0};
+};
+
+Eigen::MatrixX2d moved(const Eigen::MatrixX2d& points, const Eigen::Vector2d& pivot,
+                       const Eigen::Vector3d& x) {
+    const Eigen::Matrix2d R = Eigen::Rotation2Dd(x[2]).toRotationMatrix();
+    Eigen::MatrixX2d out(points.rows(), 2);
+    for (Eigen::Index i = 0; i < points.rows(); ++i)
+        out.row(i) = (pivot + R * (points.row(i).transpose() - pivot) + x.head<2>()).transpose();
+    return out;
+}
+}  // namespace
+
+FieldMapMatch searchFieldMap(const GaussianProcess2D& map, const Eigen::MatrixX2d& points,
+                             const Eigen::MatrixXd& query, const Eigen::Matrix2d& gateCovariance,
+                             const FieldMapSearchParams& params) {
+    FieldMapMatch result;
+    if (points.rows() < 3 || points.rows() != query.rows() || map.size() == 0) return result;
+    const Eigen::Vector2d pivot = points.colwise().mean().transpose();
+    result.alignment.pivot = pivot;
+    result.nullLogLikelihood = map.priorLogLikelihood(points, query);
+
+    // 1. Translations on a grid inside the gate (capped), scored by the map's predictive
+    //    density of each reading (one by one: a ranking, not yet the verdict).
+    const Eigen::Matrix2d gateInfo = gateCovariance.inverse();
+    const double R = params.maxRadius, h = params.gridStep;
+    const int half = static_cast<int>(std::floor(R / h));
+    const double rasterStep = std::min(h, map.hyperparameters().lengthScale / 3);
+    const Eigen::Vector2d lo = points.colwise().minCoeff().transpose() - Eigen::Vector2d::Constant(R + h),
+                          hi = points.colwise().maxCoeff().transpose() + Eigen::Vector2d::Constant(R + h);
+    const PredictiveRaster raster(map, lo, hi, rasterStep);
+    const auto channels = static_cast<double>(query.cols());
+    // -2 log of each reading's predictive density (constants dropped), the stretch moved by x.
+    const auto score = [&](const Eigen::Vector3d& x) {
+        const Eigen::Matrix2d Rx = Eigen::Rotation2Dd(x[2]).toRotationMatrix();
+        double nll = 0;
+        for (Eigen::Index k = 0; k < points.rows(); ++k) {
+            const Eigen::Vector2d p = pivot + Rx * (points.row(k).transpose() - pivot) + x.head<2>();
+            const double var = raster.variance(p);
+            nll += (query.row(k).transpose() - raster.mean(p)).squaredNorm() / var + channels * std::log(var);
+        }
+        return nll;
+    };
+    const int side = 2 * half + 1;
+    std::vector<double> grid(static_cast<std::size_t>(side * side),
+                             std::numeric_limits<double>::infinity());
+    const auto cell = [&](int i, int j) -> double& {
+        return grid[static_cast<std::size_t>((j + half) * side + (i + half))];
+    };
+    for (int j = -half; j <= half; ++j) {
+        for (int i = -half; i <= half; ++i) {
+            const Eigen::Vector2d d(i * h, j * h);
+            if (d.norm() > R + 1e-9 || d.dot(gateInfo * d) > params.gateChi2) continue;
+            ++result.hypotheses;
+            cell(i, j) = score(Eigen::Vector3d(d.x(), d.y(), 0));
+        }
+    }
+    // 2. Its local optima (no better neighbour), the best first.
+    std::vector<std::pair<double, Eigen::Vector2d>> optima;
+    for (int j = -half; j <= half; ++j) {
+        for (int i = -half; i <= half; ++i) {
+            const double s = cell(i, j);
+            if (!std::isfinite(s)) continue;
+            bool best = true;
+            for (int dj = -1; dj <= 1 && best; ++dj)
+                for (int di = -1; di <= 1 && best; ++di) {
+                    if ((di || dj) && std::abs(i + di) <= half && std::abs(j + dj) <= half)
+                        best = !(cell(i + di, j + dj) < s);
+                }
+            if (best) optima.emplace_back(s, Eigen::Vector2d(i * h, j * h));
+        }
+    }
+    std::sort(optima.begin(), optima.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+    if (optima.size() > params.refined) optima.resize(params.refined);
+
+    // 3. Each refined (pattern search on the same density, the heading free within its prior
+    //    range - a gradient step on the mean alone would slide onto the earlier pass, where the
+    //    map is surest, rather than beside it, where the readings were taken), then judged by
+    //    the joint likelihood given the map.
+    std::vector<Optimum> kept;
+    const double yawRange = 2 * params.plane.priorSigmaYaw;
+    for (const auto& [s0, d] : optima) {
+        Eigen::Vector3d x(d.x(), d.y(), 0);
+        double best = s0;
+        for (Eigen::Vector3d step(h / 2, h / 2, yawRange / 8); step[0] > 0.005; step /= 2) {
+            for (bool moved = true; moved;) {
+                moved = false;
+                for (int axis = 0; axis < 3; ++axis) {
+                    for (double sign : {-1.0, 1.0}) {
+                        Eigen::Vector3d y = x;
+                        y[axis] += sign * step[axis];
+                        if ((y.head<2>() - d).norm() > params.plane.maxShift ||
+                            std::abs(y[2]) > yawRange)
+                            continue;
+                        const double c = score(y);
+                        if (c < best) {
+                            best = c;
+                            x = y;
+                            moved = true;
+                        }
+                    }
+                }
+            }
+        }
+        Optimum o;
+        o.x = x;
+        const Eigen::Vector2d t = x.head<2>();
+        if (std::any_of(kept.begin(), kept.end(), [&](const Optimum& k) {
+                return (k.x.head<2>() - t).norm() < 0.5 * h;  // converged to one already kept
+            }))
+            continue;
+        const Eigen::MatrixX2d at = moved(points, pivot, x);
+        {
+            const Eigen::VectorXd var = map.variances(at);
+            double sum = 0;
+            for (Eigen::Index k = 0; k < at.rows(); ++k)
+                sum += (query.row(k).transpose() - map.mean(at.row(k).transpose())).squaredNorm() / var[k];
+            o.normalizedRms = std::sqrt(sum / double(query.size()));
+        }
+        if (!(o.normalizedRms <= params.maxNormalizedRms)) continue;
+        Eigen::Matrix3d info;
+        o.logLikelihood = map.jointLogLikelihood(at, query, pivot + t, &info);
+        o.logPrior = -0.5 * t.dot(gateInfo * t);
+        // The curvature under the readings' joint covariance, held weakly by the search region
+        // and the heading prior where the field says nothing (a straight pass: along it);
+        // a fit worse than the noise model makes it less sure.
+        info.diagonal() += Eigen::Vector3d(1 / (R * R), 1 / (R * R),
+                                           1 / (params.plane.priorSigmaYaw * params.plane.priorSigmaYaw));
+        o.covariance = info.inverse() * std::max(1.0, o.normalizedRms * o.normalizedRms);
+        if (!std::isfinite(o.logLikelihood)) continue;
+        kept.push_back(o);
+    }
+    result.optima = kept.size();
+    if (kept.empty()) return result;
+    const auto best = std::max_element(kept.begin(), kept.end(), [](const Optimum& a, const Optimum& b) {
+        return a.logLikelihood + a.logPrior < b.logLikelihood + b.logPrior;
+    });
+    // (a fit worse than the noise model makes likelihood differences less telling)
+    const double dispersion = std::max(1.0, best->normalizedRms * best->normalizedRms);
+    result.logLikelihood = best->logLikelihood;
+    result.alignment.normalizedRms = best->normalizedRms;
+    if ((best->logLikelihood - result.nullLogLikelihood) / dispersion < params.minLogRatio) {
+        result.verdict = FieldMapVerdict::NotAboveNull;
+        return result;
+    }
+    // 4. The optima as a mixture, weighted by likelihood and gate, moment-matched.
+    const double top = best->logLikelihood + best->logPrior;
+    double total = 0;
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    std::vector<double> w;
+    for (const auto& o : kept) {
+        w.push_back(std::exp((o.logLikelihood + o.logPrior - top) / dispersion));
+        total += w.back();
+        mean += w.back() * o.x;
+    }
+    mean /= total;
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (std::size_t k = 0; k < kept.size(); ++k) {
+        const Eigen::Vector3d e = kept[k].x - mean;
+        cov += w[k] / total * (kept[k].covariance + e * e.transpose());
+    }
+    // The optimum was found on rasters: up to half a raster step off the exact one.
+    const double floor2 = std::pow(std::max(params.plane.minSigma, rasterStep / 2), 2);
+    for (int k = 0; k < 2; ++k) cov(k, k) += floor2;
+    result.alignment.delta = mean;
+    result.alignment.covariance = cov;
+    result.alignment.valid = true;
+    const double widest = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(cov.topLeftCorner<2, 2>())
+                              .eigenvalues()
+                              .maxCoeff();
+    result.verdict = std::sqrt(widest) > params.maxSigma ? FieldMapVerdict::TooLoose
+                                                          : FieldMapVerdict::Accepted;
+    return result;
+}
+
+}  // namespace lodestone::magnetic
