@@ -9,9 +9,13 @@
 //       after 120 m: the situation of long real walks). INI (a config_ini/ name, or a path)
 //       replaces magnetic_only.ini; ONLY keeps the recordings whose name contains it.
 //   bench_magnetic timing                                 time per new supernode (KD-tree
-//       search + costs + bundle + GP alignment) with 1 000 and 10 000 supernodes stored.
+//       search + costs + bundle + GP alignment) with 1 000 and 10 000 supernodes stored, and
+//       of one field-map search.
+//   bench_magnetic timing-run OUT_DIR [INI]               the ERD's own time per new supernode
+//       on a 2 530 m walk (over 10 000 supernodes stored by its end).
 #include <lodestone/io/MagneticRecordingImport.h>
 #include <lodestone/io/TumTrajectory.h>
+#include <lodestone/magnetic/FieldMapSearch.h>
 #include <lodestone/magnetic/GpShiftCorrection.h>
 #include <lodestone/magnetic/PlanarAlignment.h>
 #include <lodestone/magnetic/SupernodeIndex.h>
@@ -24,6 +28,8 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <functional>
 #include <iostream>
 #include <random>
@@ -135,7 +141,7 @@ struct Recording {
  * 20 m rectangle (the first revisit 120 m after the start) at 1.2 m/s, 10 Hz, through the earth's
  * field plus anomalies along the way (two per metre, up to 1 m beside the path, +-6 uT, 0.3-0.6
  * m wide); the second lap walks 0.3 m beside the first. Seen in the walker's frame. */
-io::MagneticRecording syntheticLongWalk() {
+io::MagneticRecording syntheticLongWalk(int laps = 2) {
     std::mt19937 rng(29);
     const double w = 40, h = 20;
     const double corners[5][2] = {{0, 0}, {w, 0}, {w, h}, {0, h}, {0, 0}};
@@ -158,8 +164,8 @@ io::MagneticRecording syntheticLongWalk() {
     rec.name = "synthetic long walk";
     rec.calibrated = true;
     double t = 0, heading = 0;
-    for (int lap = 0; lap < 2; ++lap) {
-        const double inset = 0.3 * lap;  // the second lap passes beside the first
+    for (int lap = 0; lap < laps; ++lap) {
+        const double inset = 0.3 * (lap % 2);  // every second lap passes beside the first
         for (int side = 0; side < 4; ++side) {
             const double x0 = corners[side][0], y0 = corners[side][1];
             const double dx = corners[side + 1][0] - x0, dy = corners[side + 1][1] - y0;
@@ -198,7 +204,7 @@ int recordings(const std::string& data, const std::string& out, int seeds,
         recs.push_back({std::string("kok ") + w,
                         [=] { return io::readKokWalk(data + "/kok/" + w + ".csv"); }});
     }
-    recs.push_back({"synthetic longwalk", syntheticLongWalk});
+    recs.push_back({"synthetic longwalk", [] { return syntheticLongWalk(); }});
     std::printf(
         "| recording | path [m] | seeds | ATE odometry [m] | ATE magnetic [m]: median / worst | "
         "magnetic / odometry: median / worst | "
@@ -280,8 +286,9 @@ int timing() {
     Eigen::Vector2d f(50, -40), v(0, 0);
     std::printf(
         "| supernodes stored | queries | KD-tree + costs ms: mean / max | path GP alignment ms: "
-        "mean / max | plane alignment ms: mean / max | total ms: mean / max |\n");
-    std::printf("|---|---|---|---|---|---|\n");
+        "mean / max | plane alignment ms: mean / max | total ms: mean / max | field-map search ms "
+        "(once per metre, map_search = true): mean / max |\n");
+    std::printf("|---|---|---|---|---|---|---|\n");
     double s = 0;
     for (const std::size_t target : {std::size_t{1000}, std::size_t{10000}}) {
         while (index.size() < target) {
@@ -291,7 +298,7 @@ int timing() {
         }
         const auto& samples = track.samples();
         double searchSum = 0, searchMax = 0, gpSum = 0, gpMax = 0, planeSum = 0, planeMax = 0,
-               totalMax = 0;
+               totalMax = 0, mapSum = 0, mapMax = 0;
         const int queries = 200;
         for (int q = 0; q < queries; ++q) {
             const auto& probe =
@@ -345,6 +352,20 @@ int timing() {
             gp2.fit(P, Y);
             const auto moved = magnetic::alignInPlane(gp2, start, Q, {});
             const auto t3 = std::chrono::steady_clock::now();
+            // The field map's search (MagneticGpERDFieldMap.cpp): the same three passes as the
+            // map, every second query reading placed inside a gate of 0.5 m sigma (its floor).
+            magnetic::GaussianProcess2D map(gp2.hyperparameters());
+            map.fit(P, Y);
+            Eigen::MatrixX2d half(30, 2);
+            Eigen::MatrixXd halfQ(30, 2);
+            for (Eigen::Index i = 0; i < 30; ++i) {
+                half.row(i) = start.row(2 * i);
+                halfQ.row(i) = Q.row(2 * i);
+            }
+            magnetic::searchFieldMap(map, half, halfQ, 0.25 * Eigen::Matrix2d::Identity(), {});
+            const double d = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t3).count();
+            mapSum += d;
+            mapMax = std::max(mapMax, d);
             const double a = std::chrono::duration<double, std::milli>(t1 - t0).count();
             const double b = std::chrono::duration<double, std::milli>(t2 - t1).count();
             const double c = std::chrono::duration<double, std::milli>(t3 - t2).count();
@@ -358,11 +379,49 @@ int timing() {
             if (best > 1e8 || !shift.valid || !moved.valid)
                 std::cerr << "query " << q << " found nothing\n";
         }
-        std::printf("| %zu | %d | %.3f / %.3f | %.3f / %.3f | %.3f / %.3f | %.3f / %.3f |\n",
+        std::printf("| %zu | %d | %.3f / %.3f | %.3f / %.3f | %.3f / %.3f | %.3f / %.3f | %.3f / %.3f |\n",
                     index.size(), queries, searchSum / queries, searchMax, gpSum / queries, gpMax,
                     planeSum / queries, planeMax, (searchSum + gpSum + planeSum) / queries,
-                    totalMax);
+                    totalMax, mapSum / queries, mapMax);
     }
+    return 0;
+}
+
+/** The ERD's own time per new supernode (search + matching + alignment, as report.json's
+ * query_ms) on a walk long enough to store 10 000 supernodes: 21 laps of the long walk's
+ * rectangle (2 530 m), through lodestone-slam's code path with magnetic_only.ini. */
+int timingRun(const std::string& out, const std::string& magneticIni) {
+    registerAllClasses();
+    io::OdometryDriftModel model;
+    model.seed = 1;
+    const auto imported = io::writeMagneticRecording(syntheticLongWalk(21), out + "/laps21.rawlog", model);
+    slamapp::SlamRunOptions o;
+    o.rawlog = imported.rawlog;
+    o.config = magneticIni.find('/') != std::string::npos
+                   ? magneticIni
+                   : std::string(LODESTONE_CONFIG_INI_DIR) + "/" + magneticIni;
+    o.outDir = out + "/laps21_mag";
+    o.quiet = true;
+    std::ostringstream sout, serr;
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto r = slamapp::runSlam(o, sout, serr);
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (r.exitCode != 0) {
+        std::cerr << serr.str();
+        return 1;
+    }
+    // report.json: MagneticGpERD's describe() under the edge decider's children.
+    std::ifstream in(o.outDir + "/report.json");
+    const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const auto number = [&](const std::string& key) {
+        const auto at = json.find("\"" + key + "\"");
+        return at == std::string::npos ? -1.0 : std::atof(json.c_str() + json.find(':', at) + 1);
+    };
+    std::printf("| walk | path [m] | supernodes stored at the end | time per new supernode ms: mean / max | real-time factor |\n");
+    std::printf("|---|---|---|---|---|\n");
+    std::printf("| 21 laps of 120 m | %.0f | %.0f | %.3f / %.3f | %.0fx |\n", syntheticLongWalk(21).pathLength(),
+                number("supernodes"), number("query_ms_mean"), number("query_ms_max"),
+                imported.duration / wall);
     return 0;
 }
 }  // namespace
@@ -374,6 +433,7 @@ int main(int argc, char** argv) {
                           argc > 5 ? argv[5] : "magnetic_only.ini", argc > 6 ? argv[6] : "");
     }
     if (mode == "timing") return timing();
-    std::cerr << "usage: bench_magnetic recordings DATA_DIR OUT_DIR [SEEDS] | timing\n";
+    if (mode == "timing-run" && argc >= 3) return timingRun(argv[2], argc > 3 ? argv[3] : "magnetic_only.ini");
+    std::cerr << "usage: bench_magnetic recordings DATA_DIR OUT_DIR [SEEDS] | timing | timing-run OUT_DIR [INI]\n";
     return 2;
 }

@@ -37,8 +37,10 @@ void EdgeDecider::registerNewEdge(const TNodeID& from, const TNodeID& to, const 
 }
 
 void EdgeDecider::registerClosure(TNodeID from, TNodeID to, const Constraint& c,
-                                  std::size_t matchId, bool strong, double score) {
+                                  std::size_t matchId, bool strong, double score,
+                                  const std::string& source) {
     registerNewEdge(from, to, c);
+    if (!source.empty()) queued_.back().source = source;  // one part of a decider, told apart
     queued_.back().matchId = matchId;
     queued_.back().strong = strong;
     queued_.back().score = score;

@@ -80,6 +80,24 @@ void MagneticGpERD::configure(const mrpt::config::CConfigFileBase& ini) {
     if (!(p.plane.priorSigmaXY > 0) || !(p.plane.priorSigmaYaw > 0))
         s.fail("plane_prior_sigma", "prior sigmas must be > 0");
     if (!(p.plane.maxShift > 0)) s.fail("plane_max_shift", "must be > 0");
+    p.fieldMap.enabled = s.getBool("map_search", p.fieldMap.enabled);
+    p.fieldMap.every = s.getDouble("map_search_every", p.fieldMap.every);
+    p.fieldMap.window = s.getDouble("map_window", p.fieldMap.window);
+    p.fieldMap.maxPoints = s.getInt("map_max_points", p.fieldMap.maxPoints);
+    p.fieldMap.sigmaN = s.getDouble("map_sigma_n", p.fieldMap.sigmaN);
+    p.fieldMap.search.maxRadius = s.getDouble("map_search_radius", p.fieldMap.search.maxRadius);
+    p.fieldMap.search.gridStep = s.getDouble("map_grid_step", p.fieldMap.search.gridStep);
+    p.fieldMap.search.minLogRatio = s.getDouble("map_min_log_ratio", p.fieldMap.search.minLogRatio);
+    p.fieldMap.search.maxSigma = s.getDouble("map_max_sigma", p.fieldMap.search.maxSigma);
+    if (!(p.fieldMap.every > 0)) s.fail("map_search_every", "must be > 0");
+    if (!(p.fieldMap.window > 4 * p.track.step)) s.fail("map_window", "must be > 4 x resample_step");
+    if (p.fieldMap.maxPoints < 10) s.fail("map_max_points", "must be >= 10");
+    if (!(p.fieldMap.search.maxRadius > 0)) s.fail("map_search_radius", "must be > 0");
+    if (!(p.fieldMap.search.gridStep > 0) ||
+        !(p.fieldMap.search.gridStep < p.fieldMap.search.maxRadius))
+        s.fail("map_grid_step", "must be in (0, map_search_radius)");
+    if (!(p.fieldMap.search.minLogRatio >= 0)) s.fail("map_min_log_ratio", "must be >= 0");
+    if (!(p.fieldMap.search.maxSigma > 0)) s.fail("map_max_sigma", "must be > 0");
     p.edgeEvery = s.getInt("edge_every", p.edgeEvery);
     p.sigmaAlong = s.getDouble("sigma_along", p.sigmaAlong);
     p.sigmaCross = s.getDouble("sigma_cross", p.sigmaCross);
@@ -100,6 +118,12 @@ void MagneticGpERD::configure(const mrpt::config::CConfigFileBase& ini) {
         s.fail("sigma_cross", "sigmas must be > 0");
     if (!(p.saturation > 0)) s.fail("saturation", "must be > 0");
     s.finish();
+    // The field map judges its fits as the other alignments do.
+    p.fieldMap.search.gateChi2 = p.gateChi2;
+    p.fieldMap.search.maxNormalizedRms = p.maxNormalizedRms;
+    p.fieldMap.search.plane = p.plane;
+    p.fieldMap.search.distinctRadius = p.sameplaceRadius;
+    p.fieldMap.search.ambiguityLogRatio = p.ambiguityLogRatio;
     params_ = p;
     rebuild();
 }
@@ -239,6 +263,7 @@ void MagneticGpERD::query(const magnetic::Supernode& q) {
             align(places[bestPlace], *best);
         }
     }
+    if (params_.fieldMap.enabled) matchFieldMap(q);
     stats_.queryMs.push_back(msSince(t0));
 }
 
@@ -286,7 +311,13 @@ JsonObject MagneticGpERD::describe() const {
         .set("gp_sigma_c", params_.gp.sigmaC)
         .set("max_shift", params_.shift.maxShift)
         .set("edge_every", params_.edgeEvery)
-        .set("alignment", params_.alignment == Params::Alignment::Plane ? "plane" : "path");
+        .set("alignment", params_.alignment == Params::Alignment::Plane ? "plane" : "path")
+        .set("map_search", params_.fieldMap.enabled)
+        .set("map_search_every", params_.fieldMap.every)
+        .set("map_window", params_.fieldMap.window)
+        .set("map_search_radius", params_.fieldMap.search.maxRadius)
+        .set("map_min_log_ratio", params_.fieldMap.search.minLogRatio)
+        .set("map_sigma_n", params_.fieldMap.sigmaN);
     double total = 0, worst = 0;
     for (double ms : stats_.queryMs) {
         total += ms;
@@ -307,6 +338,14 @@ JsonObject MagneticGpERD::describe() const {
         .set("alignments", stats_.alignments)
         .set("plane_rejected", stats_.planeRejected)
         .set("edges", stats_.edges)
+        .set("map_searches", stats_.mapSearches)
+        .set("map_gate_too_wide", stats_.mapGateTooWide)
+        .set("map_no_map", stats_.mapNoMap)
+        .set("map_no_fit", stats_.mapNoFit)
+        .set("map_not_above_null", stats_.mapNotAboveNull)
+        .set("map_ambiguous", stats_.mapAmbiguous)
+        .set("map_too_loose", stats_.mapTooLoose)
+        .set("map_accepted", stats_.mapAccepted)
         .set("query_ms_mean", stats_.queryMs.empty() ? 0.0 : total / double(stats_.queryMs.size()))
         .set("query_ms_max", worst);
     return JsonObject().set("class", getClassName()).set("params", params).set("stats", stats);

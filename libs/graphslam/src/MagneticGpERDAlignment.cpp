@@ -134,7 +134,13 @@ void MagneticGpERD::addEdge(TNodeID target, std::size_t queryNode,
     const Constraint c = planarConstraint(z);
     const auto q = static_cast<TNodeID>(queryNode);
     // The edges of one alignment are one piece of evidence for the relocalizer.
-    registerClosure(target, q, c, records_.size(), false, -rec.normalizedRms);
+    // (field-map closures are scored by their evidence and logged apart: closures.csv's
+    // per-matcher precision then tells the two methods apart)
+    if (rec.fieldMap) {
+        registerClosure(target, q, c, records_.size(), false, rec.logRatio, getClassName() + ".map");
+    } else {
+        registerClosure(target, q, c, records_.size(), false, -rec.normalizedRms);
+    }
     // The query node is now known as well as the closure says (in the map frame).
     const double yaw = m_graph->nodes.at(target).yaw();
     const Eigen::Matrix2d R = Eigen::Rotation2Dd(yaw).toRotationMatrix();
@@ -146,6 +152,27 @@ void MagneticGpERD::addEdge(TNodeID target, std::size_t queryNode,
     rec.constraints.push_back(c);
     constrained_[queryNode] = true;
     ++stats_.edges;
+}
+
+void MagneticGpERD::addMovedNodeEdge(std::size_t qn, TNodeID target, const Eigen::Vector2d& moved0,
+                                     double turn, const magnetic::PlanarAlignmentResult& r,
+                                     Record& rec) {
+    const auto& q = m_graph->nodes.at(static_cast<TNodeID>(qn));
+    const Eigen::Vector2d moved = r.apply(moved0);
+    const mrpt::poses::CPose2D corrected(moved.x(), moved.y(), q.yaw() + turn + r.delta[2]);
+    const auto& tk = m_graph->nodes.at(target);
+    const mrpt::poses::CPose2D there(tk.x(), tk.y(), tk.yaw());
+    // The alignment's covariance at this node (the turn's lever arm included), in the target's
+    // frame.
+    Eigen::Matrix2d J90;
+    J90 << 0, -1, 1, 0;
+    Eigen::Matrix<double, 2, 3> J;
+    J << Eigen::Matrix2d::Identity(), J90 * (moved0 - r.pivot);
+    const Eigen::Matrix2d S = J * r.covariance * J.transpose() +
+                              params_.sigmaAlong * params_.sigmaAlong * Eigen::Matrix2d::Identity();
+    const Eigen::Matrix2d Rk = Eigen::Rotation2Dd(tk.yaw()).toRotationMatrix();
+    addEdge(target, qn, corrected - there, Rk.transpose() * S * Rk,
+            r.covariance(2, 2) + params_.sigmaYaw * params_.sigmaYaw, rec);
 }
 
 bool MagneticGpERD::positionAtTravel(double s, int segment, Eigen::Vector2d& p) const {
@@ -222,8 +249,6 @@ bool MagneticGpERD::alignInPlane(const std::vector<magnetic::BundleMatch>& bundl
     // Each query node moved as its readings were: by T0, then by the plane alignment; tied to
     // the target node nearest where the path alignment put it.
     const double yaw0 = std::atan2(T0(1, 0), T0(0, 0));
-    Eigen::Matrix2d J90;
-    J90 << 0, -1, 1, 0;
     const std::size_t firstNode = samples[qBegin].node, lastNode = samples[qEnd - 1].node;
     for (std::size_t qn = firstNode; qn <= lastNode; ++qn) {
         if (constrained_[qn] || qn % static_cast<std::size_t>(params_.edgeEvery) != 0) continue;
@@ -235,18 +260,7 @@ bool MagneticGpERD::alignInPlane(const std::vector<magnetic::BundleMatch>& bundl
         const auto& q = m_graph->nodes.at(static_cast<TNodeID>(qn));
         const Eigen::Vector2d moved0 = T0.topLeftCorner<2, 2>() * Eigen::Vector2d(q.x(), q.y()) +
                                        T0.topRightCorner<2, 1>();
-        const Eigen::Vector2d moved = r.apply(moved0);
-        const mrpt::poses::CPose2D corrected(moved.x(), moved.y(), q.yaw() + yaw0 + r.delta[2]);
-        const auto& tk = m_graph->nodes.at(k);
-        const mrpt::poses::CPose2D target(tk.x(), tk.y(), tk.yaw());
-        // The alignment's covariance at this node (the turn's lever arm included), in k's frame.
-        Eigen::Matrix<double, 2, 3> J;
-        J << Eigen::Matrix2d::Identity(), J90 * (moved0 - r.pivot);
-        const Eigen::Matrix2d S = J * r.covariance * J.transpose() +
-                            params_.sigmaAlong * params_.sigmaAlong * Eigen::Matrix2d::Identity();
-        const Eigen::Matrix2d Rk = Eigen::Rotation2Dd(tk.yaw()).toRotationMatrix();
-        addEdge(k, qn, corrected - target, Rk.transpose() * S * Rk,
-                r.covariance(2, 2) + params_.sigmaYaw * params_.sigmaYaw, rec);
+        addMovedNodeEdge(qn, k, moved0, yaw0, r, rec);
     }
     return true;
 }

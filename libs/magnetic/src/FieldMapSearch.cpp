@@ -13,7 +13,9 @@ std::string toString(FieldMapVerdict v) {
         case FieldMapVerdict::Accepted: return "accepted";
         case FieldMapVerdict::NoFit: return "no fit";
         case FieldMapVerdict::NotAboveNull: return "not above the null";
+        case FieldMapVerdict::Ambiguous: return "ambiguous";
         case FieldMapVerdict::TooLoose: return "too loose";
+        case FieldMapVerdict::GateTooWide: return "gate too wide";
     }
     return "?";
 }
@@ -72,6 +74,7 @@ struct Optimum {
     Eigen::Vector3d x;  ///< dx, dy, dyaw about the stretch's centroid
     Eigen::Matrix3d covariance;
     double logLikelihood{0}, logPrior{0}, normalizedRms{0};
+    bool onEdge{false};  ///< the fit still improves past the gate's edge
 };
 
 Eigen::MatrixX2d moved(const Eigen::MatrixX2d& points, const Eigen::Vector2d& pivot,
@@ -84,19 +87,39 @@ Eigen::MatrixX2d moved(const Eigen::MatrixX2d& points, const Eigen::Vector2d& pi
 }
 }  // namespace
 
+double gateRadius(const Eigen::Matrix2d& gateCovariance, double gateChi2) {
+    return std::sqrt(gateChi2 *
+                     Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(gateCovariance).eigenvalues().maxCoeff());
+}
+
 FieldMapMatch searchFieldMap(const GaussianProcess2D& map, const Eigen::MatrixX2d& points,
                              const Eigen::MatrixXd& query, const Eigen::Matrix2d& gateCovariance,
                              const FieldMapSearchParams& params) {
     FieldMapMatch result;
     if (points.rows() < 3 || points.rows() != query.rows() || map.size() == 0) return result;
+    const double reach = gateRadius(gateCovariance, params.gateChi2);
+    if (!(reach <= params.maxRadius)) {
+        result.verdict = FieldMapVerdict::GateTooWide;
+        return result;
+    }
     const Eigen::Vector2d pivot = points.colwise().mean().transpose();
     result.alignment.pivot = pivot;
     result.nullLogLikelihood = map.priorLogLikelihood(points, query);
 
-    // 1. Translations on a grid inside the gate (capped), scored by the map's predictive
+    // 1. Translations on a grid inside the gate, scored by the map's predictive
     //    density of each reading (one by one: a ranking, not yet the verdict).
     const Eigen::Matrix2d gateInfo = gateCovariance.inverse();
-    const double R = params.maxRadius, h = params.gridStep;
+    // The gate is the uncertainty of where the robot is now - the stretch's last point: its
+    // move (the turn about the centroid included) is what must lie inside.
+    const Eigen::Vector2d lastArm = points.row(points.rows() - 1).transpose() - pivot;
+    const auto lastMove = [&](const Eigen::Vector3d& x) -> Eigen::Vector2d {
+        return x.head<2>() + Eigen::Rotation2Dd(x[2]).toRotationMatrix() * lastArm - lastArm;
+    };
+    const auto gate2 = [&](const Eigen::Vector3d& x) {
+        const Eigen::Vector2d d = lastMove(x);
+        return d.dot(gateInfo * d);
+    };
+    const double R = reach, h = params.gridStep;
     const int half = static_cast<int>(std::floor(R / h));
     const double rasterStep = std::min(h, map.hyperparameters().lengthScale / 3);
     const Eigen::Vector2d lo = points.colwise().minCoeff().transpose() - Eigen::Vector2d::Constant(R + h),
@@ -123,7 +146,7 @@ FieldMapMatch searchFieldMap(const GaussianProcess2D& map, const Eigen::MatrixX2
     for (int j = -half; j <= half; ++j) {
         for (int i = -half; i <= half; ++i) {
             const Eigen::Vector2d d(i * h, j * h);
-            if (d.norm() > R + 1e-9 || d.dot(gateInfo * d) > params.gateChi2) continue;
+            if (d.dot(gateInfo * d) > params.gateChi2) continue;
             ++result.hypotheses;
             cell(i, j) = score(Eigen::Vector3d(d.x(), d.y(), 0));
         }
@@ -164,6 +187,7 @@ FieldMapMatch searchFieldMap(const GaussianProcess2D& map, const Eigen::MatrixX2
                         Eigen::Vector3d y = x;
                         y[axis] += sign * step[axis];
                         if ((y.head<2>() - d).norm() > params.plane.maxShift ||
+                            gate2(y) > params.gateChi2 ||
                             std::abs(y[2]) > yawRange)
                             continue;
                         const double c = score(y);
@@ -178,6 +202,12 @@ FieldMapMatch searchFieldMap(const GaussianProcess2D& map, const Eigen::MatrixX2
         }
         Optimum o;
         o.x = x;
+        // Held by the gate rather than by the field? Then the place may lie outside it.
+        if (gate2(x) > 0.5 * params.gateChi2) {
+            Eigen::Vector3d out = x;
+            out.head<2>() += h * lastMove(x).normalized();
+            o.onEdge = score(out) < best;
+        }
         const Eigen::Vector2d t = x.head<2>();
         if (std::any_of(kept.begin(), kept.end(), [&](const Optimum& k) {
                 return (k.x.head<2>() - t).norm() < 0.5 * h;  // converged to one already kept
@@ -194,7 +224,7 @@ FieldMapMatch searchFieldMap(const GaussianProcess2D& map, const Eigen::MatrixX2
         if (!(o.normalizedRms <= params.maxNormalizedRms)) continue;
         Eigen::Matrix3d info;
         o.logLikelihood = map.jointLogLikelihood(at, query, pivot + t, &info);
-        o.logPrior = -0.5 * t.dot(gateInfo * t);
+        o.logPrior = -0.5 * gate2(x);
         // The curvature under the readings' joint covariance, held weakly by the search region
         // and the heading prior where the field says nothing (a straight pass: along it);
         // a fit worse than the noise model makes it less sure.
@@ -213,17 +243,16 @@ FieldMapMatch searchFieldMap(const GaussianProcess2D& map, const Eigen::MatrixX2
     const double dispersion = std::max(1.0, best->normalizedRms * best->normalizedRms);
     result.logLikelihood = best->logLikelihood;
     result.alignment.normalizedRms = best->normalizedRms;
-    if ((best->logLikelihood - result.nullLogLikelihood) / dispersion < params.minLogRatio) {
-        result.verdict = FieldMapVerdict::NotAboveNull;
-        return result;
-    }
-    // 4. The optima as a mixture, weighted by likelihood and gate, moment-matched.
+    const auto elsewhere = [&](const Optimum& o) {
+        return (o.x.head<2>() - best->x.head<2>()).norm() > params.distinctRadius;
+    };
+    // 4. This place's optima as a mixture, weighted by likelihood and gate, moment-matched.
     const double top = best->logLikelihood + best->logPrior;
     double total = 0;
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();
     std::vector<double> w;
     for (const auto& o : kept) {
-        w.push_back(std::exp((o.logLikelihood + o.logPrior - top) / dispersion));
+        w.push_back(elsewhere(o) ? 0.0 : std::exp((o.logLikelihood + o.logPrior - top) / dispersion));
         total += w.back();
         mean += w.back() * o.x;
     }
@@ -239,6 +268,32 @@ FieldMapMatch searchFieldMap(const GaussianProcess2D& map, const Eigen::MatrixX2
     result.alignment.delta = mean;
     result.alignment.covariance = cov;
     result.alignment.valid = true;
+    // 5. The evidence for "the map explains these readings somewhere in the region" over "it
+    //    knows nothing of them": the likelihood ratio at the optimum times the Occam factor of
+    //    having searched - the posterior's area over the region's (Laplace). Without it, the
+    //    best of hundreds of tried places explains an unrelated field by e^10 now and then.
+    const double region = double(result.hypotheses) * h * h;
+    const double posteriorArea = 2 * M_PI * std::sqrt(cov.topLeftCorner<2, 2>().determinant());
+    result.logEvidence = (best->logLikelihood - result.nullLogLikelihood) / dispersion +
+                         std::log(std::min(1.0, posteriorArea / region));
+    if (result.logEvidence < params.minLogRatio) {
+        result.verdict = FieldMapVerdict::NotAboveNull;
+        return result;
+    }
+    // 6. Another place that fits about as well, or one beyond the gate's edge that might:
+    //    no verdict between them.
+    if (best->onEdge) {
+        result.verdict = FieldMapVerdict::Ambiguous;
+        return result;
+    }
+    for (const auto& o : kept) {
+        if (elsewhere(o) &&
+            (best->logLikelihood - o.logLikelihood) / dispersion < params.ambiguityLogRatio) {
+            result.verdict = FieldMapVerdict::Ambiguous;
+            return result;
+        }
+    }
+    // 7. Too loose to say anything the gate did not.
     const double widest = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(cov.topLeftCorner<2, 2>())
                               .eigenvalues()
                               .maxCoeff();

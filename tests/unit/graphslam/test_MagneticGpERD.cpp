@@ -5,17 +5,13 @@
 // position gate) or near (inside), an exact copy (undecidable) or a copy with anomalies of its
 // own (the GP's likelihood tells them apart).
 #include <gtest/gtest.h>
-#include <lodestone/graphslam/CeresGSO.h>
-#include <lodestone/graphslam/CompositeERD.h>
 #include <lodestone/graphslam/MagneticGpERD.h>
 #include <lodestone/graphslam/SlamEngine.h>
 #include <lodestone/graphslam/closure/PathUncertainty.h>
-#include <mrpt/config/CConfigFileMemory.h>
-#include <mrpt/obs/CObservationComment.h>
 
 #include <random>
 
-#include "ScriptedDeciders.h"
+#include "ScriptedMagneticRun.h"
 
 using namespace lodestone;
 
@@ -143,22 +139,16 @@ MagRun run(const Decoy& decoy, const std::string& ini) {
         z.cov(2, 2) = 2e-6;
         steps.push_back({graphslam::planarConstraint(z), 0});
     }
-    auto erd = std::make_unique<graphslam::MagneticGpERD>();
-    erd->configure(mrpt::config::CConfigFileMemory(ini));
-    r.erd = erd.get();
-    auto composite = std::make_unique<graphslam::CompositeERD>();
-    composite->addChild(std::move(erd));
-    r.engine = std::make_unique<graphslam::SlamEngine>(
-        std::make_unique<test::ScriptedNRD>(steps, records), std::move(composite),
-        std::make_unique<graphslam::CeresGSO>());
-    const auto tick = mrpt::obs::CObservationComment::Create();
-    while (r.engine->process(tick)) {
-    }
-    r.engine->finish();
+    auto run = test::runMagneticScript(std::move(steps), std::move(records), ini);
+    r.engine = std::move(run.engine);
+    r.erd = run.erd;
     return r;
 }
 
 const std::string kIni = "[MagneticGpERD]\nalignment = path\ngate_heading_drift = 0\n";
+// The same with the field map searching too: it must not be fooled where the sequence matcher
+// is not.
+const std::string kIniWithMap = kIni + "map_search = true\n";
 
 /** Every closure of the run: how many land within `tolerance` of the truth, how many tie a
  * node to the look-alike (y near the separation). */
@@ -236,43 +226,51 @@ TEST(PathUncertainty, MatchesMonteCarloOfTheOdometryModel) {
 }
 
 TEST(MagneticGpERD, ALookAlikeOutsideTheGateIsNotMatchedNorMakesTheTrueOneAmbiguous) {
-    Decoy d;
-    d.separation = 20;
-    const auto r = run(d, kIni);
-    const auto v = judge(r);
-    EXPECT_GT(v.closures, 10u);
-    EXPECT_EQ(v.toDecoy, 0u);
-    EXPECT_EQ(v.right, v.closures);
-    EXPECT_GT(r.erd->stats().gatedOut, 0u);
+    for (const auto& ini : {kIni, kIniWithMap}) {
+        Decoy d;
+        d.separation = 20;
+        const auto r = run(d, ini);
+        const auto v = judge(r);
+        EXPECT_GT(v.closures, 10u);
+        EXPECT_EQ(v.toDecoy, 0u);
+        EXPECT_EQ(v.right, v.closures);
+        EXPECT_GT(r.erd->stats().gatedOut, 0u);
+    }
 }
 
 TEST(MagneticGpERD, InsideTheGateTheLikelierPlaceIsChosen) {
-    Decoy d;
-    d.separation = 2.5;
-    d.extra = 1.0;  // the decoy has anomalies of its own: the GP fits the true place better
-    const auto r = run(d, kIni);
-    const auto v = judge(r);
-    EXPECT_GT(r.erd->stats().resolved, 0u);
-    EXPECT_GT(v.closures, 10u);
-    EXPECT_EQ(v.toDecoy, 0u);
-    EXPECT_EQ(v.right, v.closures);
+    for (const auto& ini : {kIni, kIniWithMap}) {
+        Decoy d;
+        d.separation = 2.5;
+        d.extra = 1.0;  // the decoy has anomalies of its own: the GP fits the true place better
+        const auto r = run(d, ini);
+        const auto v = judge(r);
+        EXPECT_GT(r.erd->stats().resolved, 0u);
+        EXPECT_GT(v.closures, 10u);
+        EXPECT_EQ(v.toDecoy, 0u);
+        EXPECT_EQ(v.right, v.closures);
+    }
 }
 
 TEST(MagneticGpERD, TwoEquallyLikelyPlacesInsideTheGateGiveNoClosure) {
-    Decoy d;
-    d.separation = 2.5;
-    d.extra = 0;  // an exact copy: nothing tells them apart
-    const auto r = run(d, kIni);
-    const auto v = judge(r);
-    EXPECT_GT(r.erd->stats().ambiguous, 0u);
-    EXPECT_EQ(v.toDecoy, 0u);
-    EXPECT_EQ(v.closures, 0u);
+    for (const auto& ini : {kIni, kIniWithMap}) {
+        Decoy d;
+        d.separation = 2.5;
+        d.extra = 0;  // an exact copy: nothing tells them apart
+        const auto r = run(d, ini);
+        const auto v = judge(r);
+        EXPECT_GT(r.erd->stats().ambiguous, 0u);
+        EXPECT_EQ(v.toDecoy, 0u);
+        EXPECT_EQ(v.closures, 0u);
+    }
 }
 
 TEST(MagneticGpERD, AFieldNeverSeenBeforeGivesNoClosure) {
-    Decoy d;
-    d.separation = 20;
-    d.freshThirdPass = true;
-    const auto r = run(d, kIni);
-    EXPECT_EQ(judge(r).closures, 0u);
+    for (const auto& ini : {kIni, kIniWithMap}) {
+        Decoy d;
+        d.separation = 20;
+        d.freshThirdPass = true;
+        const auto r = run(d, ini);
+        EXPECT_EQ(judge(r).closures, 0u) << ini;
+    }
 }

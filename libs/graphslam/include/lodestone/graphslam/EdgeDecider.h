@@ -30,9 +30,10 @@ class EdgeDecider : public mrpt::graphslam::deciders::CEdgeRegistrationDecider<G
      * one match (not independent evidence); `strong` when the match alone is convincing by
      * the decider's own threshold; `score` is the decider's measure of the evidence (higher
      * is stronger, see LoopClosure::score). registerNewEdge gives every closure a match of its
-     * own. */
+     * own. `source`, if given, replaces the class name as the closure's source (one method of
+     * a decider told apart from its others in closures.csv). */
     void registerClosure(TNodeID from, TNodeID to, const Constraint& c, std::size_t matchId,
-                         bool strong, double score);
+                         bool strong, double score, const std::string& source = {});
 
     std::vector<LoopClosure> queued_;
     std::size_t registered_{0};

@@ -4,6 +4,7 @@
 #include <lodestone/graphslam/closure/PathUncertainty.h>
 #include <lodestone/magnetic/BundleMatcher.h>
 #include <lodestone/magnetic/FieldFeatures.h>
+#include <lodestone/magnetic/FieldMapSearch.h>
 #include <lodestone/magnetic/GpShiftCorrection.h>
 #include <lodestone/magnetic/PlanarAlignment.h>
 #include <lodestone/magnetic/SupernodeIndex.h>
@@ -34,6 +35,11 @@ namespace lodestone::graphslam {
  * sigma of the GP scan and loose cross-track and heading sigmas (a field sequence says where
  * along a path the robot is, little about across it); or, with `alignment = plane`, moved in
  * the plane against every earlier pass found there (MagneticGpERDAlignment.cpp).
+ * Where no sequence match places the robot - it walks beside earlier passes, not on them - the
+ * field map does (`map_search`, MagneticGpERDFieldMap.cpp): every `map_search_every` metres the
+ * last `map_window` metres of readings are placed against a 2-D GP of every earlier reading
+ * near where the graph has them (magnetic::FieldMapSearch). The map is the readings anchored
+ * to their nodes, so it moves with the graph.
  * NaN, infinite or saturated readings are dropped and counted. INI section [MagneticGpERD]. */
 class MagneticGpERD : public EdgeDecider {
   public:
@@ -74,6 +80,19 @@ class MagneticGpERD : public EdgeDecider {
         magnetic::PlanarAlignmentParams plane;
         double planeMargin{0.5};  ///< [m] of target path either side of the query window
         int planeSubsample{2};    ///< every n-th target reading into the 2-D GP
+        /** The field map (MagneticGpERDFieldMap.cpp). */
+        struct FieldMap {
+            bool enabled{false};  // opt-in: README "The field map" (measured)
+            double every{1.0};       ///< [m] of travel between searches
+            double window{3.0};      ///< [m] of query path placed
+            int maxPoints{250};      ///< earlier readings in the local GP (thinned beyond)
+            /** [uT] how well readings repeat between passes of one place - the map's noise.
+             * Along one pass (what lodestone-magfit fits) a hand-held magnetometer is smooth
+             * to 0.15 uT, but its passes of one place differ by about 1 uT (device height and
+             * tilt; README: the field map on the Kok walks). <= 0: gp_sigma_n. */
+            double sigmaN{0};
+            magnetic::FieldMapSearchParams search;
+        } fieldMap;
         int edgeEvery{3};                  ///< [nodes]
         double sigmaAlong{0.03};           ///< [m] floor, added to the GP's shift sigma
         double sigmaCross{0.20};           ///< [m]
@@ -84,7 +103,9 @@ class MagneticGpERD : public EdgeDecider {
     struct Record {
         std::size_t querySupernode{0};
         double offset{0}, shift{0}, shiftSigma{0}, normalizedRms{0}, cost{0};
-        bool plane{false};  ///< refined in the plane
+        bool plane{false};     ///< refined in the plane
+        bool fieldMap{false};  ///< placed by the field map, no sequence match
+        double logRatio{0};    ///< field map: joint log-likelihood over the map's prior
         Eigen::Vector3d planeDelta{Eigen::Vector3d::Zero()};
         std::vector<std::pair<TNodeID, TNodeID>> edges;  ///< (target node, query node)
         std::vector<Constraint> constraints;
@@ -93,6 +114,9 @@ class MagneticGpERD : public EdgeDecider {
         std::size_t readings{0}, droppedReadings{0}, otherSensors{0}, supernodes{0},
             flatSupernodes{0}, matchedSupernodes{0}, gatedOut{0}, bundles{0}, ambiguous{0},
             resolved{0}, gpRejected{0}, alignments{0}, edges{0}, planeRejected{0};
+        /** Field-map searches and what became of them. */
+        std::size_t mapSearches{0}, mapGateTooWide{0}, mapNoMap{0}, mapNoFit{0}, mapNotAboveNull{0},
+            mapAmbiguous{0}, mapTooLoose{0}, mapAccepted{0};
         std::vector<double> queryMs;  ///< per supernode: search + bundle + GP [ms]
     };
 
@@ -139,6 +163,13 @@ class MagneticGpERD : public EdgeDecider {
      * fit. */
     bool alignInPlane(const std::vector<magnetic::BundleMatch>& bundles, std::size_t qBegin,
                       std::size_t qEnd, double shift, Record& rec);
+    /** Query node `qn` moved to `moved0` (before `r`), its heading turned by `turn` and then by
+     * r's: an edge from `target`, with r's covariance at that node's lever arm. */
+    void addMovedNodeEdge(std::size_t qn, TNodeID target, const Eigen::Vector2d& moved0, double turn,
+                          const magnetic::PlanarAlignmentResult& r, Record& rec);
+    /** The field map's search for the stretch ending with supernode `q`. */
+    void matchFieldMap(const magnetic::Supernode& q);
+    void countVerdict(magnetic::FieldMapVerdict v);
     bool positionAtTravel(double s, int segment, Eigen::Vector2d& p) const;
     bool nodeAtTravel(double s, int segment, TNodeID& k, double& frac) const;
     mrpt::math::TPoint2D positionOf(TNodeID id) const;
@@ -154,6 +185,7 @@ class MagneticGpERD : public EdgeDecider {
     std::optional<std::size_t> previous_supernode_;
     std::deque<std::size_t> unindexed_;  // supernodes too recent to be matched yet
     TNodeID seen_{0};
+    double lastMapSearch_{-1e18};  // [m] travel at the last field-map search
     std::vector<Record> records_;
     Stats stats_;
 };

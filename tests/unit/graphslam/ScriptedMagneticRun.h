@@ -1,0 +1,44 @@
+#pragma once
+// A scripted run of MagneticGpERD alone: the nodes' odometry steps and records (with their
+// magnetometer readings) replayed through the engine with CeresGSO, the ERD configured from
+// `ini`.
+#include <lodestone/graphslam/CeresGSO.h>
+#include <lodestone/graphslam/CompositeERD.h>
+#include <lodestone/graphslam/MagneticGpERD.h>
+#include <lodestone/graphslam/SlamEngine.h>
+#include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/obs/CObservationComment.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "ScriptedDeciders.h"
+
+namespace lodestone::test {
+
+struct ScriptedMagneticRun {
+    std::unique_ptr<graphslam::SlamEngine> engine;
+    const graphslam::MagneticGpERD* erd{nullptr};
+};
+
+inline ScriptedMagneticRun runMagneticScript(std::vector<ScriptedNRD::Step> steps,
+                                             std::vector<graphslam::NodeRecord> records,
+                                             const std::string& ini) {
+    ScriptedMagneticRun r;
+    auto erd = std::make_unique<graphslam::MagneticGpERD>();
+    erd->configure(mrpt::config::CConfigFileMemory(ini));
+    r.erd = erd.get();
+    auto composite = std::make_unique<graphslam::CompositeERD>();
+    composite->addChild(std::move(erd));
+    r.engine = std::make_unique<graphslam::SlamEngine>(
+        std::make_unique<ScriptedNRD>(std::move(steps), std::move(records)), std::move(composite),
+        std::make_unique<graphslam::CeresGSO>());
+    const auto tick = mrpt::obs::CObservationComment::Create();
+    while (r.engine->process(tick)) {
+    }
+    r.engine->finish();
+    return r;
+}
+
+}  // namespace lodestone::test
