@@ -1,6 +1,7 @@
 #include <lodestone/config/CommandLine.h>
 #include <lodestone/io/ImportApp.h>
 #include <lodestone/io/MagneticRecordingImport.h>
+#include <lodestone/io/SevenScenesImport.h>
 #include <lodestone/io/TumRgbdImport.h>
 #include <lodestone/obs/registerAllClasses.h>
 
@@ -18,6 +19,9 @@ int importTum(const std::vector<std::string>& words, std::ostream& out, std::ost
         "", "intrinsics", "fr1, fr2, fr3, default or fx,fy,cx,cy", false, "fr1", "K", cmd);
     TCLAP::ValueArg<double> maxDt("", "max-dt", "RGB-depth association tolerance [s]", false, 0.02,
                                   "S", cmd);
+    TCLAP::ValueArg<double> depthScale("", "depth-scale",
+                                       "depth image units per metre (TUM 5000, 7-Scenes / ICL-NUIM 1000)",
+                                       false, 5000.0, "U", cmd);
     const auto outcome = config::parseCommandLine(cmd, words);
     if (outcome.kind == config::ParseOutcome::Kind::HelpShown) return 0;
     const auto usage = [&](const std::string& why) {
@@ -33,6 +37,8 @@ int importTum(const std::vector<std::string>& words, std::ostream& out, std::ost
         return usage(std::string("--intrinsics: ") + e.what());
     }
     o.maxTimeDifference = maxDt.getValue();
+    if (!(depthScale.getValue() > 0)) return usage("--depth-scale must be > 0");
+    o.depthScale = depthScale.getValue();
     const auto r = importTumRgbd(positional.getValue()[0], positional.getValue()[1], o);
     out << r.frames << " RGB-D frames -> " << r.rawlog << " (" << r.unmatchedRgb << " colour and "
         << r.unmatchedDepth << " depth images without a partner)\n";
@@ -41,6 +47,47 @@ int importTum(const std::vector<std::string>& words, std::ostream& out, std::ost
     }
     return 0;
 }
+int importSevenScenes(const std::vector<std::string>& words, std::ostream& out, std::ostream& err) {
+    TCLAP::CmdLine cmd("Convert a 7-Scenes / 3DMatch sequence folder into a rawlog (+ OUT.gt.tum)",
+                       ' ', "");
+    TCLAP::UnlabeledMultiArg<std::string> positional(
+        "DIR_OUT", "DIR (frame-NNNNNN.color.png, .depth.png, .pose.txt) then OUT.rawlog", true,
+        "DIR OUT", cmd);
+    TCLAP::ValueArg<std::string> intrinsics(
+        "", "intrinsics", "fx,fy,cx,cy (default: camera-intrinsics.txt beside, else 585,585,320,240)",
+        false, "", "K", cmd);
+    TCLAP::ValueArg<double> depthScale("", "depth-scale", "depth image units per metre", false,
+                                       1000.0, "U", cmd);
+    TCLAP::ValueArg<double> rate("", "rate", "frame rate [Hz]: frame i is at i / rate", false, 30.0,
+                                 "HZ", cmd);
+    const auto outcome = config::parseCommandLine(cmd, words);
+    if (outcome.kind == config::ParseOutcome::Kind::HelpShown) return 0;
+    const auto usage = [&](const std::string& why) {
+        err << "lodestone-import 7scenes: " << why << " (see lodestone-import 7scenes --help)\n";
+        return 2;
+    };
+    if (outcome.kind == config::ParseOutcome::Kind::UsageError) return usage(outcome.error);
+    if (positional.getValue().size() != 2) return usage("expected DIR and OUT");
+    SevenScenesImportOptions o;
+    if (!intrinsics.getValue().empty()) {
+        try {
+            o.intrinsics = TumIntrinsics::parse(intrinsics.getValue());
+        } catch (const std::invalid_argument& e) {
+            return usage(std::string("--intrinsics: ") + e.what());
+        }
+    }
+    if (!(depthScale.getValue() > 0)) return usage("--depth-scale must be > 0");
+    if (!(rate.getValue() > 0)) return usage("--rate must be > 0");
+    o.depthScale = depthScale.getValue();
+    o.rate = rate.getValue();
+    const auto r = importSevenScenes(positional.getValue()[0], positional.getValue()[1], o);
+    out << r.frames << " RGB-D frames -> " << r.rawlog << " (intrinsics " << r.intrinsics.fx << ", "
+        << r.intrinsics.fy << ", " << r.intrinsics.cx << ", " << r.intrinsics.cy << " from "
+        << r.intrinsicsSource << ")\n"
+        << r.groundTruthPoses << " ground-truth poses -> " << r.groundTruth << "\n";
+    return 0;
+}
+
 // The drift-model options shared by the magnetometer recordings (Kok & Solin's defaults).
 struct DriftArgs {
     TCLAP::ValueArg<std::uint64_t> seed;
@@ -123,7 +170,9 @@ int runImportApp(int argc, const char* const* argv, std::ostream& out, std::ostr
     lodestone::registerAllClasses();
     const std::string usage =
         "lodestone-import: datasets into rawlogs\n"
-        "usage: lodestone-import tum DIR OUT.rawlog [--intrinsics fr1] [--max-dt 0.02]\n"
+        "usage: lodestone-import tum DIR OUT.rawlog [--intrinsics fr1] [--max-dt 0.02] [--depth-scale 5000]\n"
+        "       lodestone-import 7scenes DIR OUT.rawlog [--intrinsics fx,fy,cx,cy] [--depth-scale 1000]\n"
+        "                              [--rate 30]\n"
         "       lodestone-import aalto DIR TRIAL OUT.rawlog [--seed 1] [--bias 0.005] [--sp2 "
         "1e-4]\n"
         "                              [--sh2 1e-4] [--odometry-rate 10]\n"
@@ -142,6 +191,7 @@ int runImportApp(int argc, const char* const* argv, std::ostream& out, std::ostr
     words.insert(words.end(), argv + 2, argv + argc);
     try {
         if (command == "tum") return importTum(words, out, err);
+        if (command == "7scenes") return importSevenScenes(words, out, err);
         if (command == "aalto" || command == "kok") return importMagnetic(command, words, out, err);
     } catch (const std::exception& e) {
         err << "lodestone-import " << command << ": error: " << e.what() << "\n";

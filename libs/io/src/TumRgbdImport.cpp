@@ -3,13 +3,11 @@
 #include <lodestone/io/TimeAssociation.h>
 #include <lodestone/io/TumRgbdImport.h>
 #include <lodestone/io/TumTrajectory.h>
-#include <mrpt/obs/CObservation3DRangeScan.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
 namespace lodestone::io {
@@ -45,9 +43,17 @@ std::vector<Stamped> readList(const fs::path& path) {
 }  // namespace
 
 TumIntrinsics TumIntrinsics::parse(const std::string& text) {
-    if (text == "fr1") return {517.3, 516.5, 318.6, 255.3};
-    if (text == "fr2") return {520.9, 521.0, 325.1, 249.7};
-    if (text == "fr3") return {535.4, 539.2, 320.1, 247.6};
+    const auto of = [](double fx, double fy, double cx, double cy) {
+        TumIntrinsics k;
+        k.fx = fx;
+        k.fy = fy;
+        k.cx = cx;
+        k.cy = cy;
+        return k;
+    };
+    if (text == "fr1") return of(517.3, 516.5, 318.6, 255.3);
+    if (text == "fr2") return of(520.9, 521.0, 325.1, 249.7);
+    if (text == "fr3") return of(535.4, 539.2, 320.1, 247.6);
     if (text == "default") return {};
     TumIntrinsics k;
     char c1 = 0, c2 = 0, c3 = 0;
@@ -94,36 +100,15 @@ TumImportResult importTumRgbd(const std::string& sequenceDir, const std::string&
     }
 
     RawlogWriter writer(outRawlog, {isGzipPath(outRawlog) ? 1 : 0});
+    RgbdFrameOptions frame;
+    frame.intrinsics = o.intrinsics;
+    frame.depthScale = o.depthScale;
+    frame.sensorLabel = o.sensorLabel;
     for (const auto& [i, j] : pairs) {
         const fs::path rgbFile = dir / rgb[i].file, depthFile = dir / depth[j].file;
         if (!fs::exists(rgbFile))
             throw std::runtime_error(rgbFile.string() + ": missing (listed in rgb.txt)");
-        const cv::Mat d = cv::imread(depthFile.string(), cv::IMREAD_UNCHANGED);
-        if (d.empty() || d.type() != CV_16UC1) {
-            throw std::runtime_error(depthFile.string() + ": missing or not a 16-bit depth PNG");
-        }
-        auto obs = mrpt::obs::CObservation3DRangeScan::Create();
-        obs->timestamp = mrpt::Clock::fromDouble(rgb[i].t);
-        obs->sensorLabel = o.sensorLabel;
-        obs->sensorPose = mrpt::poses::CPose3D();  // the camera is the robot in TUM sequences
-        auto& cam = obs->cameraParams;
-        cam.ncols = static_cast<uint32_t>(d.cols);
-        cam.nrows = static_cast<uint32_t>(d.rows);
-        cam.fx(o.intrinsics.fx);
-        cam.fy(o.intrinsics.fy);
-        cam.cx(o.intrinsics.cx);
-        cam.cy(o.intrinsics.cy);
-        obs->cameraParamsIntensity = cam;
-        obs->range_is_depth = true;
-        obs->rangeUnits = static_cast<float>(1.0 / o.depthScale);
-        obs->hasRangeImage = true;
-        obs->rangeImage_setSize(d.rows, d.cols);
-        for (int y = 0; y < d.rows; ++y) {
-            for (int x = 0; x < d.cols; ++x) obs->rangeImage(y, x) = d.at<uint16_t>(y, x);
-        }
-        obs->hasIntensityImage = true;
-        obs->intensityImage.setExternalStorage(rgbFile.string());  // absolute: read in place
-        writer.write(*obs);
+        writeRgbdFrame(writer, rgb[i].t, rgbFile.string(), depthFile.string(), frame);
         ++r.frames;
     }
     writer.close();

@@ -138,6 +138,38 @@ TEST(TumRgbdImport, SyntheticSequenceThroughTheApp) {
     EXPECT_FALSE(fs::exists(dir.file("sim.gt.tum")));  // no groundtruth.txt, none written
 }
 
+TEST(TumRgbdImport, DepthScale1000GivesMetres) {
+    // ICL-NUIM / 7-Scenes style depth (millimetres) in a TUM layout: --depth-scale 1000.
+    registerAllClasses();
+    test::TempDir dir;
+    const auto seq = dir.path() / "mm";
+    fs::create_directories(seq / "rgb");
+    fs::create_directories(seq / "depth");
+    cv::imwrite((seq / "rgb" / "0.png").string(), cv::Mat3b(24, 32, cv::Vec3b(10, 20, 30)));
+    cv::imwrite((seq / "depth" / "0.png").string(), cv::Mat1w(24, 32, static_cast<uint16_t>(1500)));
+    std::ofstream(seq / "rgb.txt") << "5.0 rgb/0.png\n";
+    std::ofstream(seq / "depth.txt") << "5.001 depth/0.png\n";
+    const std::string out = dir.file("mm.rawlog");
+    for (const auto& [scale, metres] : {std::pair<std::string, double>{"1000", 1.5}, {"5000", 0.3}}) {
+        std::vector<std::string> args = {"lodestone-import", "tum", seq.string(), out, "--depth-scale", scale};
+        std::vector<const char*> argv;
+        for (const auto& a : args) argv.push_back(a.c_str());
+        std::ostringstream o, e;
+        ASSERT_EQ(io::runImportApp(static_cast<int>(argv.size()), argv.data(), o, e), 0) << e.str();
+        io::RawlogSource source(out);
+        auto s = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(source.next());
+        ASSERT_TRUE(s);
+        EXPECT_NEAR(s->rangeImage(5, 5) * s->rangeUnits, metres, 1e-6) << "--depth-scale " << scale;
+    }
+    // A scale that is no scale is a usage error (2), naming the option.
+    std::vector<std::string> args = {"lodestone-import", "tum", seq.string(), out, "--depth-scale", "0"};
+    std::vector<const char*> argv;
+    for (const auto& a : args) argv.push_back(a.c_str());
+    std::ostringstream o, e;
+    EXPECT_EQ(io::runImportApp(static_cast<int>(argv.size()), argv.data(), o, e), 2);
+    EXPECT_NE(e.str().find("--depth-scale"), std::string::npos) << e.str();
+}
+
 TEST(TumRgbdImport, BadInputIsNamed) {
     test::TempDir dir;
     std::ofstream(dir.file("rgb.txt")) << "1.0 rgb/a.png\nnot-a-time rgb/b.png\n";

@@ -1,13 +1,13 @@
 #pragma once
 
+#include <lodestone/io/RgbdFrameImport.h>
+
 #include <string>
 
 namespace lodestone::io {
 
 /** Pinhole intrinsics the TUM RGB-D sequences were recorded with [px]. */
-struct TumIntrinsics {
-    double fx{525.0}, fy{525.0}, cx{319.5}, cy{239.5};
-
+struct TumIntrinsics : PinholeIntrinsics {
     /** "fr1", "fr2", "fr3" (the TUM calibrations of the colour cameras, to which depth is
      * registered), "default" (ROS's 525/525/319.5/239.5) or "fx,fy,cx,cy". Throws
      * std::invalid_argument naming the text otherwise. */

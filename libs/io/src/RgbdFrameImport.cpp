@@ -1,0 +1,44 @@
+#include <lodestone/io/RgbdFrameImport.h>
+#include <mrpt/obs/CObservation3DRangeScan.h>
+
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+#include <stdexcept>
+
+namespace lodestone::io {
+
+void writeRgbdFrame(RawlogWriter& writer, double timestamp, const std::string& colourPath,
+                    const std::string& depthPath, const RgbdFrameOptions& o) {
+    if (!std::filesystem::exists(colourPath))
+        throw std::runtime_error(colourPath + ": missing colour image");
+    const cv::Mat d = cv::imread(depthPath, cv::IMREAD_UNCHANGED);
+    if (d.empty() || d.type() != CV_16UC1)
+        throw std::runtime_error(depthPath + ": missing or not a 16-bit depth image");
+    auto obs = mrpt::obs::CObservation3DRangeScan::Create();
+    obs->timestamp = mrpt::Clock::fromDouble(timestamp);
+    obs->sensorLabel = o.sensorLabel;
+    obs->sensorPose = mrpt::poses::CPose3D();  // the camera is the robot: a handheld sequence
+    auto& cam = obs->cameraParams;
+    cam.ncols = static_cast<uint32_t>(d.cols);
+    cam.nrows = static_cast<uint32_t>(d.rows);
+    cam.fx(o.intrinsics.fx);
+    cam.fy(o.intrinsics.fy);
+    cam.cx(o.intrinsics.cx);
+    cam.cy(o.intrinsics.cy);
+    obs->cameraParamsIntensity = cam;
+    obs->range_is_depth = true;
+    obs->rangeUnits = static_cast<float>(1.0 / o.depthScale);
+    obs->hasRangeImage = true;
+    obs->rangeImage_setSize(d.rows, d.cols);
+    for (int y = 0; y < d.rows; ++y) {
+        for (int x = 0; x < d.cols; ++x) {
+            const uint16_t v = d.at<uint16_t>(y, x);
+            obs->rangeImage(y, x) = v >= o.invalidDepthFrom ? 0 : v;
+        }
+    }
+    obs->hasIntensityImage = true;
+    obs->intensityImage.setExternalStorage(std::filesystem::absolute(colourPath).string());
+    writer.write(*obs);
+}
+
+}  // namespace lodestone::io
