@@ -3,6 +3,7 @@
 #include <lodestone/graphslam/CompositeERD.h>
 #include <lodestone/graphslam/DeciderRegistry.h>
 #include <lodestone/graphslam/FusedOdometryNRD.h>
+#include <lodestone/graphslam/camera/VisualOdometryNRD.h>
 #include <lodestone/graphslam/MagneticGpERD.h>
 #include <lodestone/graphslam/OrbSubmapERD.h>
 
@@ -45,6 +46,7 @@ auto make(const Map& m, const std::string& name, const std::string& kind, const 
 
 DeciderRegistry::DeciderRegistry() {
     registerNodeDecider("FusedOdometryNRD", [] { return std::make_unique<FusedOdometryNRD>(); });
+    registerNodeDecider("VisualOdometryNRD", [] { return std::make_unique<VisualOdometryNRD>(); });
     registerEdgeDecider("CompositeERD", [] { return std::make_unique<CompositeERD>(); });
     registerEdgeDecider("OrbSubmapERD", [] { return std::make_unique<OrbSubmapERD>(); });
     registerEdgeDecider("MagneticGpERD", [] { return std::make_unique<MagneticGpERD>(); });

@@ -1,5 +1,6 @@
 #include <lodestone/config/IniSection.h>
 #include <lodestone/graphslam/OrbSubmapERD.h>
+#include <lodestone/graphslam/Se3Pose.h>
 
 #include <algorithm>
 #include <cmath>
@@ -11,26 +12,11 @@ namespace lodestone::graphslam {
 
 namespace {
 
-Eigen::Isometry3d isometryOf(const mrpt::poses::CPose3D& p) {
-    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    T.linear() = p.getRotationMatrix().asEigen();
-    T.translation() = Eigen::Vector3d(p.x(), p.y(), p.z());
-    return T;
-}
-
-mrpt::poses::CPose3D poseOf3D(const Eigen::Isometry3d& T) {
-    mrpt::math::CMatrixDouble44 M(T.matrix());
-    return mrpt::poses::CPose3D(M);
-}
-
 /** A closure's constraint: the relative pose and the information of its covariance (right
  * perturbation, ordered rotation then translation), floored, in MRPT's x y z yaw pitch roll. */
 Constraint constraintOf(const Eigen::Isometry3d& T, const Eigen::Matrix<double, 6, 6>& cov,
                         double minSigmaXY, double minSigmaYaw) {
-    constexpr int kFromTwist[6] = {3, 4, 5, 2, 1, 0};  // MRPT index -> twist index
-    mrpt::math::CMatrixDouble66 c;
-    for (int r = 0; r < 6; ++r)
-        for (int k = 0; k < 6; ++k) c(r, k) = cov(kFromTwist[r], kFromTwist[k]);
+    mrpt::math::CMatrixDouble66 c = mrptCovarianceOf(cov);
     for (int k = 0; k < 3; ++k) c(k, k) += minSigmaXY * minSigmaXY;
     for (int k = 3; k < 6; ++k) c(k, k) += minSigmaYaw * minSigmaYaw;
     Constraint out;

@@ -1,5 +1,6 @@
 #include <lodestone/config/IniSection.h>
 #include <lodestone/odometry/FusedOdometry.h>
+#include <lodestone/vision/Se3Covariance.h>
 #include <lodestone/odometry/RgbdObservationFrame.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/obs/CObservationOdometry.h>
@@ -122,15 +123,8 @@ mrpt::poses::CPosePDFGaussian FusedOdometry::visualOnRobot(const Pending& p, dou
     // Robot-frame motion: A T A^-1, with A the optical frame on the robot.
     const Eigen::Isometry3d& A = p.T_robot_optical;
     const Eigen::Isometry3d T = A * p.vo.T_ref_cur * A.inverse();
-    // Covariance of a left perturbation moves with the adjoint of A: [R 0; t^R R] for (w, v).
-    Eigen::Matrix<double, 6, 6> Ad = Eigen::Matrix<double, 6, 6>::Zero();
-    const Eigen::Matrix3d R = A.linear();
-    const Eigen::Vector3d t = A.translation();
-    Eigen::Matrix3d tx;
-    tx << 0, -t.z(), t.y(), t.z(), 0, -t.x(), -t.y(), t.x(), 0;
-    Ad.block<3, 3>(0, 0) = R;
-    Ad.block<3, 3>(3, 0) = tx * R;
-    Ad.block<3, 3>(3, 3) = R;
+    // Covariance of a left perturbation moves with the adjoint of A.
+    const Eigen::Matrix<double, 6, 6> Ad = vision::adjoint(A);
     const Eigen::Matrix<double, 6, 6> C = Ad * p.vo.covariance * Ad.transpose();
     const int idx[3] = {3, 4, 2};  // (x, y, yaw) = (v_x, v_y, w_z)
     mrpt::poses::CPosePDFGaussian m;

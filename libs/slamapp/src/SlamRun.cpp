@@ -57,7 +57,7 @@ std::string join(const std::set<std::string>& items) {
 
 void checkRawlogHasObservations(const std::string& path, const std::set<std::string>& required) {
     io::RawlogSource source(path);
-    std::set<std::string> missing = required;
+    std::set<std::string> missing = required, classes;
     std::size_t seen = 0;
     while (!missing.empty() && seen < kPrescanObservations) {
         const auto obs = source.next();
@@ -66,12 +66,20 @@ void checkRawlogHasObservations(const std::string& path, const std::set<std::str
         // MRPT names classes with their namespace; deciders ask by the bare class name.
         const std::string name = obs->GetRuntimeClass()->className;
         const auto colons = name.rfind("::");
-        missing.erase(colons == std::string::npos ? name : name.substr(colons + 2));
+        const std::string bare = colons == std::string::npos ? name : name.substr(colons + 2);
+        missing.erase(bare);
+        classes.insert(bare);
     }
     if (!missing.empty()) {
+        // RGB-D frames and no wheels: a camera-only recording, which has its own INI.
+        const bool cameraOnly = missing.count("CObservationOdometry") &&
+                                classes.count("CObservation3DRangeScan");
         throw InputError(path + ": no " + join(missing) + " among its first " +
                          std::to_string(seen) + " observations; the configured deciders need " +
-                         join(required));
+                         join(required) +
+                         (cameraOnly ? ". A camera-only recording (RGB-D, no wheel odometry) runs "
+                                       "with config_ini/rgbd_only.ini"
+                                     : ""));
     }
 }
 

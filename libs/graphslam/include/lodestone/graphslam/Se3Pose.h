@@ -1,0 +1,19 @@
+#pragma once
+
+#include <mrpt/math/CMatrixFixed.h>
+#include <mrpt/poses/CPose3D.h>
+
+#include <Eigen/Geometry>
+
+namespace lodestone::graphslam {
+
+/** MRPT's 3-D pose as an Eigen isometry, and back. */
+Eigen::Isometry3d isometryOf(const mrpt::poses::CPose3D& p);
+mrpt::poses::CPose3D poseOf3D(const Eigen::Isometry3d& T);
+
+/** A 6 x 6 covariance of a small right perturbation ordered (rotation w, translation v) - what
+ * the vision library's RANSAC and VO report - in MRPT's order x, y, z, yaw, pitch, roll (yaw
+ * about z = w_z, pitch = w_y, roll = w_x: first order). */
+mrpt::math::CMatrixDouble66 mrptCovarianceOf(const Eigen::Matrix<double, 6, 6>& twistCovariance);
+
+}  // namespace lodestone::graphslam

@@ -1,0 +1,79 @@
+#pragma once
+
+#include <lodestone/graphslam/NodeDecider.h>
+#include <lodestone/vision/RgbdVisualOdometry.h>
+#include <mrpt/obs/CObservation3DRangeScan.h>
+#include <mrpt/poses/CPose3DPDFGaussian.h>
+
+#include <cmath>
+
+namespace lodestone::graphslam {
+
+/** Node registration from RGB-D visual odometry alone, in 6-DoF: for a camera carried by
+ * hand, or any recording without wheel odometry (TUM RGB-D, 7-Scenes, 3DMatch). A node when
+ * the camera has moved `node_distance` or turned `node_angle_deg` since the last one; the edge
+ * is VO's motion composed along its reference frames, with its covariance (first order, MRPT's
+ * pose composition), in full SE(3) - the graph is then solved with `[CeresGSO] mode = se3`.
+ * Nodes every `keyframe_distance` / `keyframe_angle_deg` are keyframes: the frame's ORB
+ * features (from VO's own pass) and, for map.ply, a coloured cloud.
+ *
+ * VO lost with no wheels to bridge the gap: when VO re-initializes after LOST, the frame it
+ * starts from is the first node of a new segment, tied to the last node by a very weak edge
+ * (`lost_edge_sigma`), as after a kidnap; the visual loop closer relocalizes it (SlamEngine,
+ * Relocalizer). Its record carries when tracking was lost and found again.
+ *
+ * INI: [VisualOdometryNRD] and [visual_odometry]. */
+class VisualOdometryNRD : public NodeDecider {
+  public:
+    struct Params {
+        double nodeDistance{0.10};                ///< [m]
+        double nodeAngle{10 * M_PI / 180};        ///< [rad]
+        double keyframeDistance{0.30};            ///< [m]
+        double keyframeAngle{15 * M_PI / 180};    ///< [rad]
+        int mapPixelStep{8};       ///< keyframe clouds for map.ply: every n-th pixel (0: none)
+        double mapMaxDepth{4.0};   ///< [m]
+        double lostEdgeSigma{100.0};  ///< [m, rad] of the edge across a VO gap
+        std::string cameraLabel;      ///< only this RGB-D label ("": the first one seen)
+        vision::RgbdVisualOdometry::Params visual;  ///< [visual_odometry]
+    };
+
+    VisualOdometryNRD();
+    void configure(const mrpt::config::CConfigFileBase& ini) override;
+    const Params& params() const { return params_; }
+
+    bool updateState(mrpt::obs::CActionCollection::Ptr action,
+                     mrpt::obs::CSensoryFrame::Ptr observations,
+                     mrpt::obs::CObservation::Ptr observation) override;
+    bool finish() override;
+    std::set<std::string> requiredObservations() const override {
+        return {"CObservation3DRangeScan"};
+    }
+    global_pose_t getCurrentRobotPosEstimation() const override;
+    JsonObject describe() const override;
+
+  protected:
+    bool checkRegistrationCondition() override;
+
+  private:
+    void consume(const mrpt::obs::CObservation3DRangeScan::Ptr& scan);
+    /** A node at this frame: `edge` from the last node (or the root when there is none). */
+    void registerAt(const mrpt::obs::CObservation3DRangeScan& scan, double t,
+                    const std::shared_ptr<const vision::FrameFeatures>& features,
+                    const mrpt::poses::CPose3DPDFGaussian& edge, bool restart);
+
+    /** A frame and its pose relative to the last node, with covariance. */
+    struct Anchor {
+        double t{NAN};
+        mrpt::poses::CPose3DPDFGaussian pdf;
+    };
+
+    Params params_;
+    vision::RgbdVisualOdometry vo_;
+    Anchor reference_;    // VO's reference frame
+    Anchor lastTracked_;  // the last frame VO tracked (it may become the reference)
+    mrpt::poses::CPose3D sinceKeyframe_;  // the last node relative to the last keyframe
+    int segment_{0};
+    std::size_t frames_{0}, failedFrames_{0}, keyframes_{0}, gaps_{0};
+};
+
+}  // namespace lodestone::graphslam

@@ -1,0 +1,25 @@
+#include <lodestone/graphslam/Se3Pose.h>
+
+namespace lodestone::graphslam {
+
+Eigen::Isometry3d isometryOf(const mrpt::poses::CPose3D& p) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = p.getRotationMatrix().asEigen();
+    T.translation() = Eigen::Vector3d(p.x(), p.y(), p.z());
+    return T;
+}
+
+mrpt::poses::CPose3D poseOf3D(const Eigen::Isometry3d& T) {
+    mrpt::math::CMatrixDouble44 M(T.matrix());
+    return mrpt::poses::CPose3D(M);
+}
+
+mrpt::math::CMatrixDouble66 mrptCovarianceOf(const Eigen::Matrix<double, 6, 6>& cov) {
+    constexpr int kFromTwist[6] = {3, 4, 5, 2, 1, 0};  // MRPT index -> twist index
+    mrpt::math::CMatrixDouble66 c;
+    for (int r = 0; r < 6; ++r)
+        for (int k = 0; k < 6; ++k) c(r, k) = cov(kFromTwist[r], kFromTwist[k]);
+    return c;
+}
+
+}  // namespace lodestone::graphslam

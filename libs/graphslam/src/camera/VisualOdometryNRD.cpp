@@ -1,0 +1,201 @@
+#include <lodestone/config/IniSection.h>
+#include <lodestone/graphslam/KeyframeCloud.h>
+#include <lodestone/graphslam/Se3Pose.h>
+#include <lodestone/graphslam/camera/VisualOdometryNRD.h>
+#include <lodestone/odometry/RgbdObservationFrame.h>
+#include <lodestone/vision/Se3Covariance.h>
+
+#include <cmath>
+
+namespace lodestone::graphslam {
+
+namespace {
+/** VO's motion (optical frame, reference <- current) as the robot's, with its covariance:
+ * A T A^-1, the covariance of a perturbation moved with the adjoint of A. */
+mrpt::poses::CPose3DPDFGaussian robotMotion(const vision::VoResult& r, const Eigen::Isometry3d& A) {
+    const Eigen::Isometry3d T = A * r.T_ref_cur * A.inverse();
+    const Eigen::Matrix<double, 6, 6> Ad = vision::adjoint(A);
+    return mrpt::poses::CPose3DPDFGaussian(poseOf3D(T),
+                                           mrptCovarianceOf(Ad * r.covariance * Ad.transpose()));
+}
+
+double rotationAngle(const mrpt::poses::CPose3D& p) {
+    return Eigen::AngleAxisd(p.getRotationMatrix().asEigen()).angle();
+}
+
+/** An edge from a composed motion: its information, floored so a still camera's (zero)
+ * covariance stays invertible. */
+Constraint edgeOf(const mrpt::poses::CPose3DPDFGaussian& pdf) {
+    Constraint c;
+    c.mean = pdf.mean;
+    auto cov = pdf.cov;
+    for (int k = 0; k < 6; ++k) cov(k, k) += 1e-10;
+    c.cov_inv = cov.inverse_LLt();
+    return c;
+}
+}  // namespace
+
+VisualOdometryNRD::VisualOdometryNRD() : vo_(params_.visual) { setClassName("VisualOdometryNRD"); }
+
+void VisualOdometryNRD::configure(const mrpt::config::CConfigFileBase& ini) {
+    Params p = params_;  // all or nothing
+    p.visual.loadFromConfigFile(ini, "visual_odometry");
+    config::IniSection s(ini, "VisualOdometryNRD", config::sourceName(ini));
+    p.nodeDistance = s.getDouble("node_distance", p.nodeDistance);
+    p.nodeAngle = s.getDouble("node_angle_deg", p.nodeAngle * 180 / M_PI) * M_PI / 180;
+    p.keyframeDistance = s.getDouble("keyframe_distance", p.keyframeDistance);
+    p.keyframeAngle = s.getDouble("keyframe_angle_deg", p.keyframeAngle * 180 / M_PI) * M_PI / 180;
+    p.mapPixelStep = s.getInt("map_pixel_step", p.mapPixelStep);
+    p.mapMaxDepth = s.getDouble("map_max_depth", p.mapMaxDepth);
+    p.lostEdgeSigma = s.getDouble("lost_edge_sigma", p.lostEdgeSigma);
+    p.cameraLabel = s.getString("camera_label", p.cameraLabel);
+    if (!(p.nodeDistance > 0)) s.fail("node_distance", "must be > 0");
+    if (!(p.nodeAngle > 0)) s.fail("node_angle_deg", "must be > 0");
+    if (p.keyframeDistance < p.nodeDistance) s.fail("keyframe_distance", "must be >= node_distance");
+    if (p.mapPixelStep < 0) s.fail("map_pixel_step", "must be >= 0");
+    if (!(p.lostEdgeSigma > 0)) s.fail("lost_edge_sigma", "must be > 0");
+    s.finish();
+    params_ = p;
+    vo_ = vision::RgbdVisualOdometry(params_.visual);
+}
+
+bool VisualOdometryNRD::updateState(mrpt::obs::CActionCollection::Ptr,
+                                    mrpt::obs::CSensoryFrame::Ptr observations,
+                                    mrpt::obs::CObservation::Ptr observation) {
+    just_registered_.reset();
+    const auto take = [&](const mrpt::obs::CObservation::Ptr& o) {
+        // (at most one node per call: a second frame in one call waits for the next one)
+        if (auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(o);
+            scan && !just_registered_) {
+            consume(scan);
+        }
+    };
+    if (observation) take(observation);
+    if (observations) {
+        for (const auto& o : *observations) take(o);
+    }
+    return just_registered_.has_value();
+}
+
+void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& scan) {
+    if (params_.cameraLabel.empty()) params_.cameraLabel = scan->sensorLabel;
+    if (scan->sensorLabel != params_.cameraLabel) return;
+    ++frames_;
+    const double t = mrpt::Clock::toDouble(scan->timestamp);
+    const auto A = odometry::opticalFrameOnRobot(scan->sensorPose);
+    const auto r = vo_.process(odometry::frameFromObservation(*scan));
+    const mrpt::poses::CPose3DPDFGaussian here;  // a frame at the new node: identity, certain
+    if (r.failure == vision::VoFailure::NoReference) {
+        // VO (re)starts on this frame: the root, or after a loss a new segment.
+        const bool first = m_prev_registered_nodeID == mrpt::graphs::INVALID_NODEID;
+        if (!first) ++gaps_;
+        registerAt(*scan, t, r.frameFeatures, here, !first);
+        reference_ = {t, here};
+        lastTracked_ = {t, here};
+        return;
+    }
+    if (!r.success) {
+        ++failedFrames_;  // (VO keeps its reference; once LOST it restarts: NoReference above)
+        return;
+    }
+    // The reference is the one VO started from or the last tracked frame, which VO made its
+    // new reference when the camera had moved far enough from the old one.
+    if (r.referenceTimestamp == lastTracked_.t) reference_ = lastTracked_;
+    if (r.referenceTimestamp != reference_.t) return;  // (cannot happen: VO keeps one reference)
+    const auto motion = robotMotion(r, A);
+    mrpt::poses::CPose3DPDFGaussian cur = reference_.pdf;
+    cur += motion;
+    lastTracked_ = {t, cur};
+    if (cur.mean.norm() < params_.nodeDistance && rotationAngle(cur.mean) < params_.nodeAngle) return;
+    registerAt(*scan, t, r.frameFeatures, cur, false);
+    // Seen from the new node, the reference lies where VO measured it - the motion inverted,
+    // with the motion's own covariance (not the node's: that is the edge's).
+    mrpt::poses::CPose3DPDFGaussian back;
+    motion.inverse(back);
+    reference_.pdf = back;
+    lastTracked_.pdf = here;
+}
+
+void VisualOdometryNRD::registerAt(const mrpt::obs::CObservation3DRangeScan& scan, double t,
+                                   const std::shared_ptr<const vision::FrameFeatures>& features,
+                                   const mrpt::poses::CPose3DPDFGaussian& edge, bool restart) {
+    bool keyframe = true;
+    TNodeID id = m_graph->root;
+    if (m_prev_registered_nodeID == mrpt::graphs::INVALID_NODEID) {
+        m_graph->nodes[m_graph->root] = mrpt::poses::CPose3D();  // the camera starts the map
+        m_prev_registered_nodeID = m_graph->root;
+    } else {
+        Constraint c = edgeOf(edge);
+        if (restart) {
+            // Across a VO gap: no idea where the camera went.
+            c.mean = mrpt::poses::CPose3D();
+            c.cov_inv.setZero();
+            for (int k = 0; k < 6; ++k) c.cov_inv(k, k) = 1 / (params_.lostEdgeSigma * params_.lostEdgeSigma);
+            ++segment_;
+        }
+        m_since_prev_node_PDF = c;
+        registerNewNodeAtEnd();  // MRPT's: node at previous + the edge's mean
+        id = m_prev_registered_nodeID;
+        sinceKeyframe_ = sinceKeyframe_ + c.mean;
+        keyframe = restart || sinceKeyframe_.norm() >= params_.keyframeDistance ||
+                   rotationAngle(sinceKeyframe_) >= params_.keyframeAngle;
+    }
+    if (nodes_) {
+        NodeRecord rec;
+        rec.timestamp = t;
+        rec.segment = segment_;
+        rec.keyframe = keyframe;
+        if (restart) {
+            rec.liftTime = lastTracked_.t;  // tracking lost after this frame ...
+            rec.putDownTime = t;            // ... and found again at this one
+        }
+        if (keyframe) {
+            rec.features = features;
+            rec.cameraOnRobot = odometry::opticalFrameOnRobot(scan.sensorPose);
+            if (params_.mapPixelStep > 0) {
+                rec.cloud = std::make_shared<KeyframeCloud>(
+                    makeKeyframeCloud(scan, params_.mapPixelStep, params_.mapMaxDepth));
+            }
+        }
+        nodes_->add(id, std::move(rec));
+    }
+    if (keyframe) {
+        sinceKeyframe_ = mrpt::poses::CPose3D();
+        ++keyframes_;
+    }
+    just_registered_ = id;
+}
+
+bool VisualOdometryNRD::finish() {
+    just_registered_.reset();
+    return false;  // nodes are placed at frames as they come: nothing waits
+}
+
+bool VisualOdometryNRD::checkRegistrationCondition() { return false; }
+
+VisualOdometryNRD::global_pose_t VisualOdometryNRD::getCurrentRobotPosEstimation() const {
+    global_pose_t pose;
+    if (m_prev_registered_nodeID != mrpt::graphs::INVALID_NODEID)
+        pose = m_graph->nodes.at(m_prev_registered_nodeID);
+    return global_pose_t(pose + lastTracked_.pdf.mean);
+}
+
+JsonObject VisualOdometryNRD::describe() const {
+    JsonObject params;
+    params.set("node_distance", params_.nodeDistance)
+        .set("node_angle_deg", params_.nodeAngle * 180 / M_PI)
+        .set("keyframe_distance", params_.keyframeDistance)
+        .set("keyframe_angle_deg", params_.keyframeAngle * 180 / M_PI)
+        .set("map_pixel_step", params_.mapPixelStep)
+        .set("lost_edge_sigma", params_.lostEdgeSigma)
+        .set("camera_label", params_.cameraLabel);
+    JsonObject stats;
+    stats.set("rgbd_frames", frames_)
+        .set("failed_frames", failedFrames_)
+        .set("keyframes", keyframes_)
+        .set("vo_gaps", gaps_)
+        .set("segments", segment_ + 1);
+    return JsonObject().set("class", getClassName()).set("params", params).set("stats", stats);
+}
+
+}  // namespace lodestone::graphslam
