@@ -43,21 +43,41 @@ RgbdRenderer::Surface RgbdRenderer::trace(const Eigen::Vector3d& pos, const Eige
 
 void RgbdRenderer::render(const Eigen::Vector3d& pos, double yaw, Random& rng, cv::Mat3b& rgb,
                           cv::Mat_<uint16_t>& depth) const {
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    pose.translation() = pos;
+    render(pose, rng, rgb, depth);
+}
+
+void RgbdRenderer::render(const Eigen::Isometry3d& pose, Random& rng, cv::Mat3b& rgb,
+                          cv::Mat_<uint16_t>& depth) const {
     const int W = camera_.width, H = camera_.height;
     rgb.create(H, W);
     depth.create(H, W);
-    const Eigen::Vector2d forward(std::cos(yaw), std::sin(yaw)),
-        left(-std::sin(yaw), std::cos(yaw));
+    const Eigen::Vector3d pos = pose.translation();
+    const Eigen::Matrix3d& R = pose.linear();
+    // A level camera (turned about the vertical only) keeps a column's horizontal direction
+    // down the column: one wall cast per column. Tilted (hand-held), one per pixel.
+    const bool level = std::abs(R(2, 0)) < 1e-12 && std::abs(R(2, 1)) < 1e-12;
     const double farT = 1e3;
     const std::size_t rgbNoise = noise_.randomOffset(rng), depthNoise = noise_.randomOffset(rng);
     const float rgbStd = static_cast<float>(camera_.rgbNoise);
     for (int c = 0; c < W; ++c) {
         const double a = (camera_.cx - c) / camera_.fx;  // leftwards slope
-        const Eigen::Vector2d h = forward + a * left;
-        const auto wall = world_.floorPlan().castRay(pos.head<2>(), h, 1e-9, farT);
+        // Ray directions have a forward (optical axis) component of 1: a ray parameter is a depth.
+        const Eigen::Vector2d hColumn = (R * Eigen::Vector3d(1, a, 0)).head<2>();
+        const auto wallColumn =
+            level ? world_.floorPlan().castRay(pos.head<2>(), hColumn, 1e-9, farT) : std::nullopt;
         for (int r = 0; r < H; ++r) {
             const double b = (camera_.cy - r) / camera_.fy;  // upwards slope
-            const Surface s = trace(pos, h, wall, b);
+            Surface s;
+            if (level) {
+                s = trace(pos, hColumn, wallColumn, b);
+            } else {
+                const Eigen::Vector3d d = R * Eigen::Vector3d(1, a, b);
+                const Eigen::Vector2d h = d.head<2>();
+                s = trace(pos, h, world_.floorPlan().castRay(pos.head<2>(), h, 1e-9, farT), d.z());
+            }
             const std::size_t i = static_cast<std::size_t>(r) * W + c;
             // Colour: what the surface looks like, plus sensor noise.
             cv::Vec3b& px = rgb(r, c);

@@ -15,7 +15,6 @@
 namespace lodestone::sim {
 
 namespace {
-mrpt::poses::CPose3D toPose3D(const RobotPose& p) { return {p.x, p.y, p.z, p.yaw, 0, 0}; }
 
 // Moves a frame's colour image out of the observation into a PNG in `dir`. Depth stays in the
 // rawlog, where gzip packs it better than MRPT's raw external depth files.
@@ -60,7 +59,7 @@ RecordingSummary recordScenario(SimulatorSource& source, const std::string& outR
             ++r.frames;
         }
         writer.write(*obs);
-        gt.write(source.startTime() + t, toPose3D(source.truePose(t)));
+        gt.write(source.startTime() + t, source.truePose3D(t));
         ++r.observations;
         r.duration = t;
         if (progress && t - lastReported >= 5.0) {

@@ -36,6 +36,14 @@ int runSimApp(int argc, const char* const* argv, std::ostream& out, std::ostream
                               "keep colour images inside the rawlog (default: the INI's "
                               "external_images, beside it)",
                               cmd);
+    TCLAP::SwitchArg cameraOnly("", "camera-only",
+                                "record the RGB-D camera alone (no encoders, wheel drop or "
+                                "magnetometers): a camera-only recording, for rgbd_only.ini",
+                                cmd);
+    TCLAP::SwitchArg handheld("", "handheld",
+                              "the camera carried by hand along the path, alone (6-DoF, shaking: "
+                              "a handheld RGB-D sequence; implies --camera-only)",
+                              cmd);
     const auto outcome = config::parseCommandLine(cmd, std::vector<std::string>(argv, argv + argc));
     if (outcome.kind == config::ParseOutcome::Kind::UsageError) {
         err << "lodestone-sim: " << outcome.error << " (see lodestone-sim --help)\n";
@@ -54,6 +62,8 @@ int runSimApp(int argc, const char* const* argv, std::ostream& out, std::ostream
             return 2;
         }
         if (embedded.getValue()) scenario.camera.externalImages = false;
+        scenario.cameraOnly = cameraOnly.getValue() || handheld.getValue();
+        if (handheld.getValue()) scenario.handheld = HandheldSpec{};
         const std::uint64_t s =
             seed.getValue() >= 0 ? static_cast<std::uint64_t>(seed.getValue()) : scenario.seed;
         SimulatorSource source(scenario, s);

@@ -4,8 +4,9 @@
 namespace lodestone::sim {
 
 SimRgbdCamera::SimRgbdCamera(const World& world, const MotionPlan& plan, const CameraSpec& spec,
-                             double startTime, Random rng)
+                             double startTime, Random rng, const HandheldMotion* handheld)
     : plan_(plan),
+      handheld_(handheld),
       spec_(spec),
       start_time_(startTime),
       rng_(rng),
@@ -18,15 +19,19 @@ mrpt::obs::CObservation::Ptr SimRgbdCamera::produce() {
     const std::int64_t tNs = clock_.now();
     ++clock_.k;
     const auto& m = spec_.pose;
-    const SensorWorldPose s = sensorInWorld(plan_.poseAt(tNs * 1e-9), m.x, m.y, m.z, m.yaw);
     cv::Mat3b rgb;
     cv::Mat_<uint16_t> depth;
-    renderer_.render(s.position, s.yaw, rng_, rgb, depth);
+    if (handheld_) {
+        renderer_.render(handheld_->poseAt(tNs * 1e-9), rng_, rgb, depth);
+    } else {
+        const SensorWorldPose s = sensorInWorld(plan_.poseAt(tNs * 1e-9), m.x, m.y, m.z, m.yaw);
+        renderer_.render(s.position, s.yaw, rng_, rgb, depth);
+    }
 
     auto obs = mrpt::obs::CObservation3DRangeScan::Create();
     obs->timestamp = simTimestamp(start_time_, tNs);
     obs->sensorLabel = spec_.label;
-    obs->sensorPose = mrpt::poses::CPose3D(m.x, m.y, m.z, m.yaw, 0, 0);
+    obs->sensorPose = handheld_ ? mrpt::poses::CPose3D() : mrpt::poses::CPose3D(m.x, m.y, m.z, m.yaw, 0, 0);
     auto& cam = obs->cameraParams;
     cam.ncols = static_cast<uint32_t>(spec_.width);
     cam.nrows = static_cast<uint32_t>(spec_.height);

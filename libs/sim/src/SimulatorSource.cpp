@@ -20,16 +20,22 @@ SimulatorSource::SimulatorSource(const Scenario& scenario, std::uint64_t seed)
                                          });
     const double t0 = scenario_.startTime;
     // Sensor order here is the tie-break order of simultaneous samples.
-    sensors_.push_back(std::make_unique<SimEncoders>(*plan_, scenario_.encoders, t0, rng.fork(1)));
-    sensors_.push_back(
-        std::make_unique<SimWheelDrop>(*plan_, scenario_.encoders.wheelDropLabel, t0));
-    for (std::size_t i = 0; i < scenario_.magnetometers.size(); ++i) {
-        sensors_.push_back(std::make_unique<SimMagnetometer>(
-            *world_, *plan_, scenario_.magnetometers[i], t0, rng.fork(10 + i)));
+    if (scenario_.handheld) {
+        handheld_ = std::make_unique<HandheldMotion>(*plan_, *scenario_.handheld, rng.fork(3));
+    }
+    if (!scenario_.cameraOnly && !scenario_.handheld) {
+        sensors_.push_back(std::make_unique<SimEncoders>(*plan_, scenario_.encoders, t0, rng.fork(1)));
+        sensors_.push_back(
+            std::make_unique<SimWheelDrop>(*plan_, scenario_.encoders.wheelDropLabel, t0));
+        for (std::size_t i = 0; i < scenario_.magnetometers.size(); ++i) {
+            sensors_.push_back(std::make_unique<SimMagnetometer>(
+                *world_, *plan_, scenario_.magnetometers[i], t0, rng.fork(10 + i)));
+        }
     }
     if (scenario_.camera.enabled) {
         sensors_.push_back(
-            std::make_unique<SimRgbdCamera>(*world_, *plan_, scenario_.camera, t0, rng.fork(2)));
+            std::make_unique<SimRgbdCamera>(*world_, *plan_, scenario_.camera, t0, rng.fork(2),
+                                            handheld_.get()));
     }
 }
 
@@ -48,6 +54,15 @@ mrpt::obs::CObservation::Ptr SimulatorSource::next() {
     if (!earliest) return nullptr;
     last_time_ns_ = best;
     return earliest->produce();
+}
+
+mrpt::poses::CPose3D SimulatorSource::truePose3D(double t) const {
+    if (handheld_) {
+        mrpt::math::CMatrixDouble44 M(handheld_->poseAt(t).matrix());
+        return mrpt::poses::CPose3D(M);
+    }
+    const RobotPose p = plan_->poseAt(t);
+    return {p.x, p.y, p.z, p.yaw, 0, 0};
 }
 
 std::vector<KidnapEvent> SimulatorSource::kidnapEvents() const {

@@ -206,8 +206,7 @@ SlamRunResult runSlam(const SlamRunOptions& options, std::ostream& out, std::ost
             if (t - t0 > options.maxSeconds) break;
             dataSeconds = std::max(dataSeconds, t - t0);
             if (simulator) {
-                const auto p = simulator->truePose(simulator->lastTime());
-                simTruth->write(t, mrpt::poses::CPose3D(p.x, p.y, p.z, p.yaw, 0, 0));
+                simTruth->write(t, simulator->truePose3D(simulator->lastTime()));
             }
             engine->process(obs);
             const double fraction =

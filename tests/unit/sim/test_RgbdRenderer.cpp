@@ -135,3 +135,42 @@ TEST_F(RgbdRendererTest, TexturedFractionSaysWhatTheCameraFaces) {
     EXPECT_GT(corner, 0.1);
     EXPECT_LT(corner, 0.9);
 }
+
+TEST_F(RgbdRendererTest, ATiltedHandHeldCameraSeesWhereItPoints) {
+    camera_.depthNoise = 0;  // the analytic depth, exactly
+    camera_.disparityStep = 0;
+    const RgbdRenderer renderer(*world_, camera_, 1);
+    const auto render = [&](double pitch, double roll) {
+        Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+        pose.translation() = Eigen::Vector3d(1.0, 0.5, 1.2);
+        pose.linear() = (Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+                         Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
+                            .toRotationMatrix();
+        Random rng(3);
+        cv::Mat3b rgb;
+        cv::Mat_<uint16_t> depth;
+        renderer.render(pose, rng, rgb, depth);
+        return depth;
+    };
+    const int r = static_cast<int>(camera_.cy), c = static_cast<int>(camera_.cx);
+    // The ray through that pixel, with a forward component of 1 (its parameter is the depth).
+    const auto ray = [&](double pitch, double roll) {
+        return Eigen::Vector3d((Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+                                Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX())) *
+                               Eigen::Vector3d(1, (camera_.cx - c) / camera_.fx, (camera_.cy - r) / camera_.fy));
+    };
+    // Pitched down 5 deg (MRPT: +pitch turns x towards -z), rolled 6 deg: the ray still meets
+    // the wall x = 8, at depth 7 / d_x.
+    const double p5 = 5 * M_PI / 180;
+    EXPECT_NEAR(render(p5, 0.1)(r, c) / 1000.0, 7.0 / ray(p5, 0.1).x(), 1e-3);
+    // Pitched down 20 deg: it meets the floor first, at depth 1.2 / -d_z.
+    const double p20 = 20 * M_PI / 180;
+    EXPECT_NEAR(render(p20, 0.0)(r, c) / 1000.0, 1.2 / -ray(p20, 0.0).z(), 1e-3);
+    EXPECT_NEAR(1.2 / -ray(p20, 0.0).z(), 1.2 / std::sin(p20), 0.01);  // (about the centre ray's)
+    // Level, the general path renders what the per-column one does.
+    Random rng(3);
+    cv::Mat3b rgb;
+    cv::Mat_<uint16_t> level;
+    renderer.render({1.0, 0.5, 1.2}, 0.0, rng, rgb, level);
+    EXPECT_EQ(cv::norm(render(0, 0), level, cv::NORM_INF), 0);
+}

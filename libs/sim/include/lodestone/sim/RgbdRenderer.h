@@ -4,12 +4,13 @@
 #include <lodestone/sim/Scenario.h>
 #include <lodestone/sim/World.h>
 
+#include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 
 namespace lodestone::sim {
 
-/** Renders what a level RGB-D camera sees in the world. Walls are vertical extrusions, so each
- * image column is one 2D ray cast; every pixel of the column is then a wall, floor or ceiling
+/** Renders what an RGB-D camera sees in the world. Walls are vertical extrusions, so for a level
+ * camera each image column is one 2D ray cast (a tilted one casts one per pixel); every pixel of the column is then a wall, floor or ceiling
  * point found in closed form. Depth gets Kinect-like noise (sigma = k z^2, Khoshelham & Elberink
  * 2012), the disparity quantization of structured light (depth steps of q z^2), millimetre
  * units, and no value beyond the range limits or at grazing angles;
@@ -21,6 +22,10 @@ class RgbdRenderer {
     /** Renders from a camera at `position` [m] with heading `yaw` [rad] (optical axis level).
      * `depth` is in millimetres along the optical axis, 0 where invalid; `rgb` is BGR. */
     void render(const Eigen::Vector3d& position, double yaw, Random& rng, cv::Mat3b& rgb,
+                cv::Mat_<uint16_t>& depth) const;
+    /** The same from any camera pose (world <- camera in MRPT's depth frame: x forward, y
+     * left, z up), tilted as a hand-held camera is. */
+    void render(const Eigen::Isometry3d& pose, Random& rng, cv::Mat3b& rgb,
                 cv::Mat_<uint16_t>& depth) const;
 
     /** The share of image columns whose wall, within the depth range, is textured (not plain

@@ -1,5 +1,8 @@
 #pragma once
 
+#include <lodestone/sim/HandheldMotion.h>
+#include <optional>
+
 #include <lodestone/sim/MotionPlan.h>
 #include <lodestone/sim/SurfaceTexture.h>
 
@@ -94,6 +97,12 @@ struct Scenario {
     std::vector<MagnetometerSpec> magnetometers;
     FieldSpec field;
     std::vector<KidnapSpec> kidnaps;
+    /** Only the RGB-D camera records (no encoders, wheel drop or magnetometers): a camera-only
+     * recording, as a handheld sequence or an RGB-D dataset is (lodestone-sim --camera-only). */
+    bool cameraOnly{false};
+    /** The camera carried by hand along the path (HandheldMotion): 6-DoF, shaking; implies
+     * cameraOnly (lodestone-sim --handheld). */
+    std::optional<HandheldSpec> handheld;
 
     /** Reads and validates an INI; throws config::ConfigError naming the file, section and key
      * (or waypoint / kidnap) at fault. */

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <lodestone/sim/HandheldMotion.h>
 #include <lodestone/sim/RgbdRenderer.h>
 #include <lodestone/sim/SimSensor.h>
 
@@ -10,8 +11,10 @@ namespace lodestone::sim {
  * registered, i.e. the same intrinsics). */
 class SimRgbdCamera : public SimSensor {
   public:
+    /** With `handheld`, the camera is carried by hand: rendered from its 6-DoF pose, and it is
+     * the robot (sensorPose identity). */
     SimRgbdCamera(const World& world, const MotionPlan& plan, const CameraSpec& spec,
-                  double startTime, Random rng);
+                  double startTime, Random rng, const HandheldMotion* handheld = nullptr);
     std::int64_t nextTimeNs() const override;
     mrpt::obs::CObservation::Ptr produce() override;
 
@@ -19,6 +22,7 @@ class SimRgbdCamera : public SimSensor {
 
   private:
     const MotionPlan& plan_;
+    const HandheldMotion* handheld_;
     CameraSpec spec_;
     double start_time_;
     Random rng_;

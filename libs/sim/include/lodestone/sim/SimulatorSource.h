@@ -2,7 +2,9 @@
 
 #include <lodestone/io/DataSource.h>
 #include <lodestone/io/KidnapEvents.h>
+#include <lodestone/sim/HandheldMotion.h>
 #include <lodestone/sim/MotionPlan.h>
+#include <mrpt/poses/CPose3D.h>
 #include <lodestone/sim/Scenario.h>
 #include <lodestone/sim/SimSensor.h>
 #include <lodestone/sim/World.h>
@@ -31,6 +33,9 @@ class SimulatorSource : public io::DataSource {
 
     /** The true robot (base) pose at `t` [s since the scenario start]. */
     RobotPose truePose(double t) const { return plan_->poseAt(t); }
+    /** What the ground truth follows at `t`: the robot's pose, or with a hand-held camera the
+     * camera's (it is the robot then). */
+    mrpt::poses::CPose3D truePose3D(double t) const;
     /** Scenario time of the observation last returned by next() [s]. */
     double lastTime() const { return last_time_ns_ * 1e-9; }
     double startTime() const { return scenario_.startTime; }
@@ -45,6 +50,7 @@ class SimulatorSource : public io::DataSource {
     Scenario scenario_;
     std::unique_ptr<World> world_;
     std::unique_ptr<MotionPlan> plan_;
+    std::unique_ptr<HandheldMotion> handheld_;  // null unless the camera is hand-held
     std::vector<std::unique_ptr<SimSensor>> sensors_;
     std::int64_t last_time_ns_{0};
 };
