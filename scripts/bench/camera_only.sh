@@ -14,7 +14,7 @@ out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 scenarios=("$@")
 [ ${#scenarios[@]} -gt 0 ] || scenarios=("$root/config_ini/office.ini" "$root/config_ini/paper_loop.ini")
-field() { grep -o "\"$2\": [0-9.e+-]*" "$1" | head -1 | awk '{print $2}'; }
+field() { { grep -o "\"$2\": [0-9.e+-]*" "$1" || true; } | head -1 | awk '{print $2}'; }
 echo "| scenario | camera | carrier | frames | ATE [m] | VO gaps / segments | loop closures kept | real-time factor (one run on 2 cores) |"
 echo "|---|---|---|---|---|---|---|---|"
 for ini in "${scenarios[@]}"; do

@@ -88,7 +88,10 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
     if (r.failure == vision::VoFailure::NoReference) {
         // VO (re)starts on this frame: the root, or after a loss a new segment.
         const bool first = m_prev_registered_nodeID == mrpt::graphs::INVALID_NODEID;
-        if (!first) ++gaps_;
+        if (!first) {
+            ++gaps_;
+            gapSeconds_.push_back(t - lastTracked_.t);
+        }
         registerAt(*scan, t, r.frameFeatures, here, !first);
         reference_ = {t, here};
         lastTracked_ = {t, here};
@@ -194,6 +197,7 @@ JsonObject VisualOdometryNRD::describe() const {
         .set("failed_frames", failedFrames_)
         .set("keyframes", keyframes_)
         .set("vo_gaps", gaps_)
+        .set("vo_gap_seconds", gapSeconds_)
         .set("segments", segment_ + 1);
     return JsonObject().set("class", getClassName()).set("params", params).set("stats", stats);
 }

@@ -6,6 +6,7 @@
 #include <mrpt/poses/CPose3DPDFGaussian.h>
 
 #include <cmath>
+#include <vector>
 
 namespace lodestone::graphslam {
 
@@ -74,6 +75,7 @@ class VisualOdometryNRD : public NodeDecider {
     mrpt::poses::CPose3D sinceKeyframe_;  // the last node relative to the last keyframe
     int segment_{0};
     std::size_t frames_{0}, failedFrames_{0}, keyframes_{0}, gaps_{0};
+    std::vector<double> gapSeconds_;  // from the last tracked frame to VO's restart
 };
 
 }  // namespace lodestone::graphslam
