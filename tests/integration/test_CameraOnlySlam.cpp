@@ -98,4 +98,18 @@ TEST(CameraOnlySlam, VoLostWithNoWheelsStartsANewSegmentAndTrackingGoesOn) {
     const auto traj = lodestone::io::readTumTrajectory(dir.file("out/trajectory.tum"));
     ASSERT_FALSE(traj.empty());
     EXPECT_GT(traj.back().timestamp - traj.front().timestamp, 20.0);
+
+    // With bridging on for gaps up to 2 s, the same 1.3 s gap is bridged: one segment.
+    std::ifstream base(kConfigDir + "/rgbd_only.ini");
+    std::string ini((std::istreambuf_iterator<char>(base)), std::istreambuf_iterator<char>());
+    ini = std::regex_replace(ini, std::regex("\nbridge_max_seconds *= *[0-9.]+"), "\nbridge_max_seconds = 2.0");
+    std::ofstream(dir.file("bridge.ini")) << ini;
+    const auto bridged = lodestone::test::runCommand(kSlam + " --rawlog " + rawlog + " --config " +
+                                                     dir.file("bridge.ini") + " --out " +
+                                                     dir.file("bridged") + " --quiet");
+    ASSERT_EQ(bridged.exitCode, 0) << bridged.output;
+    std::ifstream in2(dir.file("bridged/report.json"));
+    const std::string report2((std::istreambuf_iterator<char>(in2)), std::istreambuf_iterator<char>());
+    EXPECT_NE(report2.find("\"vo_gaps_bridged\": 1"), std::string::npos) << report2;
+    EXPECT_NE(report2.find("\"segments\": 1"), std::string::npos) << report2;
 }

@@ -48,6 +48,12 @@ void VisualOdometryNRD::configure(const mrpt::config::CConfigFileBase& ini) {
     p.mapPixelStep = s.getInt("map_pixel_step", p.mapPixelStep);
     p.mapMaxDepth = s.getDouble("map_max_depth", p.mapMaxDepth);
     p.lostEdgeSigma = s.getDouble("lost_edge_sigma", p.lostEdgeSigma);
+    p.bridgeMaxSeconds = s.getDouble("bridge_max_seconds", p.bridgeMaxSeconds);
+    p.bridgeAccelSigma = s.getDouble("bridge_accel_sigma", p.bridgeAccelSigma);
+    p.bridgeAngularAccelSigma = s.getDouble("bridge_angular_accel_sigma", p.bridgeAngularAccelSigma);
+    if (!(p.bridgeMaxSeconds >= 0)) s.fail("bridge_max_seconds", "must be >= 0");
+    if (!(p.bridgeAccelSigma > 0) || !(p.bridgeAngularAccelSigma > 0))
+        s.fail("bridge_accel_sigma", "acceleration sigmas must be > 0");
     p.cameraLabel = s.getString("camera_label", p.cameraLabel);
     if (!(p.nodeDistance > 0)) s.fail("node_distance", "must be > 0");
     if (!(p.nodeAngle > 0)) s.fail("node_angle_deg", "must be > 0");
@@ -88,17 +94,26 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
     if (r.failure == vision::VoFailure::NoReference) {
         // VO (re)starts on this frame: the root, or after a loss a new segment.
         const bool first = m_prev_registered_nodeID == mrpt::graphs::INVALID_NODEID;
+        const double gap = first ? 0.0 : t - lastTracked_.t;
         if (!first) {
             ++gaps_;
-            gapSeconds_.push_back(t - lastTracked_.t);
+            gapSeconds_.push_back(gap);
         }
-        registerAt(*scan, t, r.frameFeatures, here, !first);
+        if (!first && gap <= params_.bridgeMaxSeconds && lastStepSeconds_ > 0) {
+            // A short gap: where the last velocity carries the camera, as sure as a
+            // constant-velocity model is over that long.
+            ++bridged_;
+            registerAt(*scan, t, r.frameFeatures, bridge(gap), false);
+        } else {
+            registerAt(*scan, t, r.frameFeatures, here, !first);
+        }
         reference_ = {t, here};
         lastTracked_ = {t, here};
         return;
     }
     if (!r.success) {
         ++failedFrames_;  // (VO keeps its reference; once LOST it restarts: NoReference above)
+        ++failures_[vision::toString(r.failure)];
         return;
     }
     // The reference is the one VO started from or the last tracked frame, which VO made its
@@ -108,6 +123,8 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
     const auto motion = robotMotion(r, A);
     mrpt::poses::CPose3DPDFGaussian cur = reference_.pdf;
     cur += motion;
+    lastStep_ = cur.mean - lastTracked_.pdf.mean;  // (both relative to the same node)
+    lastStepSeconds_ = t - lastTracked_.t;
     lastTracked_ = {t, cur};
     if (cur.mean.norm() < params_.nodeDistance && rotationAngle(cur.mean) < params_.nodeAngle) return;
     registerAt(*scan, t, r.frameFeatures, cur, false);
@@ -117,6 +134,25 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
     motion.inverse(back);
     reference_.pdf = back;
     lastTracked_.pdf = here;
+}
+
+mrpt::poses::CPose3DPDFGaussian VisualOdometryNRD::bridge(double gap) const {
+    // The last step scaled to the gap (first order in its angles), from the last tracked frame.
+    const double k = gap / lastStepSeconds_;
+    const auto& s = lastStep_;
+    mrpt::poses::CPose3DPDFGaussian motion;
+    motion.mean = mrpt::poses::CPose3D(k * s.x(), k * s.y(), k * s.z(), k * s.yaw(), k * s.pitch(),
+                                       k * s.roll());
+    const double st = 0.5 * params_.bridgeAccelSigma * gap * gap,
+                 sr = 0.5 * params_.bridgeAngularAccelSigma * gap * gap;
+    motion.cov.setZero();
+    for (int i = 0; i < 3; ++i) {
+        motion.cov(i, i) = st * st;
+        motion.cov(i + 3, i + 3) = sr * sr;
+    }
+    mrpt::poses::CPose3DPDFGaussian edge = lastTracked_.pdf;
+    edge += motion;
+    return edge;
 }
 
 void VisualOdometryNRD::registerAt(const mrpt::obs::CObservation3DRangeScan& scan, double t,
@@ -191,6 +227,7 @@ JsonObject VisualOdometryNRD::describe() const {
         .set("keyframe_angle_deg", params_.keyframeAngle * 180 / M_PI)
         .set("map_pixel_step", params_.mapPixelStep)
         .set("lost_edge_sigma", params_.lostEdgeSigma)
+        .set("bridge_max_seconds", params_.bridgeMaxSeconds)
         .set("camera_label", params_.cameraLabel);
     JsonObject stats;
     stats.set("rgbd_frames", frames_)
@@ -198,7 +235,11 @@ JsonObject VisualOdometryNRD::describe() const {
         .set("keyframes", keyframes_)
         .set("vo_gaps", gaps_)
         .set("vo_gap_seconds", gapSeconds_)
+        .set("vo_gaps_bridged", bridged_)
         .set("segments", segment_ + 1);
+    JsonObject why;
+    for (const auto& [reason, count] : failures_) why.set(reason, count);
+    stats.set("failed_frames_by_reason", why);
     return JsonObject().set("class", getClassName()).set("params", params).set("stats", stats);
 }
 

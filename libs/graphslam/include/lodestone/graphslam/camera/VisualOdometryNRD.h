@@ -6,6 +6,8 @@
 #include <mrpt/poses/CPose3DPDFGaussian.h>
 
 #include <cmath>
+#include <map>
+#include <string>
 #include <vector>
 
 namespace lodestone::graphslam {
@@ -18,10 +20,12 @@ namespace lodestone::graphslam {
  * Nodes every `keyframe_distance` / `keyframe_angle_deg` are keyframes: the frame's ORB
  * features (from VO's own pass) and, for map.ply, a coloured cloud.
  *
- * VO lost with no wheels to bridge the gap: when VO re-initializes after LOST, the frame it
- * starts from is the first node of a new segment, tied to the last node by a very weak edge
- * (`lost_edge_sigma`), as after a kidnap; the visual loop closer relocalizes it (SlamEngine,
- * Relocalizer). Its record carries when tracking was lost and found again.
+ * VO lost with no wheels to bridge the gap: when VO re-initializes after LOST, a short gap
+ * (`bridge_max_seconds`) is bridged by the camera's last velocity, the edge's covariance that
+ * of a constant-velocity model with white-noise acceleration over the gap; after a longer one
+ * the frame it starts from is the first node of a new segment, tied to the last node by a very
+ * weak edge (`lost_edge_sigma`), as after a kidnap; the visual loop closer relocalizes it
+ * (SlamEngine, Relocalizer). Its record carries when tracking was lost and found again.
  *
  * INI: [VisualOdometryNRD] and [visual_odometry]. */
 class VisualOdometryNRD : public NodeDecider {
@@ -34,6 +38,12 @@ class VisualOdometryNRD : public NodeDecider {
         int mapPixelStep{8};       ///< keyframe clouds for map.ply: every n-th pixel (0: none)
         double mapMaxDepth{4.0};   ///< [m]
         double lostEdgeSigma{100.0};  ///< [m, rad] of the edge across a VO gap
+        /** A gap this short [s] is bridged by the camera's last velocity instead (constant
+         * velocity, white-noise acceleration of `bridgeAccelSigma` [m/s^2] and
+         * `bridgeAngularAccelSigma` [rad/s^2]: position sigma a dt^2 / 2); 0: never. */
+        double bridgeMaxSeconds{0.0};  // off: README "Camera-only SLAM" (measured worse)
+        double bridgeAccelSigma{1.5};
+        double bridgeAngularAccelSigma{3.0};
         std::string cameraLabel;      ///< only this RGB-D label ("": the first one seen)
         vision::RgbdVisualOdometry::Params visual;  ///< [visual_odometry]
     };
@@ -58,6 +68,9 @@ class VisualOdometryNRD : public NodeDecider {
   private:
     void consume(const mrpt::obs::CObservation3DRangeScan::Ptr& scan);
     /** A node at this frame: `edge` from the last node (or the root when there is none). */
+    /** From the last node to a frame `gap` seconds after the last tracked one, by the last
+     * velocity. */
+    mrpt::poses::CPose3DPDFGaussian bridge(double gap) const;
     void registerAt(const mrpt::obs::CObservation3DRangeScan& scan, double t,
                     const std::shared_ptr<const vision::FrameFeatures>& features,
                     const mrpt::poses::CPose3DPDFGaussian& edge, bool restart);
@@ -74,8 +87,11 @@ class VisualOdometryNRD : public NodeDecider {
     Anchor lastTracked_;  // the last frame VO tracked (it may become the reference)
     mrpt::poses::CPose3D sinceKeyframe_;  // the last node relative to the last keyframe
     int segment_{0};
-    std::size_t frames_{0}, failedFrames_{0}, keyframes_{0}, gaps_{0};
+    std::size_t frames_{0}, failedFrames_{0}, keyframes_{0}, gaps_{0}, bridged_{0};
+    mrpt::poses::CPose3D lastStep_;  // the last motion between tracked frames ...
+    double lastStepSeconds_{0};      // ... and how long it took
     std::vector<double> gapSeconds_;  // from the last tracked frame to VO's restart
+    std::map<std::string, std::size_t> failures_;  // failed frames by VO's reason
 };
 
 }  // namespace lodestone::graphslam
