@@ -70,7 +70,8 @@ bool VisualOdometryNRD::updateState(mrpt::obs::CActionCollection::Ptr,
                                     mrpt::obs::CObservation::Ptr observation) {
     just_registered_.reset();
     const auto take = [&](const mrpt::obs::CObservation::Ptr& o) {
-        // (at most one node per call: a second frame in one call waits for the next one)
+        // (one node per call, the engine's contract: in a sensory frame holding two RGB-D
+        // frames, a frame after a new node is skipped - rawlogs of observations give one a call)
         if (auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(o);
             scan && !just_registered_) {
             consume(scan);

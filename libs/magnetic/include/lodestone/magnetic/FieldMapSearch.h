@@ -14,16 +14,19 @@ namespace lodestone::magnetic {
  * passes, the field it reads is not the one any earlier pass read, so the 1-D sequence matcher
  * finds nothing, but the map still predicts it.
  *
- * Translations of the stretch on a grid inside the pose gate are scored by the map's mean; the
- * best local optima are refined in the plane (PlanarAlignment) and judged by the joint
- * likelihood of the readings given the map (their correlation included). The match must explain
- * the readings better than the map's prior alone - the null: "the map knows nothing of this" -
- * by a log Bayes factor of `minLogRatio`, the search's Occam factor included (the best of
- * hundreds of places tried fits an unrelated field well now and then); and a look-alike place
- * elsewhere in the gate must fit clearly worse. Optima the likelihood cannot tell apart (one straight earlier pass predicts
- * the same field on either side of it) within one place are kept together: the result is their likelihood- and
- * gate-weighted mixture, moment-matched, so what stays undecided shows as a loose direction of
- * the covariance instead of a coin toss. */
+ * Translations of the stretch on a grid inside the pose gate are scored by the map's predictive
+ * density (mean and variance); the best local optima are refined (pattern search on the same
+ * density, the heading free within twice the plane prior's sigma) and judged by the joint
+ * likelihood of the readings given the map (their correlation included). The match must
+ * explain the readings better than the map's prior alone - the null: "the map knows nothing of
+ * this" - by a log Bayes factor of `minLogRatio`, the search's Occam factor included (the best
+ * of hundreds of places tried fits an unrelated field well now and then); a look-alike place
+ * elsewhere in the gate must fit clearly worse; and a best fit that still improves past the
+ * gate's edge gives no verdict (the place may lie outside). Optima the likelihood cannot tell
+ * apart within one place (one straight earlier pass predicts the same field on either side of
+ * it) are kept together: the result is their likelihood- and gate-weighted mixture,
+ * moment-matched, so what stays undecided shows as a loose direction of the covariance instead
+ * of a coin toss. */
 struct FieldMapSearchParams {
     double gridStep{0.1};     ///< [m] translations tried
     double maxRadius{2.5};    ///< [m] the widest gate searched (the cost grows with its area)
