@@ -2,19 +2,12 @@
 
 #include <lodestone/sim/MotionPlan.h>
 #include <lodestone/sim/Random.h>
+#include <lodestone/sim/Scenario.h>
 
 #include <Eigen/Geometry>
 #include <array>
 
 namespace lodestone::sim {
-
-/** How a camera carried by hand moves about its carrier's path. */
-struct HandheldSpec {
-    double height{1.35};        ///< [m] camera above the floor
-    double bob{0.02};           ///< [m] vertical amplitude (walking)
-    double sway{0.02};          ///< [m] sideways amplitude
-    double shakeDeg{2.0};       ///< [deg] amplitude of each of yaw, pitch, roll
-};
 
 /** A handheld camera's 6-DoF pose: the carrier walks the scenario's path (MotionPlan: x, y,
  * heading), the camera at `height` bobs, sways and shakes about it - each of the six a sum of

@@ -1,13 +1,11 @@
 #pragma once
 
-#include <lodestone/sim/HandheldMotion.h>
-#include <optional>
-
 #include <lodestone/sim/MotionPlan.h>
 #include <lodestone/sim/SurfaceTexture.h>
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -80,6 +78,14 @@ struct FieldSpec {
     std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> dipoles;  ///< explicit (pos, m)
 };
 
+/** How a camera carried by hand moves about its carrier's path. */
+struct HandheldSpec {
+    double height{1.35};   ///< [m] camera above the floor
+    double bob{0.02};      ///< [m] vertical amplitude (walking)
+    double sway{0.02};     ///< [m] sideways amplitude
+    double shakeDeg{2.0};  ///< [deg] amplitude of each of yaw, pitch, roll
+};
+
 /** Everything a scenario INI says, validated. */
 struct Scenario {
     std::string name, source;  ///< scenario name; the INI path (for messages)
@@ -100,7 +106,7 @@ struct Scenario {
     /** Only the RGB-D camera records (no encoders, wheel drop or magnetometers): a camera-only
      * recording, as a handheld sequence or an RGB-D dataset is (lodestone-sim --camera-only). */
     bool cameraOnly{false};
-    /** The camera carried by hand along the path (HandheldMotion): 6-DoF, shaking; implies
+    /** The camera carried by hand along the path (sim::HandheldMotion): 6-DoF, shaking; implies
      * cameraOnly (lodestone-sim --handheld). */
     std::optional<HandheldSpec> handheld;
 
