@@ -18,19 +18,10 @@ void FusedOdometryNRD::configure(const mrpt::config::CConfigFileBase& ini) {
     Params p = params_;  // all or nothing: a failed read leaves the decider as it was
     p.odometry.loadFromConfigFile(ini, "odometry_fusion");
     config::IniSection s(ini, "FusedOdometryNRD", config::sourceName(ini));
-    p.nodeDistance = s.getDouble("node_distance", p.nodeDistance);
-    p.nodeAngle = s.getDouble("node_angle_deg", p.nodeAngle * 180 / M_PI) * M_PI / 180;
-    p.keyframeDistance = s.getDouble("keyframe_distance", p.keyframeDistance);
-    p.keyframeAngle = s.getDouble("keyframe_angle_deg", p.keyframeAngle * 180 / M_PI) * M_PI / 180;
-    p.mapPixelStep = s.getInt("map_pixel_step", p.mapPixelStep);
-    p.mapMaxDepth = s.getDouble("map_max_depth", p.mapMaxDepth);
+    p.read(s);  // NodeSpacing: node and keyframe intervals, map clouds
     p.kidnapEdgeSigma = s.getDouble("kidnap_edge_sigma", p.kidnapEdgeSigma);
     p.useWheelDrop = s.getBool("kidnap_wheel_drop", p.useWheelDrop);
     p.detection = kidnap::KidnapDetector::readParams(ini);
-    if (!(p.nodeDistance > 0)) s.fail("node_distance", "must be > 0");
-    if (!(p.nodeAngle > 0)) s.fail("node_angle_deg", "must be > 0");
-    if (p.keyframeDistance < p.nodeDistance) s.fail("keyframe_distance", "must be >= node_distance");
-    if (p.mapPixelStep < 0) s.fail("map_pixel_step", "must be >= 0");
     if (!(p.kidnapEdgeSigma > 0)) s.fail("kidnap_edge_sigma", "must be > 0");
     s.finish();
     params_ = p;
@@ -275,12 +266,8 @@ NodeRecord FusedOdometryNRD::recordFor(double timestamp, bool keyframe) {
 
 JsonObject FusedOdometryNRD::describe() const {
     JsonObject params;
-    params.set("node_distance", params_.nodeDistance)
-        .set("node_angle_deg", params_.nodeAngle * 180 / M_PI)
-        .set("keyframe_distance", params_.keyframeDistance)
-        .set("keyframe_angle_deg", params_.keyframeAngle * 180 / M_PI)
-        .set("map_pixel_step", params_.mapPixelStep)
-        .set("kidnap_edge_sigma", params_.kidnapEdgeSigma)
+    params_.describe(params);
+    params.set("kidnap_edge_sigma", params_.kidnapEdgeSigma)
         .set("kidnap_wheel_drop", params_.useWheelDrop)
         .set("kidnap_detection_motion", params_.detection.motion)
         .set("kidnap_detection_magnetic", params_.detection.magnetic)

@@ -41,12 +41,7 @@ void VisualOdometryNRD::configure(const mrpt::config::CConfigFileBase& ini) {
     Params p = params_;  // all or nothing
     p.visual.loadFromConfigFile(ini, "visual_odometry");
     config::IniSection s(ini, "VisualOdometryNRD", config::sourceName(ini));
-    p.nodeDistance = s.getDouble("node_distance", p.nodeDistance);
-    p.nodeAngle = s.getDouble("node_angle_deg", p.nodeAngle * 180 / M_PI) * M_PI / 180;
-    p.keyframeDistance = s.getDouble("keyframe_distance", p.keyframeDistance);
-    p.keyframeAngle = s.getDouble("keyframe_angle_deg", p.keyframeAngle * 180 / M_PI) * M_PI / 180;
-    p.mapPixelStep = s.getInt("map_pixel_step", p.mapPixelStep);
-    p.mapMaxDepth = s.getDouble("map_max_depth", p.mapMaxDepth);
+    p.read(s);  // NodeSpacing: node and keyframe intervals, map clouds
     p.lostEdgeSigma = s.getDouble("lost_edge_sigma", p.lostEdgeSigma);
     p.bridgeMaxSeconds = s.getDouble("bridge_max_seconds", p.bridgeMaxSeconds);
     p.bridgeAccelSigma = s.getDouble("bridge_accel_sigma", p.bridgeAccelSigma);
@@ -55,10 +50,6 @@ void VisualOdometryNRD::configure(const mrpt::config::CConfigFileBase& ini) {
     if (!(p.bridgeAccelSigma > 0) || !(p.bridgeAngularAccelSigma > 0))
         s.fail("bridge_accel_sigma", "acceleration sigmas must be > 0");
     p.cameraLabel = s.getString("camera_label", p.cameraLabel);
-    if (!(p.nodeDistance > 0)) s.fail("node_distance", "must be > 0");
-    if (!(p.nodeAngle > 0)) s.fail("node_angle_deg", "must be > 0");
-    if (p.keyframeDistance < p.nodeDistance) s.fail("keyframe_distance", "must be >= node_distance");
-    if (p.mapPixelStep < 0) s.fail("map_pixel_step", "must be >= 0");
     if (!(p.lostEdgeSigma > 0)) s.fail("lost_edge_sigma", "must be > 0");
     s.finish();
     params_ = p;
@@ -222,12 +213,8 @@ VisualOdometryNRD::global_pose_t VisualOdometryNRD::getCurrentRobotPosEstimation
 
 JsonObject VisualOdometryNRD::describe() const {
     JsonObject params;
-    params.set("node_distance", params_.nodeDistance)
-        .set("node_angle_deg", params_.nodeAngle * 180 / M_PI)
-        .set("keyframe_distance", params_.keyframeDistance)
-        .set("keyframe_angle_deg", params_.keyframeAngle * 180 / M_PI)
-        .set("map_pixel_step", params_.mapPixelStep)
-        .set("lost_edge_sigma", params_.lostEdgeSigma)
+    params_.describe(params);
+    params.set("lost_edge_sigma", params_.lostEdgeSigma)
         .set("bridge_max_seconds", params_.bridgeMaxSeconds)
         .set("camera_label", params_.cameraLabel);
     JsonObject stats;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <lodestone/graphslam/NodeDecider.h>
+#include <lodestone/graphslam/NodeSpacing.h>
 #include <lodestone/graphslam/kidnap/KidnapDetector.h>
 #include <lodestone/odometry/FusedOdometry.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
@@ -32,13 +33,7 @@ namespace lodestone::graphslam {
  * [odometry_fusion]. */
 class FusedOdometryNRD : public NodeDecider {
   public:
-    struct Params {
-        double nodeDistance{0.10};            ///< [m]
-        double nodeAngle{10 * M_PI / 180};    ///< [rad]
-        double keyframeDistance{0.50};        ///< [m]
-        double keyframeAngle{20 * M_PI / 180};  ///< [rad]
-        int mapPixelStep{8};     ///< keyframe clouds for map.ply: every n-th pixel (0: none)
-        double mapMaxDepth{4.0};  ///< [m]
+    struct Params : NodeSpacing {
         double kidnapEdgeSigma{100.0};  ///< [m, rad] of the edge across a kidnap
         bool useWheelDrop{true};        ///< take kidnaps from CObservationWheelDrop
         kidnap::KidnapDetector::Params detection;  ///< [kidnap_detection]

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <lodestone/graphslam/NodeDecider.h>
+#include <lodestone/graphslam/NodeSpacing.h>
 #include <lodestone/vision/RgbdVisualOdometry.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/poses/CPose3DPDFGaussian.h>
@@ -30,13 +31,12 @@ namespace lodestone::graphslam {
  * INI: [VisualOdometryNRD] and [visual_odometry]. */
 class VisualOdometryNRD : public NodeDecider {
   public:
-    struct Params {
-        double nodeDistance{0.10};                ///< [m]
-        double nodeAngle{10 * M_PI / 180};        ///< [rad]
-        double keyframeDistance{0.30};            ///< [m]
-        double keyframeAngle{15 * M_PI / 180};    ///< [rad]
-        int mapPixelStep{8};       ///< keyframe clouds for map.ply: every n-th pixel (0: none)
-        double mapMaxDepth{4.0};   ///< [m]
+    struct Params : NodeSpacing {
+        Params() {
+            // A hand moves the view faster than a robot: keyframes closer together.
+            keyframeDistance = 0.30;
+            keyframeAngle = 15 * M_PI / 180;
+        }
         double lostEdgeSigma{100.0};  ///< [m, rad] of the edge across a VO gap
         /** A gap this short [s] is bridged by the camera's last velocity instead (constant
          * velocity, white-noise acceleration of `bridgeAccelSigma` [m/s^2] and
