@@ -10,6 +10,38 @@
 namespace lodestone::io {
 
 namespace {
+// Depth-to-colour registration, the same two options for every RGB-D importer.
+struct RegistrationArgs {
+    TCLAP::ValueArg<std::string> depthIntrinsics, depthToColour;
+    explicit RegistrationArgs(TCLAP::CmdLine& cmd)
+        : depthIntrinsics("", "depth-intrinsics",
+                          "depth not registered to colour: the depth camera's fx,fy,cx,cy (with "
+                          "--depth-to-colour)",
+                          false, "", "K", cmd),
+          depthToColour("", "depth-to-colour",
+                        "the depth camera's pose in the colour camera's optical frame: "
+                        "tx,ty,tz,qx,qy,qz,qw [m] (with --depth-intrinsics)",
+                        false, "", "POSE", cmd) {}
+    /** Throws std::invalid_argument naming the option. */
+    std::optional<DepthRegistration> parse() {
+        if (depthIntrinsics.getValue().empty() && depthToColour.getValue().empty()) return {};
+        if (depthIntrinsics.getValue().empty() || depthToColour.getValue().empty())
+            throw std::invalid_argument("--depth-intrinsics and --depth-to-colour go together");
+        DepthRegistration r;
+        try {
+            r.depth = TumIntrinsics::parse(depthIntrinsics.getValue());
+        } catch (const std::invalid_argument& e) {
+            throw std::invalid_argument(std::string("--depth-intrinsics: ") + e.what());
+        }
+        try {
+            r.colourFromDepth = DepthRegistration::parsePose(depthToColour.getValue());
+        } catch (const std::invalid_argument& e) {
+            throw std::invalid_argument(std::string("--depth-to-colour: ") + e.what());
+        }
+        return r;
+    }
+};
+
 int importTum(const std::vector<std::string>& words, std::ostream& out, std::ostream& err) {
     TCLAP::CmdLine cmd("Convert a TUM RGB-D sequence folder into a rawlog (+ OUT.gt.tum)", ' ', "");
     TCLAP::UnlabeledMultiArg<std::string> positional(
@@ -22,6 +54,7 @@ int importTum(const std::vector<std::string>& words, std::ostream& out, std::ost
     TCLAP::ValueArg<double> depthScale("", "depth-scale",
                                        "depth image units per metre (TUM 5000, 7-Scenes / ICL-NUIM 1000)",
                                        false, 5000.0, "U", cmd);
+    RegistrationArgs registration(cmd);
     const auto outcome = config::parseCommandLine(cmd, words);
     if (outcome.kind == config::ParseOutcome::Kind::HelpShown) return 0;
     const auto usage = [&](const std::string& why) {
@@ -35,6 +68,11 @@ int importTum(const std::vector<std::string>& words, std::ostream& out, std::ost
         o.intrinsics = TumIntrinsics::parse(intrinsics.getValue());
     } catch (const std::invalid_argument& e) {
         return usage(std::string("--intrinsics: ") + e.what());
+    }
+    try {
+        o.registration = registration.parse();
+    } catch (const std::invalid_argument& e) {
+        return usage(e.what());
     }
     o.maxTimeDifference = maxDt.getValue();
     if (!(depthScale.getValue() > 0)) return usage("--depth-scale must be > 0");
@@ -60,6 +98,7 @@ int importSevenScenes(const std::vector<std::string>& words, std::ostream& out, 
                                        1000.0, "U", cmd);
     TCLAP::ValueArg<double> rate("", "rate", "frame rate [Hz]: frame i is at i / rate", false, 30.0,
                                  "HZ", cmd);
+    RegistrationArgs registration(cmd);
     const auto outcome = config::parseCommandLine(cmd, words);
     if (outcome.kind == config::ParseOutcome::Kind::HelpShown) return 0;
     const auto usage = [&](const std::string& why) {
@@ -78,6 +117,11 @@ int importSevenScenes(const std::vector<std::string>& words, std::ostream& out, 
     }
     if (!(depthScale.getValue() > 0)) return usage("--depth-scale must be > 0");
     if (!(rate.getValue() > 0)) return usage("--rate must be > 0");
+    try {
+        o.registration = registration.parse();
+    } catch (const std::invalid_argument& e) {
+        return usage(e.what());
+    }
     o.depthScale = depthScale.getValue();
     o.rate = rate.getValue();
     const auto r = importSevenScenes(positional.getValue()[0], positional.getValue()[1], o);
@@ -171,8 +215,9 @@ int runImportApp(int argc, const char* const* argv, std::ostream& out, std::ostr
     const std::string usage =
         "lodestone-import: datasets into rawlogs\n"
         "usage: lodestone-import tum DIR OUT.rawlog [--intrinsics fr1] [--max-dt 0.02] [--depth-scale 5000]\n"
+        "           [--depth-intrinsics fx,fy,cx,cy --depth-to-colour tx,ty,tz,qx,qy,qz,qw]\n"
         "       lodestone-import 7scenes DIR OUT.rawlog [--intrinsics fx,fy,cx,cy] [--depth-scale 1000]\n"
-        "                              [--rate 30]\n"
+        "                              [--rate 30] [the same --depth-intrinsics / --depth-to-colour]\n"
         "       lodestone-import aalto DIR TRIAL OUT.rawlog [--seed 1] [--bias 0.005] [--sp2 "
         "1e-4]\n"
         "                              [--sh2 1e-4] [--odometry-rate 10]\n"

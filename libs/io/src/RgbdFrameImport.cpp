@@ -11,9 +11,16 @@ void writeRgbdFrame(RawlogWriter& writer, double timestamp, const std::string& c
                     const std::string& depthPath, const RgbdFrameOptions& o) {
     if (!std::filesystem::exists(colourPath))
         throw std::runtime_error(colourPath + ": missing colour image");
-    const cv::Mat d = cv::imread(depthPath, cv::IMREAD_UNCHANGED);
+    cv::Mat d = cv::imread(depthPath, cv::IMREAD_UNCHANGED);
     if (d.empty() || d.type() != CV_16UC1)
         throw std::runtime_error(depthPath + ": missing or not a 16-bit depth image");
+    if (o.registration) {
+        // (the colour image is read for its size only: its pixels are referenced, not copied)
+        const cv::Mat colour = cv::imread(colourPath, cv::IMREAD_UNCHANGED);
+        if (colour.empty()) throw std::runtime_error(colourPath + ": not an image OpenCV reads");
+        d = registerDepthToColour(d, *o.registration, o.intrinsics, colour.size(), o.depthScale,
+                                  o.invalidDepthFrom);
+    }
     auto obs = mrpt::obs::CObservation3DRangeScan::Create();
     obs->timestamp = mrpt::Clock::fromDouble(timestamp);
     obs->sensorLabel = o.sensorLabel;

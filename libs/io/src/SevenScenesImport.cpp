@@ -103,6 +103,7 @@ SevenScenesImportResult importSevenScenes(const std::string& sequenceDir, const 
     RgbdFrameOptions frame;
     frame.intrinsics = r.intrinsics;
     frame.depthScale = o.depthScale;
+    frame.registration = o.registration;
     frame.sensorLabel = o.sensorLabel;
     r.groundTruth = stemOf(outRawlog) + ".gt.tum";
     TumTrajectoryWriter truth(r.groundTruth);

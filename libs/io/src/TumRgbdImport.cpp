@@ -103,6 +103,7 @@ TumImportResult importTumRgbd(const std::string& sequenceDir, const std::string&
     RgbdFrameOptions frame;
     frame.intrinsics = o.intrinsics;
     frame.depthScale = o.depthScale;
+    frame.registration = o.registration;
     frame.sensorLabel = o.sensorLabel;
     for (const auto& [i, j] : pairs) {
         const fs::path rgbFile = dir / rgb[i].file, depthFile = dir / depth[j].file;

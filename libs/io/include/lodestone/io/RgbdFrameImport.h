@@ -1,15 +1,13 @@
 #pragma once
 
+#include <lodestone/io/DepthRegistration.h>
+#include <lodestone/io/PinholeIntrinsics.h>
 #include <lodestone/io/RawlogWriter.h>
 
+#include <optional>
 #include <string>
 
 namespace lodestone::io {
-
-/** Pinhole intrinsics [px]. */
-struct PinholeIntrinsics {
-    double fx{525.0}, fy{525.0}, cx{319.5}, cy{239.5};
-};
 
 /** How a dataset's RGB-D frame becomes a CObservation3DRangeScan. */
 struct RgbdFrameOptions {
@@ -18,9 +16,12 @@ struct RgbdFrameOptions {
     /** A depth value this large or larger means "no depth" (7-Scenes writes 65535). */
     unsigned invalidDepthFrom{65535};
     std::string sensorLabel{"RGBD"};
+    /** Depth not registered to colour: moved into the colour camera on import (the rawlog's
+     * depth is then colour-sized and shares `intrinsics`). */
+    std::optional<DepthRegistration> registration;
 };
 
-/** Writes one frame: the 16-bit depth image embedded (raw values, rangeUnits = 1 / depthScale;
+/** Writes one frame: the 16-bit depth image (registered to colour first, if asked) embedded (raw values, rangeUnits = 1 / depthScale;
  * values from invalidDepthFrom up become 0, no depth), the colour image referenced in place
  * (absolute path, any format OpenCV reads: PNG, JPEG) as a delay-loaded image; the camera is
  * the robot (sensorPose identity). Throws std::runtime_error naming the file when the colour

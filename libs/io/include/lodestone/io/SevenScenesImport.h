@@ -14,6 +14,7 @@ struct SevenScenesImportOptions {
     double depthScale{1000.0};  ///< depth PNG units per metre (7-Scenes: millimetres)
     double rate{30.0};          ///< [Hz] frames carry no time stamps: frame i is at i / rate
     std::string sensorLabel{"RGBD"};
+    std::optional<DepthRegistration> registration;  ///< depth not registered to colour
 };
 
 struct SevenScenesImportResult {

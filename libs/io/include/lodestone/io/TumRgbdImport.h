@@ -2,6 +2,7 @@
 
 #include <lodestone/io/RgbdFrameImport.h>
 
+#include <optional>
 #include <string>
 
 namespace lodestone::io {
@@ -19,6 +20,7 @@ struct TumImportOptions {
     double maxTimeDifference{0.02};  ///< RGB-depth association tolerance [s]
     double depthScale{5000.0};       ///< depth PNG units per metre (TUM: 5000)
     std::string sensorLabel{"RGBD"};
+    std::optional<DepthRegistration> registration;  ///< depth not registered to colour
 };
 
 struct TumImportResult {
