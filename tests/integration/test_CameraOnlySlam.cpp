@@ -82,34 +82,72 @@ TEST(CameraOnlySlam, RunsWithRgbdOnlyAndIsRefusedWithANamedWayOutElsewhere) {
     }
 }
 
-TEST(CameraOnlySlam, VoLostWithNoWheelsStartsANewSegmentAndTrackingGoesOn) {
+namespace {
+/** rgbd_only.ini with `key = value` set in it, written to `path`. */
+std::string rgbdOnlyWith(const std::string& path, const std::vector<std::pair<std::string, std::string>>& keys) {
+    std::ifstream base(kConfigDir + "/rgbd_only.ini");
+    std::string ini((std::istreambuf_iterator<char>(base)), std::istreambuf_iterator<char>());
+    for (const auto& [key, value] : keys) {
+        const std::regex line("\n" + key + " *= *[0-9.]+");
+        EXPECT_TRUE(std::regex_search(ini, line)) << key;
+        ini = std::regex_replace(ini, line, "\n" + key + " = " + value);
+    }
+    std::ofstream(path) << ini;
+    return path;
+}
+
+std::string reportOf(const std::string& dir) {
+    std::ifstream in(dir + "/report.json");
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+}  // namespace
+
+TEST(CameraOnlySlam, VoLostWithNoWheelsRelocalizesOnTheViewThatCameBack) {
     lodestone::test::TempDir dir;
-    // Frames 150-169 (1.3 s) see nothing: VO fails, goes LOST after 5, restarts at frame 170.
+    // Frames 150-169 (1.3 s) see nothing: VO fails, goes LOST after 5, restarts at frame 170,
+    // 0.4 m further on, looking at what it saw before the lens was covered.
     const std::string rawlog = cameraOnlyOffice(dir, 150, 170);
-    const auto run = lodestone::test::runCommand(kSlam + " --rawlog " + rawlog + " --config " +
-                                                 kConfigDir + "/rgbd_only.ini --out " +
-                                                 dir.file("out") + " --quiet");
+    const auto run = lodestone::test::runCommand(
+        kSlam + " --rawlog " + rawlog + " --config " + kConfigDir + "/rgbd_only.ini --out " +
+        dir.file("out") + " --ground-truth " + dir.file("camera.gt.tum") + " --quiet");
     ASSERT_EQ(run.exitCode, 0) << run.output;
-    std::ifstream in(dir.file("out/report.json"));
-    const std::string report((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string report = reportOf(dir.file("out"));
+    EXPECT_NE(report.find("\"vo_gaps\": 1"), std::string::npos) << report;
+    EXPECT_NE(report.find("\"vo_gaps_relocalized\": 1"), std::string::npos) << report;
+    EXPECT_NE(report.find("\"segments\": 1"), std::string::npos) << report;
+    // ... and rightly: the trajectory stays as good as without the gap (< 0.03 m).
+    const double ate = ateOf(run.output);
+    EXPECT_GT(ate, 0) << run.output;
+    EXPECT_LT(ate, 0.03) << run.output;
+    const auto traj = lodestone::io::readTumTrajectory(dir.file("out/trajectory.tum"));
+    ASSERT_FALSE(traj.empty());
+    EXPECT_GT(traj.back().timestamp - traj.front().timestamp, 20.0);  // nodes go on after it
+}
+
+TEST(CameraOnlySlam, VoLostWithNothingToRelocalizeOnStartsANewSegmentOrIsBridged) {
+    lodestone::test::TempDir dir;
+    const std::string rawlog = cameraOnlyOffice(dir, 150, 170);
+    // Relocalization off: the restart frame begins a second segment, tracking goes on.
+    const auto run = lodestone::test::runCommand(
+        kSlam + " --rawlog " + rawlog + " --config " +
+        rgbdOnlyWith(dir.file("segment.ini"), {{"relocalize_keyframes", "0"}}) + " --out " +
+        dir.file("out") + " --quiet");
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    const std::string report = reportOf(dir.file("out"));
     EXPECT_NE(report.find("\"vo_gaps\": 1"), std::string::npos) << report;
     EXPECT_NE(report.find("\"segments\": 2"), std::string::npos) << report;
-    // Nodes go on after the gap (frame 170 is at 170 / 15 s from the first frame).
     const auto traj = lodestone::io::readTumTrajectory(dir.file("out/trajectory.tum"));
     ASSERT_FALSE(traj.empty());
     EXPECT_GT(traj.back().timestamp - traj.front().timestamp, 20.0);
 
     // With bridging on for gaps up to 2 s, the same 1.3 s gap is bridged: one segment.
-    std::ifstream base(kConfigDir + "/rgbd_only.ini");
-    std::string ini((std::istreambuf_iterator<char>(base)), std::istreambuf_iterator<char>());
-    ini = std::regex_replace(ini, std::regex("\nbridge_max_seconds *= *[0-9.]+"), "\nbridge_max_seconds = 2.0");
-    std::ofstream(dir.file("bridge.ini")) << ini;
-    const auto bridged = lodestone::test::runCommand(kSlam + " --rawlog " + rawlog + " --config " +
-                                                     dir.file("bridge.ini") + " --out " +
-                                                     dir.file("bridged") + " --quiet");
+    const auto bridged = lodestone::test::runCommand(
+        kSlam + " --rawlog " + rawlog + " --config " +
+        rgbdOnlyWith(dir.file("bridge.ini"),
+                     {{"relocalize_keyframes", "0"}, {"bridge_max_seconds", "2.0"}}) +
+        " --out " + dir.file("bridged") + " --quiet");
     ASSERT_EQ(bridged.exitCode, 0) << bridged.output;
-    std::ifstream in2(dir.file("bridged/report.json"));
-    const std::string report2((std::istreambuf_iterator<char>(in2)), std::istreambuf_iterator<char>());
+    const std::string report2 = reportOf(dir.file("bridged"));
     EXPECT_NE(report2.find("\"vo_gaps_bridged\": 1"), std::string::npos) << report2;
     EXPECT_NE(report2.find("\"segments\": 1"), std::string::npos) << report2;
 }

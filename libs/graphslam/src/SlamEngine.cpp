@@ -13,7 +13,10 @@ SlamEngine::SlamEngine(std::unique_ptr<NodeDecider> nrd, std::unique_ptr<EdgeDec
     : nrd_(std::move(nrd)),
       erd_(std::move(erd)),
       gso_(std::move(gso)),
-      relocalizer_(relocalization) {
+      relocalizer_([&] {
+          relocalization.spatial = gso_->spatial();  // hypotheses in the graph's own space
+          return relocalization;
+      }()) {
     graph_.root = 0;
     for (SlamComponent* c :
          std::initializer_list<SlamComponent*>{nrd_.get(), erd_.get(), gso_.get()}) {
@@ -97,7 +100,7 @@ void SlamEngine::afterNodeDecider(bool /*newNode*/) {
 
 void SlamEngine::applyMerge(const relocalization::Relocalizer::Merge& m) {
     // Only the moved group's nodes change; the group it joins (the map) stays where it is.
-    const mrpt::poses::CPose3D T(m.transform.x(), m.transform.y(), 0, m.transform.phi(), 0, 0);
+    const mrpt::poses::CPose3D& T = m.transform;
     std::set<TNodeID> moved;
     for (TNodeID id = 0; id < relocalizer_seen_; ++id) {
         if (relocalizer_.groupOf(id) != m.movedGroup) continue;

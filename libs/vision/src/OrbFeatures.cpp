@@ -19,6 +19,7 @@ void OrbExtractor::Params::read(config::IniSection& s) {
     fastThreshold = s.getInt("orb_fast_threshold", fastThreshold);
     minDepth = s.getDouble("min_depth", minDepth);
     maxDepth = s.getDouble("max_depth", maxDepth);
+    depthMask = s.getBool("orb_depth_mask", depthMask);
     if (features < 10) s.fail("orb_features", "must be >= 10");
     if (scaleFactor <= 1.0) s.fail("orb_scale_factor", "must be > 1");
     if (minDepth >= maxDepth) s.fail("max_depth", "must exceed min_depth");
@@ -30,7 +31,8 @@ void OrbExtractor::Params::dumpToTextStream(std::ostream& out) const {
         << "orb_levels         = " << levels << "\n"
         << "orb_fast_threshold = " << fastThreshold << "  [grey levels]\n"
         << "min_depth          = " << minDepth << "  [m]\n"
-        << "max_depth          = " << maxDepth << "  [m]\n";
+        << "max_depth          = " << maxDepth << "  [m]\n"
+        << "orb_depth_mask     = " << (depthMask ? "true" : "false") << "\n";
 }
 
 OrbExtractor::OrbExtractor() : OrbExtractor(Params()) {}
@@ -45,7 +47,12 @@ FrameFeatures OrbExtractor::extract(const RgbdFrame& frame) const {
     if (frame.gray.empty()) return out;
     std::vector<cv::KeyPoint> keypoints;
     cv::Mat descriptors;
-    orb_->detectAndCompute(frame.gray, cv::noArray(), keypoints, descriptors);
+    cv::Mat mask;
+    if (params_.depthMask && frame.depth.size() == frame.gray.size()) {
+        // (NaN compares false: no depth, no corner)
+        cv::inRange(frame.depth, params_.minDepth, params_.maxDepth, mask);
+    }
+    orb_->detectAndCompute(frame.gray, mask, keypoints, descriptors);  // (empty mask: none)
     out.detected = keypoints.size();
     if (keypoints.empty() || frame.depth.empty()) return out;
 

@@ -82,6 +82,39 @@ void RgbdVisualOdometry::reset() {
     state_ = VoState::Initializing;
 }
 
+RgbdVisualOdometry::Alignment RgbdVisualOdometry::align(const FrameFeatures& reference,
+                                                        const FrameFeatures& current,
+                                                        std::uint64_t seed) const {
+    Alignment a;
+    if (current.size() < static_cast<std::size_t>(params_.ransac.minInliers) ||
+        reference.size() < static_cast<std::size_t>(params_.ransac.minInliers)) {
+        a.failure = VoFailure::FewFeatures;
+        return a;
+    }
+    auto t0 = std::chrono::steady_clock::now();
+    const auto matches = matcher_.match(current.descriptors, reference.descriptors);
+    a.timing.matching = msSince(t0);
+    a.matches = matches.size();
+    if (matches.size() < static_cast<std::size_t>(params_.ransac.minInliers)) {
+        a.failure = VoFailure::FewMatches;
+        return a;
+    }
+    t0 = std::chrono::steady_clock::now();
+    Eigen::Matrix3Xd src(3, matches.size()), dst(3, matches.size());
+    for (std::size_t i = 0; i < matches.size(); ++i) {
+        src.col(static_cast<Eigen::Index>(i)) =
+            current.points.col(matches[i].queryIdx).cast<double>();
+        dst.col(static_cast<Eigen::Index>(i)) =
+            reference.points.col(matches[i].trainIdx).cast<double>();
+    }
+    a.estimate = ransac_.estimate(src, dst, seed);
+    a.timing.ransac = msSince(t0);
+    a.inliers = a.estimate.inliers.size();
+    a.success = a.estimate.success;
+    if (!a.success) a.failure = VoFailure::NoConsensus;
+    return a;
+}
+
 VoResult RgbdVisualOdometry::process(const RgbdFrame& frame) {
     VoResult r;
     ++frame_count_;
@@ -116,31 +149,13 @@ VoResult RgbdVisualOdometry::process(const RgbdFrame& frame) {
         return r;
     }
     r.referenceTimestamp = reference_time_;
-    if (current.size() < static_cast<std::size_t>(params_.ransac.minInliers)) {
-        return fail(VoFailure::FewFeatures);
-    }
-
-    t0 = std::chrono::steady_clock::now();
-    const auto matches = matcher_.match(current.descriptors, reference_->descriptors);
-    r.timing.matching = msSince(t0);
-    r.matches = matches.size();
-    if (matches.size() < static_cast<std::size_t>(params_.ransac.minInliers)) {
-        return fail(VoFailure::FewMatches);
-    }
-
-    t0 = std::chrono::steady_clock::now();
-    Eigen::Matrix3Xd src(3, matches.size()), dst(3, matches.size());
-    for (std::size_t i = 0; i < matches.size(); ++i) {
-        src.col(static_cast<Eigen::Index>(i)) =
-            current.points.col(matches[i].queryIdx).cast<double>();
-        dst.col(static_cast<Eigen::Index>(i)) =
-            reference_->points.col(matches[i].trainIdx).cast<double>();
-    }
-    const RigidEstimate est = ransac_.estimate(src, dst, params_.seed + frame_count_);
-    r.timing.ransac = msSince(t0);
-    r.inliers = est.inliers.size();
-    if (!est.success) return fail(VoFailure::NoConsensus);
-
+    const auto aligned = align(*reference_, current, params_.seed + frame_count_);
+    r.timing.matching = aligned.timing.matching;
+    r.timing.ransac = aligned.timing.ransac;
+    r.matches = aligned.matches;
+    r.inliers = aligned.inliers;
+    if (!aligned.success) return fail(aligned.failure);
+    const RigidEstimate& est = aligned.estimate;
     const double angle = Eigen::AngleAxisd(est.transform.rotation()).angle();
     if (est.transform.translation().norm() > params_.maxTranslation ||
         angle > params_.maxRotation) {

@@ -102,9 +102,7 @@ TEST(Relocalizer, TwoIndependentAgreeingMatchesMoveTheSegmentAndJudgeTheRest) {
     EXPECT_EQ(m->sources, (std::set<std::string>{"Magnetic", "Visual"}));
     // The move puts the segment where it truly is (it hung at the map's end, 4.75 m off).
     for (TNodeID id = kMapNodes; id < 2 * kMapNodes; ++id) {
-        const auto moved = mrpt::poses::CPose3D(m->transform.x(), m->transform.y(), 0,
-                                                m->transform.phi(), 0, 0) +
-                           f.graph.nodes.at(id);
+        const auto moved = m->transform + f.graph.nodes.at(id);
         EXPECT_NEAR(moved.x(), f.truth[id].x(), 1e-6);
         EXPECT_NEAR(moved.y(), f.truth[id].y(), 1e-6);
     }

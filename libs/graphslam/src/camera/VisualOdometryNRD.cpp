@@ -43,6 +43,8 @@ void VisualOdometryNRD::configure(const mrpt::config::CConfigFileBase& ini) {
     config::IniSection s(ini, "VisualOdometryNRD", config::sourceName(ini));
     p.read(s);  // NodeSpacing: node and keyframe intervals, map clouds
     p.lostEdgeSigma = s.getDouble("lost_edge_sigma", p.lostEdgeSigma);
+    p.relocalizeKeyframes = s.getInt("relocalize_keyframes", p.relocalizeKeyframes);
+    if (p.relocalizeKeyframes < 0) s.fail("relocalize_keyframes", "must be >= 0");
     p.bridgeMaxSeconds = s.getDouble("bridge_max_seconds", p.bridgeMaxSeconds);
     p.bridgeAccelSigma = s.getDouble("bridge_accel_sigma", p.bridgeAccelSigma);
     p.bridgeAngularAccelSigma = s.getDouble("bridge_angular_accel_sigma", p.bridgeAngularAccelSigma);
@@ -91,7 +93,13 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
             ++gaps_;
             gapSeconds_.push_back(gap);
         }
-        if (!first && gap <= params_.bridgeMaxSeconds && lastStepSeconds_ > 0) {
+        std::optional<mrpt::poses::CPose3DPDFGaussian> found;
+        if (!first && r.frameFeatures) found = relocalize(*r.frameFeatures, A);
+        if (found) {
+            // The view came back: the graph goes on from where it was seen before.
+            ++relocalized_;
+            registerAt(*scan, t, r.frameFeatures, *found, false);
+        } else if (!first && gap <= params_.bridgeMaxSeconds && lastStepSeconds_ > 0) {
             // A short gap: where the last velocity carries the camera, as sure as a
             // constant-velocity model is over that long.
             ++bridged_;
@@ -101,6 +109,7 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
         }
         reference_ = {t, here};
         lastTracked_ = {t, here};
+        lastTrackedFeatures_ = r.frameFeatures;
         return;
     }
     if (!r.success) {
@@ -118,6 +127,7 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
     lastStep_ = cur.mean - lastTracked_.pdf.mean;  // (both relative to the same node)
     lastStepSeconds_ = t - lastTracked_.t;
     lastTracked_ = {t, cur};
+    lastTrackedFeatures_ = r.frameFeatures;
     if (cur.mean.norm() < params_.nodeDistance && rotationAngle(cur.mean) < params_.nodeAngle) return;
     registerAt(*scan, t, r.frameFeatures, cur, false);
     // Seen from the new node, the reference lies where VO measured it - the motion inverted,
@@ -126,6 +136,40 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
     motion.inverse(back);
     reference_.pdf = back;
     lastTracked_.pdf = here;
+}
+
+mrpt::poses::CPose3DPDFGaussian VisualOdometryNRD::relativeToLastNode(TNodeID from) const {
+    mrpt::poses::CPose3DPDFGaussian chain;  // last node <- from, along the segment's edges
+    for (TNodeID id = from; id < m_prev_registered_nodeID; ++id) {
+        const Constraint& c = m_graph->edges.find({id, id + 1})->second;
+        chain += mrpt::poses::CPose3DPDFGaussian(c.mean, c.cov_inv.inverse_LLt());
+    }
+    mrpt::poses::CPose3DPDFGaussian back;
+    chain.inverse(back);
+    return back;
+}
+
+std::optional<mrpt::poses::CPose3DPDFGaussian> VisualOdometryNRD::relocalize(
+    const vision::FrameFeatures& current, const Eigen::Isometry3d& A) {
+    if (params_.relocalizeKeyframes == 0) return std::nullopt;
+    // Newest first: the last tracked frame, then the keyframes.
+    std::vector<std::pair<mrpt::poses::CPose3DPDFGaussian, const vision::FrameFeatures*>> tries;
+    if (lastTrackedFeatures_) tries.emplace_back(lastTracked_.pdf, lastTrackedFeatures_.get());
+    for (auto k = recentKeyframes_.rbegin(); k != recentKeyframes_.rend(); ++k) {
+        tries.emplace_back(relativeToLastNode(k->first), k->second.get());
+    }
+    std::uint64_t seed = params_.visual.seed + frames_ * 131;
+    for (const auto& [where, features] : tries) {
+        const auto a = vo_.align(*features, current, ++seed);
+        if (!a.success) continue;
+        vision::VoResult motion;
+        motion.T_ref_cur = a.estimate.transform;
+        motion.covariance = a.estimate.covariance;
+        mrpt::poses::CPose3DPDFGaussian edge = where;
+        edge += robotMotion(motion, A);
+        return edge;
+    }
+    return std::nullopt;
 }
 
 mrpt::poses::CPose3DPDFGaussian VisualOdometryNRD::bridge(double gap) const {
@@ -165,7 +209,11 @@ void VisualOdometryNRD::registerAt(const mrpt::obs::CObservation3DRangeScan& sca
             ++segment_;
         }
         m_since_prev_node_PDF = c;
-        registerNewNodeAtEnd();  // MRPT's: node at previous + the edge's mean
+        // MRPT's registerNewNodeAtEnd() places the node at getCurrentRobotPosEstimation(),
+        // the last node + lastTracked_: make that the edge's end first (across a gap the last
+        // tracked frame is not the new node's frame).
+        lastTracked_ = {t, mrpt::poses::CPose3DPDFGaussian(c.mean)};
+        registerNewNodeAtEnd();
         id = m_prev_registered_nodeID;
         sinceKeyframe_ = sinceKeyframe_ + c.mean;
         keyframe = restart || sinceKeyframe_.norm() >= params_.keyframeDistance ||
@@ -190,9 +238,13 @@ void VisualOdometryNRD::registerAt(const mrpt::obs::CObservation3DRangeScan& sca
         }
         nodes_->add(id, std::move(rec));
     }
+    if (restart) recentKeyframes_.clear();  // (a new segment: nothing before it is related)
     if (keyframe) {
         sinceKeyframe_ = mrpt::poses::CPose3D();
         ++keyframes_;
+        if (features) recentKeyframes_.emplace_back(id, features);
+        while (recentKeyframes_.size() > static_cast<std::size_t>(params_.relocalizeKeyframes))
+            recentKeyframes_.pop_front();
     }
     just_registered_ = id;
 }
@@ -215,6 +267,7 @@ JsonObject VisualOdometryNRD::describe() const {
     JsonObject params;
     params_.describe(params);
     params.set("lost_edge_sigma", params_.lostEdgeSigma)
+        .set("relocalize_keyframes", params_.relocalizeKeyframes)
         .set("bridge_max_seconds", params_.bridgeMaxSeconds)
         .set("camera_label", params_.cameraLabel);
     JsonObject stats;
@@ -224,6 +277,7 @@ JsonObject VisualOdometryNRD::describe() const {
         .set("vo_gaps", gaps_)
         .set("vo_gap_seconds", gapSeconds_)
         .set("vo_gaps_bridged", bridged_)
+        .set("vo_gaps_relocalized", relocalized_)
         .set("segments", segment_ + 1);
     JsonObject why;
     for (const auto& [reason, count] : failures_) why.set(reason, count);

@@ -38,25 +38,45 @@ std::pair<int, int> Relocalizer::keptAndMoved(int g1, int g2) {
     return {std::min(g1, g2), std::max(g1, g2)};
 }
 
+namespace {
+template <class S>
+double gate(const RelocalizerParams& p) {
+    return p.consistencyChi2 > 0 ? p.consistencyChi2 : S::kChi2999;
+}
+}  // namespace
+
+template <class S>
+void Relocalizer::accumulateStep(const Constraint& edge, double& positionVar,
+                                 double& rotationVar) const {
+    const typename S::Matrix c = S::covarianceOf(edge);
+    constexpr int nt = S::kTranslationDof, nr = S::kDof - S::kTranslationDof;
+    positionVar = c.topLeftCorner(nt, nt).trace();
+    rotationVar = c.bottomRightCorner(nr, nr).trace() / nr;
+}
+
 void Relocalizer::addNode(const Graph& graph, const NodeStore& nodes, TNodeID id) {
     const NodeRecord& rec = nodes.at(id);
     const int seg = rec.segment;
     while (static_cast<int>(parent_.size()) <= seg) parent_.push_back(static_cast<int>(parent_.size()));
     const bool starts = id == 0 || segment_.back() != seg;
-    double step = 0, pv = 0, yv = 0;
+    double step = 0, pv = 0, rv = 0;
     if (!starts) {
         const auto e = graph.edges.find({id - 1, id});
         if (e != graph.edges.end()) {
-            step = std::hypot(e->second.mean.x(), e->second.mean.y());
-            const Matrix3 c = planarCovariance(e->second);
-            pv = c(0, 0) + c(1, 1);
-            yv = c(2, 2);
+            const auto& t = e->second.mean;
+            step = params_.spatial ? std::sqrt(t.x() * t.x() + t.y() * t.y() + t.z() * t.z())
+                                   : std::hypot(t.x(), t.y());
+            if (params_.spatial) {
+                accumulateStep<SpatialSpace>(e->second, pv, rv);
+            } else {
+                accumulateStep<PlanarSpace>(e->second, pv, rv);
+            }
         }
     }
     segment_.push_back(seg);
     travel_.push_back(starts ? 0.0 : travel_.back() + step);
     positionVar_.push_back(starts ? 0.0 : positionVar_.back() + pv);
-    yawVar_.push_back(starts ? 0.0 : yawVar_.back() + yv);
+    rotationVar_.push_back(starts ? 0.0 : rotationVar_.back() + rv);
     if (starts && id > 0) {
         if (kidnaps_.empty()) {
             for (TNodeID k = 0; k < id; ++k) {
@@ -72,30 +92,34 @@ void Relocalizer::addNode(const Graph& graph, const NodeStore& nodes, TNodeID id
     }
 }
 
-Matrix3 Relocalizer::relativeCovariance(const Graph& graph, TNodeID i, TNodeID j,
-                                        bool moving) const {
-    Matrix3 floor = Matrix3::Zero();
-    floor.diagonal() << params_.mapSigmaXY * params_.mapSigmaXY,
-        params_.mapSigmaXY * params_.mapSigmaXY, params_.mapSigmaYaw * params_.mapSigmaYaw;
-    if (!moving || segment_[i] != segment_[j]) return floor;
+template <class S>
+typename S::Matrix Relocalizer::relativeCovariance(const Graph& graph, TNodeID i, TNodeID j,
+                                                   bool moving) const {
+    constexpr int nt = S::kTranslationDof, nr = S::kDof - S::kTranslationDof;
+    typename S::Matrix c = S::Matrix::Zero();
+    c.diagonal().head(nt).setConstant(params_.mapSigmaXY * params_.mapSigmaXY);
+    c.diagonal().tail(nr).setConstant(params_.mapSigmaYaw * params_.mapSigmaYaw);
+    if (!moving || segment_[i] != segment_[j]) return c;
     // Within one segment of the moved group: its odometry since the segment began, summed
-    // (position variance plus the heading's lever arm over the distance between the nodes).
+    // (position variance plus the rotation's lever arm over the distance between the nodes).
     const double pv = std::abs(positionVar_[j] - positionVar_[i]);
-    const double yv = std::abs(yawVar_[j] - yawVar_[i]);
+    const double rv = std::abs(rotationVar_[j] - rotationVar_[i]);
     const auto& a = graph.nodes.at(i);
     const auto& b = graph.nodes.at(j);
-    const double d2 = (a.x() - b.x()) * (a.x() - b.x()) + (a.y() - b.y()) * (a.y() - b.y());
-    Matrix3 c = Matrix3::Zero();
-    c.diagonal() << pv / 2 + yv * d2, pv / 2 + yv * d2, yv;
-    return c + floor;
+    double d2 = (a.x() - b.x()) * (a.x() - b.x()) + (a.y() - b.y()) * (a.y() - b.y());
+    if (S::kTranslationDof == 3) d2 += (a.z() - b.z()) * (a.z() - b.z());
+    c.diagonal().head(nt).array() += pv / nt + rv * d2;
+    c.diagonal().tail(nr).array() += rv;
+    return c;
 }
 
-Hypothesis Relocalizer::hypothesisOf(const Graph& graph, const Pending& p) const {
-    Hypothesis h;
-    h.a = planar(graph.nodes.at(p.a));
-    h.u = planar(graph.nodes.at(p.u));
-    h.z = planar(p.closure.constraint.mean);
-    h.cov = planarCovariance(p.closure.constraint);
+template <class S>
+HypothesisT<S> Relocalizer::hypothesisOf(const Graph& graph, const Pending& p) const {
+    HypothesisT<S> h;
+    h.a = S::fromGraph(graph.nodes.at(p.a));
+    h.u = S::fromGraph(graph.nodes.at(p.u));
+    h.z = S::fromGraph(p.closure.constraint.mean);
+    h.cov = S::covarianceOf(p.closure.constraint);
     h.uIsTo = p.uIsTo;
     return h;
 }
@@ -107,11 +131,25 @@ bool Relocalizer::independent(const Pending& x, const Pending& y) const {
     return std::abs(travel_[x.u] - travel_[y.u]) >= params_.independentTravel;
 }
 
+template <class S>
 bool Relocalizer::consistent(const Graph& graph, const Pending& x, const Pending& y) const {
-    const double chi2 =
-        pairwiseChi2(hypothesisOf(graph, x), hypothesisOf(graph, y),
-                     relativeCovariance(graph, x.u, y.u, true), relativeCovariance(graph, x.a, y.a, false));
-    return chi2 <= params_.consistencyChi2;
+    const double chi2 = pairwiseChi2<S>(hypothesisOf<S>(graph, x), hypothesisOf<S>(graph, y),
+                                        relativeCovariance<S>(graph, x.u, y.u, true),
+                                        relativeCovariance<S>(graph, x.a, y.a, false));
+    return chi2 <= gate<S>(params_);
+}
+
+template <class S>
+bool Relocalizer::determined(const typename S::Matrix& c) const {
+    constexpr int nt = S::kTranslationDof, nr = S::kDof - S::kTranslationDof;
+    using Block = Eigen::MatrixXd;
+    const auto largestSigma = [](const Block& m) {
+        const double v = Eigen::SelfAdjointEigenSolver<Block>(m).eigenvalues().maxCoeff();
+        return std::sqrt(std::max(0.0, v));
+    };
+    // (planar: the x, y block's larger axis and the yaw)
+    return largestSigma(c.topLeftCorner(nt, nt)) <= params_.maxSigmaXY &&
+           largestSigma(c.bottomRightCorner(nr, nr)) <= params_.maxSigmaYaw;
 }
 
 std::optional<Relocalizer::Merge> Relocalizer::offer(const Graph& graph, const LoopClosure& lc) {
@@ -124,13 +162,20 @@ std::optional<Relocalizer::Merge> Relocalizer::offer(const Graph& graph, const L
     h.uIsTo = gTo == moved;
     h.u = h.uIsTo ? lc.to : lc.from;
     h.a = h.uIsTo ? lc.from : lc.to;
-    const auto samePair = [&](const Pending& p) {
+    return params_.spatial ? offerIn<SpatialSpace>(graph, h, kept, moved)
+                           : offerIn<PlanarSpace>(graph, h, kept, moved);
+}
+
+template <class S>
+std::optional<Relocalizer::Merge> Relocalizer::offerIn(const Graph& graph, const Pending& h,
+                                                       int kept, int moved) {
+    const auto samePair = [&, kept = kept, moved = moved](const Pending& p) {
         return groupOf(p.a) == kept && groupOf(p.u) == moved;
     };
     std::vector<const Pending*> agreeing;  // consistent with h
     const Pending* partner = nullptr;      // consistent and independent
     for (const auto& p : pending_) {
-        if (!samePair(p) || !consistent(graph, h, p)) continue;
+        if (!samePair(p) || !consistent<S>(graph, h, p)) continue;
         agreeing.push_back(&p);
         if (!partner && independent(h, p)) partner = &p;
     }
@@ -142,17 +187,16 @@ std::optional<Relocalizer::Merge> Relocalizer::offer(const Graph& graph, const L
         std::vector<Pending> set{h};
         if (partner) set.push_back(*partner);
         for (const Pending* p : agreeing) {
-            if (p != partner && (!partner || consistent(graph, *partner, *p))) set.push_back(*p);
+            if (p != partner && (!partner || consistent<S>(graph, *partner, *p))) set.push_back(*p);
         }
-        std::vector<Hypothesis> hs;
-        for (const auto& p : set) hs.push_back(hypothesisOf(graph, p));
-        const auto& h0 = hs.front();
-        Pose2 T = fitTransform(hs, impliedTransform(h0.a, h0.u, h0.z, h0.uIsTo));
+        std::vector<HypothesisT<S>> hs;
+        for (const auto& p : set) hs.push_back(hypothesisOf<S>(graph, p));
+        typename S::Pose T = fitTransform<S>(hs, impliedTransform<S>(hs.front()));
         // Judged at the fitted move; the verification must survive without whoever fails.
         std::vector<Pending> survivors;
-        std::vector<Hypothesis> keptHs;
+        std::vector<HypothesisT<S>> keptHs;
         for (std::size_t k = 0; k < set.size(); ++k) {
-            if (chi2After(hs[k], T) <= params_.consistencyChi2) {
+            if (chi2After<S>(hs[k], T) <= gate<S>(params_)) {
                 survivors.push_back(set[k]);
                 keptHs.push_back(hs[k]);
             }
@@ -163,25 +207,18 @@ std::optional<Relocalizer::Merge> Relocalizer::offer(const Graph& graph, const L
             for (std::size_t y = x + 1; y < survivors.size() && !verified; ++y)
                 verified = independent(survivors[x], survivors[y]);
         }
-        Matrix3 covT = Matrix3::Identity();
-        if (verified) T = fitTransform(keptHs, T, &covT);
-        if (verified) {
-            // Determined enough where the robot is now (the newest closure's moving end)?
-            const Matrix3 c = movedPoseCovariance(T, covT, hs.front().u);
-            const double sxy = std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(
-                                             c.topLeftCorner<2, 2>())
-                                             .eigenvalues()
-                                             .maxCoeff());
-            if (sxy > params_.maxSigmaXY || std::sqrt(c(2, 2)) > params_.maxSigmaYaw) {
-                verified = false;
-                ++undetermined_;
-            }
+        typename S::Matrix covT = S::Matrix::Identity();
+        if (verified) T = fitTransform<S>(keptHs, T, &covT);
+        // Determined enough where the robot is now (the newest closure's moving end)?
+        if (verified && !determined<S>(movedPoseCovariance<S>(T, covT, hs.front().u))) {
+            verified = false;
+            ++undetermined_;
         }
         if (verified) {
             Merge m;
             m.keptGroup = kept;
             m.movedGroup = moved;
-            m.transform = T;
+            m.transform = S::toGraph(T);
             for (const auto& p : survivors) {
                 m.accepted.push_back(p.closure);
                 m.sources.insert(p.closure.source);
@@ -199,7 +236,7 @@ std::optional<Relocalizer::Merge> Relocalizer::offer(const Graph& graph, const L
                     continue;
                 }
                 if (!inSet(*it)) {
-                    if (chi2After(hypothesisOf(graph, *it), T) <= params_.consistencyChi2) {
+                    if (chi2After<S>(hypothesisOf<S>(graph, *it), T) <= gate<S>(params_)) {
                         m.accepted.push_back(it->closure);
                     } else {
                         ++m.rejected;
@@ -252,7 +289,8 @@ void Relocalizer::commit(const Merge& m, const Graph& graph, const NodeStore& no
 
 JsonObject Relocalizer::describe() const {
     JsonObject params;
-    params.set("consistency_chi2", params_.consistencyChi2)
+    params.set("space", params_.spatial ? "se3" : "planar")
+        .set("consistency_chi2", params_.spatial ? gate<SpatialSpace>(params_) : gate<PlanarSpace>(params_))
         .set("independent_travel", params_.independentTravel)
         .set("map_sigma_xy", params_.mapSigmaXY)
         .set("map_sigma_yaw_deg", params_.mapSigmaYaw * 180 / M_PI)

@@ -40,6 +40,7 @@ class CeresGSO : public GraphOptimizer {
     void optimizeGraph() override;
     void finish() override;
     bool justFullyOptimizedGraph() const override { return just_full_; }
+    bool spatial() const override { return !params_.solver.planar; }
     JsonObject describe() const override;
 
     /** Totals over the run. */

@@ -24,6 +24,8 @@ class GraphOptimizer : public mrpt::graphslam::optimizers::CGraphSlamOptimizer<G
                                        const std::set<TNodeID>& /*movable*/) {
         addLoopClosures(closures);
     }
+    /** Nodes solved in SE(3) (6 dof) rather than x, y, yaw: the relocalizer's space. */
+    virtual bool spatial() const { return false; }
     /** Solves everything the run still needs (at the end of the data). */
     virtual void finish() = 0;
     /** Re-solves the whole graph now (e.g. after a kidnapped segment was re-anchored). */

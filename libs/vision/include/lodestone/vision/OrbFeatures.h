@@ -25,7 +25,7 @@ struct FrameFeatures {
 
 /** ORB extraction (OpenCV) followed by back-projection through the depth image. Keypoints
  * whose depth is missing or out of [minDepth, maxDepth] are dropped: they cannot be aligned in
- * 3D. */
+ * 3D. With `depthMask`, ORB searches only the pixels that have such a depth. */
 class OrbExtractor {
   public:
     struct Params : public mrpt::config::CLoadableOptions {
@@ -35,6 +35,11 @@ class OrbExtractor {
         int fastThreshold{20};    ///< FAST corner threshold [grey levels]
         double minDepth{0.3};     ///< [m]
         double maxDepth{6.0};     ///< [m]
+        /** Detect only where the depth image has a usable depth: ORB keeps its strongest
+         * `features` corners, and a textured far wall beyond the sensor's range can take them
+         * all, leaving none that can be aligned in 3D (a corridor's end seen past plain side
+         * walls). */
+        bool depthMask{false};
 
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                                 const std::string& section) override;

@@ -79,6 +79,20 @@ class RgbdVisualOdometry {
 
     /** Processes the next frame. */
     VoResult process(const RgbdFrame& frame);
+
+    /** Two frames' features aligned as `process` aligns a frame with its reference (matching,
+     * RANSAC; no plausibility gate on the motion, no state change): `estimate.transform` is
+     * the current frame's pose in the reference's optical frame. For whoever relocalizes a
+     * frame against an earlier one (a node decider after VO was lost). */
+    struct Alignment {
+        bool success{false};
+        VoFailure failure{VoFailure::None};
+        RigidEstimate estimate;
+        std::size_t matches{0}, inliers{0};
+        VoTiming timing;
+    };
+    Alignment align(const FrameFeatures& reference, const FrameFeatures& current,
+                    std::uint64_t seed) const;
     /** Forgets the reference: the next frame starts afresh. */
     void reset();
 

@@ -3,7 +3,7 @@
 #include <lodestone/graphslam/NodeStore.h>
 #include <lodestone/graphslam/PoseGraphSolver.h>
 #include <lodestone/graphslam/ReportJson.h>
-#include <lodestone/graphslam/relocalization/PlanarClosureAlgebra.h>
+#include <lodestone/graphslam/relocalization/ClosureAlgebra.h>
 #include <mrpt/config/CConfigFileBase.h>
 
 #include <cmath>
@@ -17,16 +17,19 @@ namespace lodestone::graphslam::relocalization {
 
 /** What Relocalizer reads from [relocalization]. */
 struct RelocalizerParams {
-    double consistencyChi2{kChi2Planar999};
+    /** Hypotheses in SE(3) (a hand-held camera's graph, `[CeresGSO] mode = se3`) rather than
+     * x, y, yaw: set by the engine from its optimizer, not read from the INI. */
+    bool spatial{false};
+    double consistencyChi2{0};  ///< 0: chi-square 99.9 % for the space's degrees of freedom
     double independentTravel{1.0};    ///< [m]
     double mapSigmaXY{0.05};          ///< [m] relative pose of two nodes of one group ...
-    double mapSigmaYaw{M_PI / 180};   ///< [rad] ... once merged or optimized
+    double mapSigmaYaw{M_PI / 180};   ///< [rad] ... once merged or optimized (per rotation axis)
     std::size_t maxHypotheses{400};   ///< pending per pair of groups (oldest dropped)
     /** The agreeing closures must pin the moved group's latest pose down this well (1 sigma of
      * the fitted move): closures along one straight line may agree and still leave the heading
      * free (magnetic ones claim 10 deg), and a heading error swings the whole segment. */
-    double maxSigmaXY{0.05};          ///< [m]
-    double maxSigmaYaw{2 * M_PI / 180};  ///< [rad]
+    double maxSigmaXY{0.05};          ///< [m] (SE(3): in any direction)
+    double maxSigmaYaw{2 * M_PI / 180};  ///< [rad] (SE(3): about any axis)
 };
 
 /** Global relocalization after a kidnap, keeping the map intact (paper 000 §2.4).
@@ -46,7 +49,10 @@ struct RelocalizerParams {
  * `max_sigma_yaw_deg`), else the hypotheses wait for more; every other pending hypothesis of
  * the pair is judged at the move; only those that agree become edges. The kept group never moves: only the moved group's nodes change, rigidly.
  *
- * INI section [relocalization]: consistency_chi2 (0: chi-square 99.9 % for 3 dof),
+ * The same in SE(3) for a hand-held camera's graph (Params::spatial, ClosureAlgebra's
+ * SpatialSpace), where a segment's move has a height, pitch and roll too.
+ *
+ * INI section [relocalization]: consistency_chi2 (0: chi-square 99.9 % for 3 dof, 6 in SE(3)),
  * independent_travel [m], map_sigma_xy [m], map_sigma_yaw_deg, max_hypotheses, max_sigma_xy [m],
  * max_sigma_yaw_deg. */
 class Relocalizer {
@@ -74,10 +80,11 @@ class Relocalizer {
     };
 
     /** A verified merge, for the engine to apply: move every node of `movedGroup` by
-     * `transform` (planar, left-composed), then add `accepted` as loop closures. */
+     * `transform` (left-composed; planar in a planar graph), then add `accepted` as loop
+     * closures. */
     struct Merge {
         int movedGroup{0}, keptGroup{0};  ///< groups by their first segment
-        Pose2 transform;
+        mrpt::poses::CPose3D transform;
         std::vector<LoopClosure> accepted;
         std::size_t rejected{0};
         std::set<std::string> sources;
@@ -114,15 +121,28 @@ class Relocalizer {
     int find(int segment) const;
     /** Which of two groups moves: the one that is not the map, else the later one. */
     static std::pair<int, int> keptAndMoved(int g1, int g2);
-    Hypothesis hypothesisOf(const Graph& graph, const Pending& p) const;
-    Matrix3 relativeCovariance(const Graph& graph, TNodeID i, TNodeID j, bool moving) const;
     bool independent(const Pending& x, const Pending& y) const;
+    // In the graph's pose space S (ClosureSpace.h):
+    template <class S>
+    std::optional<Merge> offerIn(const Graph& graph, const Pending& h, int kept, int moved);
+    template <class S>
+    HypothesisT<S> hypothesisOf(const Graph& graph, const Pending& p) const;
+    template <class S>
+    typename S::Matrix relativeCovariance(const Graph& graph, TNodeID i, TNodeID j,
+                                          bool moving) const;
+    template <class S>
     bool consistent(const Graph& graph, const Pending& x, const Pending& y) const;
+    /** The fitted move pins the moved group's pose `c` (its covariance) down well enough. */
+    template <class S>
+    bool determined(const typename S::Matrix& c) const;
+    template <class S>
+    void accumulateStep(const Constraint& edge, double& positionVar, double& rotationVar) const;
 
     Params params_;
     std::vector<int> segment_;        // per node
     std::vector<double> travel_;      // per node, along its segment [m]
-    std::vector<double> positionVar_, yawVar_;  // per node, odometry variance sums in the segment
+    // per node, odometry variance sums in the segment: position (trace), rotation (per axis)
+    std::vector<double> positionVar_, rotationVar_;
     std::vector<int> parent_;         // union-find over segments
     std::deque<Pending> pending_;
     std::vector<KidnapRecord> kidnaps_;
