@@ -127,10 +127,13 @@ TEST(CameraOnlySlam, VoLostWithNoWheelsRelocalizesOnTheViewThatCameBack) {
 TEST(CameraOnlySlam, VoLostWithNothingToRelocalizeOnStartsANewSegmentOrIsBridged) {
     lodestone::test::TempDir dir;
     const std::string rawlog = cameraOnlyOffice(dir, 150, 170);
-    // Relocalization off: the restart frame begins a second segment, tracking goes on.
+    // Relocalization and bridging off: the restart frame begins a second segment, tracking
+    // goes on.
     const auto run = lodestone::test::runCommand(
         kSlam + " --rawlog " + rawlog + " --config " +
-        rgbdOnlyWith(dir.file("segment.ini"), {{"relocalize_keyframes", "0"}}) + " --out " +
+        rgbdOnlyWith(dir.file("segment.ini"),
+                     {{"relocalize_keyframes", "0"}, {"bridge_max_seconds", "0"}}) +
+        " --out " +
         dir.file("out") + " --quiet");
     ASSERT_EQ(run.exitCode, 0) << run.output;
     const std::string report = reportOf(dir.file("out"));

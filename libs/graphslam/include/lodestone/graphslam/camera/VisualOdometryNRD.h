@@ -49,7 +49,7 @@ class VisualOdometryNRD : public NodeDecider {
         /** A gap this short [s] is bridged by the camera's last velocity instead (constant
          * velocity, white-noise acceleration of `bridgeAccelSigma` [m/s^2] and
          * `bridgeAngularAccelSigma` [rad/s^2]: position sigma a dt^2 / 2); 0: never. */
-        double bridgeMaxSeconds{0.0};  // off: README "Camera-only SLAM" (measured worse)
+        double bridgeMaxSeconds{0.0};  // (rgbd_only.ini: 1 s, README "Camera-only SLAM")
         double bridgeAccelSigma{1.5};
         double bridgeAngularAccelSigma{3.0};
         std::string cameraLabel;      ///< only this RGB-D label ("": the first one seen)
