@@ -11,6 +11,8 @@ packages=(
     libceres-dev                   # pose-graph optimization (sparse, robust losses)
     nlohmann-json3-dev             # lodestone-eval relocation reads report.json
     libgtest-dev libgmock-dev
+    libbenchmark-dev               # micro-benchmarks (bench/bench_matching)
+    time                           # /usr/bin/time: wall time and peak RSS in scripts/bench/throughput.sh
 )
 
 missing=()

@@ -146,6 +146,9 @@ TEST(SlamBinary, UsageErrors) {
     EXPECT_EQ(both.exitCode, 2);
     EXPECT_NE(both.output.find("exactly one of --rawlog and --sim"), std::string::npos);
     EXPECT_EQ(lodestone::test::runCommand(kSlam + " --help").exitCode, 0);
+    const auto ahead = lodestone::test::runCommand(kSlam + " --rawlog a --config c --out d --decode-ahead -1");
+    EXPECT_EQ(ahead.exitCode, 2);
+    EXPECT_NE(ahead.output.find("--decode-ahead"), std::string::npos) << ahead.output;
 }
 
 TEST(SlamBinary, MrptsGraphSlamToolReadsTheGraph) {
@@ -163,4 +166,28 @@ TEST(SlamBinary, MrptsGraphSlamToolReadsTheGraph) {
     EXPECT_NE(info.output.find("Nodes count (in VERTEX2/3 entries) : " + std::to_string(nodes)),
               std::string::npos)
         << info.output;
+}
+
+TEST(SlamBinary, DecodingAheadChangesNothingButTheTime) {
+    // A rawlog whose colour images are PNG files beside it (the simulator's default), run with
+    // the images decoded in the frame loop and on a second thread: the same outputs, byte for
+    // byte.
+    lodestone::test::TempDir dir;
+    const auto sim = lodestone::test::runCommand(std::string(LODESTONE_SIM_BINARY) + " -c " +
+                                                 kConfigDir + "/office.ini -o " +
+                                                 dir.file("office.rawlog") + " --camera 320x240@15");
+    ASSERT_EQ(sim.exitCode, 0) << sim.output;
+    ASSERT_TRUE(fs::is_directory(dir.file("office_Images")));  // external images indeed
+    for (const char* ahead : {"0", "8"}) {
+        const auto r = lodestone::test::runCommand(
+            kSlam + " --rawlog " + dir.file("office.rawlog") + " --config " + kConfigDir +
+            "/slam.ini --quiet --decode-ahead " + ahead + " --out " + dir.file(std::string("ahead") + ahead));
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+    }
+    for (const char* f : {"trajectory.tum", "graph.graph", "closures.csv"}) {
+        const std::string inLoop = readText(dir.file(std::string("ahead0/") + f));
+        EXPECT_GT(inLoop.size(), 100u) << f;
+        EXPECT_EQ(inLoop, readText(dir.file(std::string("ahead8/") + f))) << f;
+    }
+    EXPECT_NE(readText(dir.file("ahead8/report.json")).find("\"decode_ahead\": 8"), std::string::npos);
 }

@@ -22,6 +22,10 @@ int runSlamApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
                                     "GT.tum", cmd);
     TCLAP::ValueArg<double> maxSeconds("", "max-seconds", "process only this much data [s]", false,
                                        0, "S", cmd);
+    TCLAP::ValueArg<int> decodeAhead("", "decode-ahead",
+                                     "observations read and decoded ahead on a second thread (0: "
+                                     "in the frame loop; results are the same)",
+                                     false, 8, "N", cmd);
     TCLAP::SwitchArg quiet("q", "quiet", "no progress output", cmd);
     const auto outcome = config::parseCommandLine(cmd, std::vector<std::string>(argv, argv + argc));
     if (outcome.kind == config::ParseOutcome::Kind::HelpShown) return 0;
@@ -32,6 +36,9 @@ int runSlamApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
     }
     if (usage.empty() && maxSeconds.isSet() && !(maxSeconds.getValue() > 0)) {
         usage = "--max-seconds must be > 0";
+    }
+    if (usage.empty() && (decodeAhead.getValue() < 0 || decodeAhead.getValue() > 1000)) {
+        usage = "--decode-ahead must be 0..1000";
     }
     if (!usage.empty()) {
         err << "lodestone-slam: " << usage << " (see lodestone-slam --help)\n";
@@ -44,6 +51,7 @@ int runSlamApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
     o.outDir = outDir.getValue();
     o.groundTruth = gt.getValue();
     if (maxSeconds.isSet()) o.maxSeconds = maxSeconds.getValue();
+    o.decodeAhead = static_cast<std::size_t>(decodeAhead.getValue());
     o.quiet = quiet.getValue();
     o.terminal = terminal;
     return runSlam(o, out, err).exitCode;

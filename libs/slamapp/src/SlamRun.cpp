@@ -7,6 +7,7 @@
 #include <lodestone/graphslam/MapExport.h>
 #include <lodestone/graphslam/SlamEngine.h>
 #include <lodestone/io/KidnapEvents.h>
+#include <lodestone/io/PrefetchingSource.h>
 #include <lodestone/io/RawlogSource.h>
 #include <lodestone/io/TumTrajectory.h>
 #include <lodestone/obs/registerAllClasses.h>
@@ -21,6 +22,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <opencv2/imgcodecs.hpp>
 
 namespace lodestone::slamapp {
@@ -149,7 +151,7 @@ SlamRunResult runSlam(const SlamRunOptions& options, std::ostream& out, std::ost
     std::unique_ptr<graphslam::SlamEngine> engine;
     std::unique_ptr<io::DataSource> source;
     sim::SimulatorSource* simulator = nullptr;
-    io::RawlogSource* rawlog = nullptr;
+    std::function<double()> fractionRead;  // of the rawlog, for the progress bar
     std::unique_ptr<io::TumTrajectoryWriter> simTruth;
     const fs::path dir(options.outDir);
     // --- Everything that can be wrong with the inputs, before any work --------------------------
@@ -172,8 +174,18 @@ SlamRunResult runSlam(const SlamRunOptions& options, std::ostream& out, std::ost
             if (!fs::exists(options.rawlog)) throw InputError("cannot open rawlog '" + options.rawlog + "'");
             checkRawlogHasObservations(options.rawlog, engine->requiredObservations());
             auto rl = std::make_unique<io::RawlogSource>(options.rawlog);
-            rawlog = rl.get();
-            source = std::move(rl);
+            if (options.decodeAhead > 0) {
+                const io::RawlogSource* inner = rl.get();
+                auto p = std::make_unique<io::PrefetchingSource>(
+                    std::move(rl), options.decodeAhead, [inner] { return inner->fractionRead(); });
+                const io::PrefetchingSource* prefetch = p.get();
+                fractionRead = [prefetch] { return prefetch->progress(); };
+                source = std::move(p);
+            } else {
+                const io::RawlogSource* inner = rl.get();
+                fractionRead = [inner] { return inner->fractionRead(); };
+                source = std::move(rl);
+            }
         }
         if (!options.groundTruth.empty() && !fs::exists(options.groundTruth)) {
             throw InputError("cannot open ground truth '" + options.groundTruth + "'");
@@ -210,8 +222,8 @@ SlamRunResult runSlam(const SlamRunOptions& options, std::ostream& out, std::ost
             }
             engine->process(obs);
             const double fraction =
-                rawlog ? rawlog->fractionRead()
-                       : dataSeconds / std::min(simulator->duration(), options.maxSeconds);
+                fractionRead ? fractionRead()
+                             : dataSeconds / std::min(simulator->duration(), options.maxSeconds);
             progress.update(fraction, dataSeconds);
         }
     } catch (const std::exception& e) {
@@ -261,7 +273,8 @@ SlamRunResult runSlam(const SlamRunOptions& options, std::ostream& out, std::ost
         input.set(options.scenario.empty() ? "rawlog" : "scenario",
                   options.scenario.empty() ? options.rawlog : options.scenario)
             .set("config", options.config)
-            .set("max_seconds", options.maxSeconds);
+            .set("max_seconds", options.maxSeconds)
+            .set("decode_ahead", options.decodeAhead);
         report.set("input", input);
         report.set("engine", engine->describe());
         report.set("timing", timingJson(engine->stats(), wall, dataSeconds));

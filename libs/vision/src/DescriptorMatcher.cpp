@@ -1,7 +1,10 @@
 #include <lodestone/config/IniSection.h>
 #include <lodestone/vision/DescriptorMatcher.h>
 
+#include <climits>
 #include <opencv2/features2d.hpp>
+
+#include "HammingKernel.h"
 
 namespace lodestone::vision {
 
@@ -32,6 +35,34 @@ DescriptorMatcher::DescriptorMatcher(const Params& params) : params_(params) {}
 std::vector<cv::DMatch> DescriptorMatcher::match(const cv::Mat& query, const cv::Mat& train) const {
     std::vector<cv::DMatch> out;
     if (query.empty() || train.empty()) return out;
+    if (query.type() == CV_8U && train.type() == CV_8U && query.cols == train.cols &&
+        query.cols % 8 == 0) {
+        return matchPacked(query, train);
+    }
+    return matchWithOpenCv(query, train);
+}
+
+std::vector<cv::DMatch> DescriptorMatcher::matchPacked(const cv::Mat& query,
+                                                       const cv::Mat& train) const {
+    const auto h = detail::hammingBest(query, train);
+    std::vector<cv::DMatch> out;
+    for (int i = 0; i < query.rows; ++i) {
+        const auto k = static_cast<std::size_t>(i);
+        const int j = h.best[k];
+        if (j < 0 || h.bestDistance[k] > params_.maxDistance) continue;
+        if (params_.ratio > 0 && h.secondDistance[k] != INT_MAX &&
+            h.bestDistance[k] >= params_.ratio * h.secondDistance[k]) {
+            continue;
+        }
+        if (params_.crossCheck && h.reverseBest[static_cast<std::size_t>(j)] != i) continue;
+        out.emplace_back(i, j, static_cast<float>(h.bestDistance[k]));
+    }
+    return out;
+}
+
+std::vector<cv::DMatch> DescriptorMatcher::matchWithOpenCv(const cv::Mat& query,
+                                                           const cv::Mat& train) const {
+    std::vector<cv::DMatch> out;
     if (params_.ratio <= 0) {
         // OpenCV's cross-checked brute force does exactly the mutual-best part.
         cv::BFMatcher matcher(cv::NORM_HAMMING, params_.crossCheck);

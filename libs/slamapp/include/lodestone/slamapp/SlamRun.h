@@ -15,6 +15,9 @@ struct SlamRunOptions {
     std::string outDir;
     std::string groundTruth;  ///< TUM file for the ATE (with --sim: the simulator's own)
     double maxSeconds{std::numeric_limits<double>::infinity()};  ///< of data, from its start
+    /** Observations read and decoded ahead on a second thread (io::PrefetchingSource); 0:
+     * read and decode in the frame loop. Results are the same either way. */
+    std::size_t decodeAhead{8};
     bool quiet{false};
     bool terminal{false};  ///< draw the progress bar in place
 };

@@ -11,9 +11,11 @@ class IniSection;
 
 namespace lodestone::vision {
 
-/** Brute-force Hamming matching of binary descriptors (OpenCV's BFMatcher) with the gates that
- * make its output usable: a mutual best match (cross-check), a maximum distance and, when
- * enabled, Lowe's ratio test against the second best. */
+/** Brute-force Hamming matching of binary descriptors with the gates that make its output
+ * usable: a mutual best match (cross-check), a maximum distance and, when enabled, Lowe's ratio
+ * test against the second best. Descriptors of whole 64-bit words (ORB's 256 bits) are matched
+ * by our own kernel (XOR and popcount, one pass for both directions); others by OpenCV's
+ * BFMatcher. Both give the same matches. */
 class DescriptorMatcher {
   public:
     struct Params : public mrpt::config::CLoadableOptions {
@@ -36,6 +38,8 @@ class DescriptorMatcher {
     const Params& params() const { return params_; }
 
   private:
+    std::vector<cv::DMatch> matchPacked(const cv::Mat& query, const cv::Mat& train) const;
+    std::vector<cv::DMatch> matchWithOpenCv(const cv::Mat& query, const cv::Mat& train) const;
     Params params_;
 };
 

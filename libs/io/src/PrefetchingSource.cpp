@@ -1,0 +1,75 @@
+#include <lodestone/io/PrefetchingSource.h>
+
+#include <algorithm>
+
+namespace lodestone::io {
+
+PrefetchingSource::PrefetchingSource(std::unique_ptr<DataSource> inner, std::size_t depth,
+                                     std::function<double()> progress)
+    : inner_(std::move(inner)),
+      name_(inner_->name()),
+      depth_(std::max<std::size_t>(depth, 1)),
+      progressOf_(std::move(progress)),
+      worker_([this] { run(); }) {}
+
+PrefetchingSource::~PrefetchingSource() {
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        stop_ = true;
+    }
+    notFull_.notify_all();
+    worker_.join();  // (a read in progress finishes first)
+}
+
+void PrefetchingSource::run() {
+    try {
+        for (;;) {
+            {
+                std::unique_lock<std::mutex> lock(mutex_);
+                notFull_.wait(lock, [&] { return stop_ || queue_.size() < depth_; });
+                if (stop_) return;
+            }
+            auto obs = inner_->next();
+            if (obs) {
+                try {
+                    obs->load();  // decode here, not on the caller's thread
+                } catch (...) {
+                    // Left unloaded: the caller's load() meets the error where it would have.
+                }
+            }
+            if (progressOf_) progress_ = progressOf_();
+            std::lock_guard<std::mutex> lock(mutex_);
+            if (!obs) {
+                done_ = true;
+                notEmpty_.notify_one();
+                return;
+            }
+            queue_.push_back(std::move(obs));
+            notEmpty_.notify_one();
+        }
+    } catch (...) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        error_ = std::current_exception();
+        done_ = true;
+        notEmpty_.notify_one();
+    }
+}
+
+mrpt::obs::CObservation::Ptr PrefetchingSource::next() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    notEmpty_.wait(lock, [&] { return !queue_.empty() || done_; });
+    if (!queue_.empty()) {
+        auto obs = std::move(queue_.front());
+        queue_.pop_front();
+        notFull_.notify_one();
+        return obs;
+    }
+    if (error_) {
+        const auto e = error_;
+        error_ = nullptr;  // (thrown once; the source is exhausted after it)
+        std::rethrow_exception(e);
+    }
+    return nullptr;
+}
+
+}  // namespace lodestone::io

@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# Offline SLAM throughput from a rawlog on disk (issue #15): each scenario recorded by
+# lodestone-sim at its INI's camera (640x480 @ 30 Hz; colour as PNG files beside the rawlog,
+# as a user's recording is), then `lodestone-slam --rawlog ... --config CONFIG` timed as a user
+# runs it - the whole process, start to outputs written - on both cores and pinned to one
+# (taskset -c 0). Prints a markdown table: wall time, real-time factor, the engine's frame time
+# (report.json), peak RSS (/usr/bin/time), ATE.
+# Usage: scripts/bench/throughput.sh [--config INI] [SCENARIO.ini ...]   (default: slam.ini;
+#        office and paper_loop)
+set -euo pipefail
+root=$(cd "$(dirname "$0")/../.." && pwd)
+config="$root/config_ini/slam.ini"
+if [ "${1:-}" = "--config" ]; then config=$2; shift 2; fi
+"$root/scripts/build.sh" > /dev/null
+sim="$root/build/apps/lodestone-sim/lodestone-sim"
+slam="$root/build/apps/lodestone-slam/lodestone-slam"
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+scenarios=("$@")
+[ ${#scenarios[@]} -gt 0 ] || scenarios=("$root/config_ini/office.ini" "$root/config_ini/paper_loop.ini")
+json() { python3 -c "import json,sys; r=json.load(open(sys.argv[1])); print(eval(sys.argv[2]))" "$@"; }
+echo "| scenario | config | cores | frames | data [s] | wall [s] | real-time factor | frame ms mean / p99 | peak RSS [MB] | ATE [m] |"
+echo "|---|---|---|---|---|---|---|---|---|---|"
+for ini in "${scenarios[@]}"; do
+    name=$(basename "$ini" .ini)
+    "$sim" -c "$ini" -o "$out/$name.rawlog" > /dev/null
+    for cores in 2 1; do
+        pin=()
+        [ "$cores" = 1 ] && pin=(taskset -c 0)
+        /usr/bin/time -f "%e %M" -o "$out/time.txt" "${pin[@]}" "$slam" -r "$out/$name.rawlog" \
+            --config "$config" --ground-truth "$out/$name.gt.tum" --out "$out/run" --quiet \
+            > "$out/run.log" 2>&1
+        read -r wall rss < "$out/time.txt"
+        report="$out/run/report.json"
+        data=$(json "$report" "round(r['timing']['data_s'], 1)")
+        frames=$(grep -o "[0-9]* frames" "$out/run.log" | head -1 | awk '{print $1}')
+        frame=$(json "$report" "'%.1f / %.1f' % (r['timing']['frame_ms']['mean'], r['timing']['frame_ms']['p99'])")
+        ate=$(grep -o "ATE RMSE [0-9.]*" "$out/run.log" | awk '{print $3}')
+        rtf=$(python3 -c "print('%.2fx' % ($data / $wall))")
+        echo "| $name | $(basename "$config") | $cores | $frames | $data | $wall | $rtf | $frame | $((rss / 1024)) | $ate |"
+        rm -rf "$out/run"
+    done
+    rm -rf "$out/$name"*
+done
