@@ -5,17 +5,31 @@
 # runs it - the whole process, start to outputs written - on both cores and pinned to one
 # (taskset -c 0). Prints a markdown table: wall time, real-time factor, the engine's frame time
 # (report.json), peak RSS (/usr/bin/time), ATE.
-# Usage: scripts/bench/throughput.sh [--config INI] [SCENARIO.ini ...]   (default: slam.ini;
-#        office and paper_loop)
+# Usage: scripts/bench/throughput.sh [--config INI] [--recordings DIR] [--slam BINARY] [SCENARIO.ini ...]
+#   --config      SLAM INI (default config_ini/slam.ini)
+#   --recordings  keep the recorded rawlogs in DIR and reuse them when there (they are large:
+#                 paper_loop is 7 GB with its images)
+#   --slam        another lodestone-slam (e.g. a build of an earlier commit, for "before")
+#   default scenarios: office and paper_loop
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 config="$root/config_ini/slam.ini"
-if [ "${1:-}" = "--config" ]; then config=$2; shift 2; fi
+recordings=""
+slam="$root/build/apps/lodestone-slam/lodestone-slam"
+while [ $# -gt 0 ]; do
+    case "$1" in
+        --config) config=$2; shift 2 ;;
+        --recordings) recordings=$2; shift 2 ;;
+        --slam) slam=$2; shift 2 ;;
+        *) break ;;
+    esac
+done
 "$root/scripts/build.sh" > /dev/null
 sim="$root/build/apps/lodestone-sim/lodestone-sim"
-slam="$root/build/apps/lodestone-slam/lodestone-slam"
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
+rec=${recordings:-$out}
+mkdir -p "$rec"
 scenarios=("$@")
 [ ${#scenarios[@]} -gt 0 ] || scenarios=("$root/config_ini/office.ini" "$root/config_ini/paper_loop.ini")
 json() { python3 -c "import json,sys; r=json.load(open(sys.argv[1])); print(eval(sys.argv[2]))" "$@"; }
@@ -23,12 +37,12 @@ echo "| scenario | config | cores | frames | data [s] | wall [s] | real-time fac
 echo "|---|---|---|---|---|---|---|---|---|---|"
 for ini in "${scenarios[@]}"; do
     name=$(basename "$ini" .ini)
-    "$sim" -c "$ini" -o "$out/$name.rawlog" > /dev/null
+    [ -f "$rec/$name.rawlog" ] || "$sim" -c "$ini" -o "$rec/$name.rawlog" > /dev/null
     for cores in 2 1; do
         pin=()
         [ "$cores" = 1 ] && pin=(taskset -c 0)
-        /usr/bin/time -f "%e %M" -o "$out/time.txt" "${pin[@]}" "$slam" -r "$out/$name.rawlog" \
-            --config "$config" --ground-truth "$out/$name.gt.tum" --out "$out/run" --quiet \
+        /usr/bin/time -f "%e %M" -o "$out/time.txt" "${pin[@]}" "$slam" -r "$rec/$name.rawlog" \
+            --config "$config" --ground-truth "$rec/$name.gt.tum" --out "$out/run" --quiet \
             > "$out/run.log" 2>&1
         read -r wall rss < "$out/time.txt"
         report="$out/run/report.json"
@@ -40,5 +54,5 @@ for ini in "${scenarios[@]}"; do
         echo "| $name | $(basename "$config") | $cores | $frames | $data | $wall | $rtf | $frame | $((rss / 1024)) | $ate |"
         rm -rf "$out/run"
     done
-    rm -rf "$out/$name"*
+    [ -n "$recordings" ] || rm -rf "$out/$name"*
 done

@@ -24,6 +24,8 @@ void CeresGSO::configure(const mrpt::config::CConfigFileBase& ini) {
     o.maxIterations = s.getInt("max_iterations", o.maxIterations);
     p.localWindow = s.getInt("local_window", p.localWindow);
     p.fullSolveGrowth = s.getDouble("full_solve_growth", p.fullSolveGrowth);
+    p.backgroundMergeNodes = s.getInt("background_merge_nodes", p.backgroundMergeNodes);
+    if (p.backgroundMergeNodes < 0) s.fail("background_merge_nodes", "must be >= 0 (0: in the frame loop)");
     if (o.robustLoss != "none" && o.robustLoss != "huber" && o.robustLoss != "cauchy") {
         s.fail("robust_loss", "must be none, huber or cauchy");
     }
@@ -49,6 +51,7 @@ void CeresGSO::addRelocationClosures(const std::vector<LoopClosure>& closures,
                                      const std::set<TNodeID>& movable) {
     for (const auto& lc : closures) closures_.push_back(lc);
     if (closures.empty() || movable.empty()) return;
+    discardBackground();  // (its snapshot has the moved group where it was)
     closures_since_full_ = true;
     absorb(solver_->solve(*m_graph, closures_, movable, false), false);
 }
@@ -56,12 +59,23 @@ void CeresGSO::addRelocationClosures(const std::vector<LoopClosure>& closures,
 bool CeresGSO::updateState(mrpt::obs::CActionCollection::Ptr, mrpt::obs::CSensoryFrame::Ptr,
                            mrpt::obs::CObservation::Ptr) {
     just_full_ = false;
-    if (pending_.empty()) return false;
+    mergeBackgroundIfDue();
+    if (pending_.empty()) return just_full_;
     const std::size_t n = m_graph->nodes.size();
-    if (closures_since_full_ &&
+    if (closures_since_full_ && !background_ &&
         static_cast<double>(n) >= (1 + params_.fullSolveGrowth) * nodes_at_last_full_) {
-        optimizeGraph();
-        return true;
+        if (params_.backgroundMergeNodes == 0) {
+            optimizeGraph();
+            return true;
+        }
+        // On a snapshot, merged a fixed number of nodes later; the new closures are solved
+        // locally below in the meantime.
+        background_ = std::make_unique<BackgroundSolve>(
+            params_.solver, *m_graph, closures_,
+            n + static_cast<std::size_t>(params_.backgroundMergeNodes));
+        ++stats_.backgroundSolves;
+        nodes_at_last_full_ = n;
+        closures_since_full_ = false;
     }
     std::set<TNodeID> window;
     const auto w = static_cast<TNodeID>(params_.localWindow);
@@ -90,7 +104,28 @@ bool CeresGSO::updateState(mrpt::obs::CActionCollection::Ptr, mrpt::obs::CSensor
     return true;
 }
 
+void CeresGSO::mergeBackgroundIfDue() {
+    if (!background_ || m_graph->nodes.size() < background_->mergeAtNodes()) return;
+    double waited = 0;
+    absorb(background_->mergeInto(*m_graph, closures_, &waited), true);
+    stats_.backgroundWaitSeconds += waited;
+    // Closures that came after the snapshot: solved again around them, on the merged graph.
+    for (std::size_t k = background_->closuresAtLaunch(); k < closures_.size(); ++k) {
+        if (!closures_[k].rejected) pending_.emplace_back(closures_[k].from, closures_[k].to);
+    }
+    background_.reset();
+    just_full_ = true;
+}
+
+void CeresGSO::discardBackground() {
+    if (!background_) return;
+    background_.reset();  // (waits for the thread, drops its result)
+    ++stats_.backgroundDiscarded;
+    closures_since_full_ = true;
+}
+
 void CeresGSO::optimizeGraph() {
+    discardBackground();
     pending_.clear();
     absorb(solver_->solve(*m_graph, closures_), true);
     nodes_at_last_full_ = m_graph->nodes.size();
@@ -125,7 +160,8 @@ JsonObject CeresGSO::describe() const {
         .set("rejection_chi2", o.rejectionChi2)
         .set("max_iterations", o.maxIterations)
         .set("local_window", params_.localWindow)
-        .set("full_solve_growth", params_.fullSolveGrowth);
+        .set("full_solve_growth", params_.fullSolveGrowth)
+        .set("background_merge_nodes", params_.backgroundMergeNodes);
     std::vector<JsonObject> rejected;
     for (const auto& lc : closures_) {
         if (!lc.rejected) continue;
@@ -142,6 +178,9 @@ JsonObject CeresGSO::describe() const {
         .set("local_seconds", stats_.localSeconds)
         .set("full_seconds", stats_.fullSeconds)
         .set("escalations", stats_.escalations)
+        .set("background_solves", stats_.backgroundSolves)
+        .set("background_discarded", stats_.backgroundDiscarded)
+        .set("background_wait_seconds", stats_.backgroundWaitSeconds)
         .set("loop_closures", closures_.size())
         .set("rejected", stats_.rejected);
     return JsonObject()

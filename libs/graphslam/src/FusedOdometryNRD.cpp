@@ -1,5 +1,7 @@
 #include <lodestone/config/IniSection.h>
 #include <lodestone/graphslam/FusedOdometryNRD.h>
+
+#include "VoTimingJson.h"
 #include <lodestone/obs/CObservationMagnetometer.h>
 #include <lodestone/obs/CObservationWheelDrop.h>
 #include <lodestone/odometry/RgbdObservationFrame.h>
@@ -280,7 +282,8 @@ JsonObject FusedOdometryNRD::describe() const {
         .set("frames_while_lifted", frames_lifted_)
         .set("kidnaps", kidnaps_)
         .set("keyframes", keyframes_)
-        .set("segments", segment_ + 1);
+        .set("segments", segment_ + 1)
+        .set("vo_ms_per_frame", detail::voTimingJson(odometry_->visual().totals()));
     if (detector_) {
         const auto& d = detector_->stats();
         stats.set("detected_lifts", d.lifts)

@@ -9,6 +9,7 @@
 #include <ceres/solver.h>
 
 #include <algorithm>
+#include <unordered_set>
 #include <chrono>
 #include <limits>
 #include <map>
@@ -172,9 +173,15 @@ std::vector<EdgeIt> edgesOf(const Graph& graph, const std::vector<LoopClosure>& 
             if (it->second.mean == lc.constraint.mean) out.push_back(it);
         }
     }
-    std::sort(out.begin(), out.end(), [](EdgeIt a, EdgeIt b) { return &*a < &*b; });
-    out.erase(std::unique(out.begin(), out.end()), out.end());
-    return out;
+    // Each edge once, in the order found (by node ID, then closure order): the order of the
+    // residual blocks is the order Ceres sums in, so an order by address would make the
+    // result's last bits depend on where the heap put the edges.
+    std::vector<EdgeIt> unique;
+    std::unordered_set<const void*> seen;
+    for (const EdgeIt& it : out) {
+        if (seen.insert(&*it).second) unique.push_back(it);
+    }
+    return unique;
 }
 
 template <typename Moves>

@@ -135,6 +135,10 @@ void readCamera(IniSection& s, CameraSpec& c) {
     c.maxIncidence = s.getDouble("max_incidence_deg", c.maxIncidence / kDeg) * kDeg;
     c.rgbNoise = s.getDouble("rgb_noise", c.rgbNoise);
     c.externalImages = s.getBool("external_images", c.externalImages);
+    c.imageFormat = s.getString("image_format", c.imageFormat);
+    if (c.imageFormat != "png" && c.imageFormat != "jpg") s.fail("image_format", "must be png or jpg");
+    c.jpegQuality = s.getInt("jpeg_quality", c.jpegQuality);
+    if (c.jpegQuality < 1 || c.jpegQuality > 100) s.fail("jpeg_quality", "must be 1..100");
 }
 
 void readMagnetometer(IniSection& s, MagnetometerSpec& m) {
@@ -235,6 +239,21 @@ bool CameraSpec::override(const std::string& widthHeightRate) {
     resize(w, h);
     rate = hz;
     return true;
+}
+
+bool CameraSpec::setImageFormat(const std::string& text) {
+    if (text == "png" || text == "jpg") {
+        imageFormat = text;
+        return true;
+    }
+    int q = 0;
+    char tail = 0;
+    if (std::sscanf(text.c_str(), "jpg:%d%c", &q, &tail) == 1 && q >= 1 && q <= 100) {
+        imageFormat = "jpg";
+        jpegQuality = q;
+        return true;
+    }
+    return false;
 }
 
 Scenario Scenario::load(const std::string& iniPath) {

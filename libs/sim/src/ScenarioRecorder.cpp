@@ -11,19 +11,26 @@
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
+#include <vector>
 
 namespace lodestone::sim {
 
 namespace {
 
-// Moves a frame's colour image out of the observation into a PNG in `dir`. Depth stays in the
-// rawlog, where gzip packs it better than MRPT's raw external depth files.
-void externalize(mrpt::obs::CObservation3DRangeScan& scan, const std::string& dir, std::size_t k) {
+// Moves a frame's colour image out of the observation into a PNG or JPEG file in `dir`. Depth
+// stays in the rawlog, where gzip (OUT.rawlog.gz) packs it losslessly, better than MRPT's raw
+// external depth files.
+void externalize(mrpt::obs::CObservation3DRangeScan& scan, const CameraSpec& camera,
+                 const std::string& dir, std::size_t k) {
     char name[64];
     std::snprintf(name, sizeof(name), "%s_%06zu", scan.sensorLabel.c_str(), k);
-    const std::string rgbFile = std::string(name) + ".png";
+    const bool jpeg = camera.imageFormat == "jpg";
+    const std::string rgbFile = std::string(name) + (jpeg ? ".jpg" : ".png");
     const cv::Mat bgr = scan.intensityImage.asCvMat<cv::Mat>(mrpt::img::SHALLOW_COPY);
-    if (!cv::imwrite(dir + "/" + rgbFile, bgr, {cv::IMWRITE_PNG_COMPRESSION, 1})) {
+    const std::vector<int> options =
+        jpeg ? std::vector<int>{cv::IMWRITE_JPEG_QUALITY, camera.jpegQuality}
+             : std::vector<int>{cv::IMWRITE_PNG_COMPRESSION, 1};
+    if (!cv::imwrite(dir + "/" + rgbFile, bgr, options)) {
         throw std::runtime_error(dir + "/" + rgbFile + ": cannot write image");
     }
     scan.intensityImage.setExternalStorage(rgbFile);
@@ -55,7 +62,7 @@ RecordingSummary recordScenario(SimulatorSource& source, const std::string& outR
     while (auto obs = source.next()) {
         const double t = source.lastTime();
         if (auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(obs)) {
-            if (external) externalize(*scan, r.imagesDir, r.frames);
+            if (external) externalize(*scan, source.scenario().camera, r.imagesDir, r.frames);
             ++r.frames;
         }
         writer.write(*obs);

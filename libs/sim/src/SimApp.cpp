@@ -32,6 +32,11 @@ int runSimApp(int argc, const char* const* argv, std::ostream& out, std::ostream
     TCLAP::ValueArg<std::string> camera("", "camera",
                                         "override the camera: WIDTHxHEIGHT@RATE (e.g. 320x240@15)",
                                         false, "", "WxH@HZ", cmd);
+    TCLAP::ValueArg<std::string> imageFormat(
+        "", "image-format",
+        "colour files beside the rawlog: png (lossless, the default), jpg or jpg:QUALITY (1-100, "
+        "default 90); depth stays in the rawlog (write OUT.rawlog.gz to compress it losslessly)",
+        false, "", "FORMAT", cmd);
     TCLAP::SwitchArg embedded("", "embedded-images",
                               "keep colour images inside the rawlog (default: the INI's "
                               "external_images, beside it)",
@@ -59,6 +64,11 @@ int runSimApp(int argc, const char* const* argv, std::ostream& out, std::ostream
         if (camera.isSet() && !scenario.camera.override(camera.getValue())) {
             err << "lodestone-sim: --camera: expected WIDTHxHEIGHT@RATE, got '"
                 << camera.getValue() << "'\n";
+            return 2;
+        }
+        if (imageFormat.isSet() && !scenario.camera.setImageFormat(imageFormat.getValue())) {
+            err << "lodestone-sim: --image-format: expected png, jpg or jpg:QUALITY (1-100), got '"
+                << imageFormat.getValue() << "'\n";
             return 2;
         }
         if (embedded.getValue()) scenario.camera.externalImages = false;

@@ -117,10 +117,16 @@ std::vector<double> decileMeans(const std::vector<float>& v) {
     return out;
 }
 
-JsonObject timingJson(const graphslam::SlamEngine::Stats& s, double wall, double data) {
+JsonObject timingJson(const graphslam::SlamEngine::Stats& s, double wall, double data,
+                      double sourceSeconds, std::size_t observations) {
     const auto frames = percentiles(s.frameMs), nodes = percentiles(s.nodeMs);
     return JsonObject()
         .set("wall_s", wall)
+        // Waiting for the next observation: reading and decoding it in the frame loop, or with
+        // --decode-ahead what the worker had not done yet.
+        .set("source_s", sourceSeconds)
+        .set("source_ms_per_observation",
+             observations > 0 ? 1e3 * sourceSeconds / static_cast<double>(observations) : 0.0)
         .set("data_s", data)
         .set("real_time_factor", wall > 0 ? data / wall : 0.0)
         .set("frame_ms", JsonObject()
@@ -210,9 +216,15 @@ SlamRunResult runSlam(const SlamRunOptions& options, std::ostream& out, std::ost
     // --- The run ---------------------------------------------------------------------------------
     ProgressBar progress(err, options.terminal, options.quiet);
     const auto wall0 = std::chrono::steady_clock::now();
-    double t0 = NAN, dataSeconds = 0;
+    double t0 = NAN, dataSeconds = 0, sourceSeconds = 0;
+    const auto timedNext = [&] {
+        const auto before = std::chrono::steady_clock::now();
+        auto obs = source->next();
+        sourceSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - before).count();
+        return obs;
+    };
     try {
-        while (auto obs = source->next()) {
+        while (auto obs = timedNext()) {
             const double t = mrpt::Clock::toDouble(obs->timestamp);
             if (std::isnan(t0)) t0 = t;
             if (t - t0 > options.maxSeconds) break;
@@ -277,7 +289,8 @@ SlamRunResult runSlam(const SlamRunOptions& options, std::ostream& out, std::ost
             .set("decode_ahead", options.decodeAhead);
         report.set("input", input);
         report.set("engine", engine->describe());
-        report.set("timing", timingJson(engine->stats(), wall, dataSeconds));
+        report.set("timing", timingJson(engine->stats(), wall, dataSeconds, sourceSeconds,
+                                        engine->stats().observations));
         report.set("map_points", mapPoints);
 
         const std::string gtPath =

@@ -116,6 +116,15 @@ RgbdVisualOdometry::Alignment RgbdVisualOdometry::align(const FrameFeatures& ref
 }
 
 VoResult RgbdVisualOdometry::process(const RgbdFrame& frame) {
+    VoResult r = processFrame(frame);
+    ++totals_.frames;
+    totals_.ms.orb += r.timing.orb;
+    totals_.ms.matching += r.timing.matching;
+    totals_.ms.ransac += r.timing.ransac;
+    return r;
+}
+
+VoResult RgbdVisualOdometry::processFrame(const RgbdFrame& frame) {
     VoResult r;
     ++frame_count_;
     auto t0 = std::chrono::steady_clock::now();

@@ -115,3 +115,18 @@ TEST(Scenario, CameraOverrideTakesWidthHeightAndRate) {
         EXPECT_EQ(c.width, w) << bad;
     }
 }
+
+TEST(Scenario, ImageFormatTakesPngJpgAndAQuality) {
+    CameraSpec cam;
+    EXPECT_EQ(cam.imageFormat, "png");  // lossless unless asked
+    EXPECT_TRUE(cam.setImageFormat("jpg"));
+    EXPECT_EQ(cam.imageFormat, "jpg");
+    EXPECT_EQ(cam.jpegQuality, 90);
+    EXPECT_TRUE(cam.setImageFormat("jpg:75"));
+    EXPECT_EQ(cam.jpegQuality, 75);
+    for (const char* bad : {"jpeg", "jpg:0", "jpg:101", "jpg:75x", "png:3", ""}) {
+        CameraSpec c;
+        EXPECT_FALSE(c.setImageFormat(bad)) << bad;
+        EXPECT_EQ(c.imageFormat, "png") << bad;
+    }
+}

@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
 #include <lodestone/obs/CObservationMagnetometer.h>
 #include <lodestone/obs/CObservationWheelDrop.h>
 #include <lodestone/obs/registerAllClasses.h>
@@ -214,5 +215,47 @@ TEST(SimulatorSource, RecordedFramesWithExternalImagesReadBackExactly) {
         ++frames;
     }
     EXPECT_FALSE(rawlog.next());
+    EXPECT_GT(frames, 10u);
+}
+
+TEST(SimulatorSource, JpegColourIsWrittenAsJpegAndReadsBackClose) {
+    // --image-format jpg: the colour files are JPEGs, a fraction of a PNG's size, and decode to
+    // the rendered image within JPEG's loss (quality 90: a few grey levels on average).
+    registerAllClasses();
+    Scenario sc = quickOffice();
+    sc.camera.externalImages = true;
+    ASSERT_TRUE(sc.camera.setImageFormat("jpg:90"));
+    test::TempDir dir;
+    const auto path = dir.file("office.rawlog");
+    {
+        SimulatorSource source(sc, 4);
+        recordScenario(source, path);
+    }
+    SimulatorSource again(sc, 4);
+    io::RawlogSource rawlog(path);
+    std::size_t frames = 0;
+    while (auto expected = again.next()) {
+        auto got = rawlog.next();
+        ASSERT_TRUE(got);
+        auto e = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(expected);
+        if (!e) continue;
+        auto g = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(got);
+        ASSERT_TRUE(g);
+        EXPECT_NE(g->intensityImage.getExternalStorageFile().find(".jpg"), std::string::npos);
+        g->load();
+        const cv::Mat a = e->intensityImage.asCvMat<cv::Mat>(mrpt::img::SHALLOW_COPY);
+        const cv::Mat b = g->intensityImage.asCvMat<cv::Mat>(mrpt::img::SHALLOW_COPY);
+        ASSERT_EQ(a.size(), b.size());
+        // What VO sees is the grey image (JPEG keeps luminance at full resolution; colour is
+        // subsampled): its mean error, a few grey levels against the renderer's own noise of 2.
+        cv::Mat greyA, greyB;
+        cv::cvtColor(a, greyA, cv::COLOR_BGR2GRAY);
+        cv::cvtColor(b, greyB, cv::COLOR_BGR2GRAY);
+        const double meanError = cv::norm(greyA, greyB, cv::NORM_L1) / static_cast<double>(greyA.total());
+        EXPECT_GT(meanError, 0.0);  // lossy indeed
+        EXPECT_LT(meanError, 4.0) << "frame " << frames;
+        EXPECT_TRUE(e->rangeImage == g->rangeImage);  // depth untouched
+        ++frames;
+    }
     EXPECT_GT(frames, 10u);
 }

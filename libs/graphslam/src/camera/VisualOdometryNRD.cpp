@@ -7,6 +7,8 @@
 
 #include <cmath>
 
+#include "../VoTimingJson.h"
+
 namespace lodestone::graphslam {
 
 namespace {
@@ -278,7 +280,8 @@ JsonObject VisualOdometryNRD::describe() const {
         .set("vo_gap_seconds", gapSeconds_)
         .set("vo_gaps_bridged", bridged_)
         .set("vo_gaps_relocalized", relocalized_)
-        .set("segments", segment_ + 1);
+        .set("segments", segment_ + 1)
+        .set("vo_ms_per_frame", detail::voTimingJson(vo_.totals()));
     JsonObject why;
     for (const auto& [reason, count] : failures_) why.set(reason, count);
     stats.set("failed_frames_by_reason", why);

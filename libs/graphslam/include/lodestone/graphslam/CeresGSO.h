@@ -1,6 +1,7 @@
 #pragma once
 
 #include <lodestone/graphslam/GraphOptimizer.h>
+#include <lodestone/graphslam/BackgroundSolve.h>
 #include <lodestone/graphslam/PoseGraphSolver.h>
 
 namespace lodestone::graphslam {
@@ -24,6 +25,10 @@ class CeresGSO : public GraphOptimizer {
         PoseGraphSolver::Options solver;
         int localWindow{40};          ///< [node IDs] either side of a closure's ends
         double fullSolveGrowth{1.0};  ///< relative graph growth between full solves
+        /** A growth-triggered full solve runs on a second thread on a snapshot and is merged
+         * this many nodes later (BackgroundSolve); 0: it runs in the frame loop. Escalations
+         * and the last solve stay in the frame loop. */
+        int backgroundMergeNodes{0};
     };
 
     CeresGSO();
@@ -49,14 +54,21 @@ class CeresGSO : public GraphOptimizer {
         double localSeconds{0}, fullSeconds{0};
         std::size_t rejected{0};
         std::size_t escalations{0};  ///< local solves a new closure still disagreed with
+        std::size_t backgroundSolves{0}, backgroundDiscarded{0};
+        double backgroundWaitSeconds{0};  ///< the frame loop waiting at a merge
     };
     const Stats& stats() const { return stats_; }
 
   private:
     void absorb(const PoseGraphSolver::Report& r, bool full);
+    /** Merges the background solve if the graph has reached its node count. */
+    void mergeBackgroundIfDue();
+    /** A solve of the live graph supersedes one running on an older snapshot. */
+    void discardBackground();
 
     Params params_;
     std::unique_ptr<PoseGraphSolver> solver_;
+    std::unique_ptr<BackgroundSolve> background_;
     std::vector<std::pair<TNodeID, TNodeID>> pending_;  // ends of closures not solved yet
     std::size_t nodes_at_last_full_{0};
     bool closures_since_full_{false};

@@ -78,6 +78,7 @@ class FusedOdometry {
     std::vector<Estimate> flush();
 
     const std::vector<std::string>& methods() const { return method_names_; }
+    const vision::RgbdVisualOdometry& visual() const { return visual_; }
     std::size_t framesProcessed() const { return frames_; }
     std::size_t poseSamples() const { return pose_samples_; }
     std::size_t framesIgnored() const { return frames_ignored_; }

@@ -36,12 +36,17 @@ struct CameraSpec {
     double maxIncidence{1.309};           ///< beyond this angle to the normal: no depth [rad]
     double rgbNoise{2.0};                 ///< per-channel intensity noise std [0..255]
     bool externalImages{true};  ///< when written to a rawlog: images beside it, not inside
+    /** Colour files beside the rawlog: "png" (lossless) or "jpg" (`jpegQuality`, 1..100). */
+    std::string imageFormat{"png"};
+    int jpegQuality{90};
 
     /** Changes the image size, scaling the intrinsics with it (principal point centred). */
     void resize(int newWidth, int newHeight);
     /** Applies "WIDTHxHEIGHT@RATE" (e.g. "320x240@15"); false, leaving the camera as it was,
      * when the text is not that (or below 16x16, or a rate <= 0). */
     bool override(const std::string& widthHeightRate);
+    /** Applies "png", "jpg" or "jpg:QUALITY"; false, leaving it as it was, otherwise. */
+    bool setImageFormat(const std::string& text);
 };
 
 struct MagnetometerSpec {

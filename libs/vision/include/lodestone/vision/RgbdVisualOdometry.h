@@ -30,6 +30,12 @@ struct VoTiming {
     double orb{0}, matching{0}, ransac{0};
 };
 
+/** Time summed over every frame processed [ms], by step. */
+struct VoTotals {
+    std::size_t frames{0};
+    VoTiming ms;
+};
+
 /** What one frame gave. */
 struct VoResult {
     bool success{false};  ///< a motion was estimated for this frame
@@ -97,9 +103,12 @@ class RgbdVisualOdometry {
     void reset();
 
     VoState state() const { return state_; }
+    const VoTotals& totals() const { return totals_; }
     const Params& params() const { return params_; }
 
   private:
+    VoResult processFrame(const RgbdFrame& frame);
+
     Params params_;
     OrbExtractor extractor_;
     DescriptorMatcher matcher_;
@@ -109,6 +118,7 @@ class RgbdVisualOdometry {
     int failures_{0};
     VoState state_{VoState::Initializing};
     std::uint64_t frame_count_{0};
+    VoTotals totals_;
 };
 
 }  // namespace lodestone::vision
