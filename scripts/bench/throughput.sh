@@ -10,17 +10,23 @@
 #   --recordings  keep the recorded rawlogs in DIR and reuse them when there (they are large:
 #                 paper_loop is 7 GB with its images)
 #   --slam        another lodestone-slam (e.g. a build of an earlier commit, for "before")
+#   --image-format png|jpg|jpg:Q   colour files as lodestone-sim writes them (default png)
+#   --gzip        record NAME.rawlog.gz (depth deflated) instead of NAME.rawlog
 #   default scenarios: office and paper_loop
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 config="$root/config_ini/slam.ini"
 recordings=""
+simArgs=()
+ext=rawlog
 slam="$root/build/apps/lodestone-slam/lodestone-slam"
 while [ $# -gt 0 ]; do
     case "$1" in
         --config) config=$2; shift 2 ;;
         --recordings) recordings=$2; shift 2 ;;
         --slam) slam=$2; shift 2 ;;
+        --image-format) simArgs+=(--image-format "$2"); shift 2 ;;
+        --gzip) ext=rawlog.gz; shift ;;
         *) break ;;
     esac
 done
@@ -37,11 +43,11 @@ echo "| scenario | config | cores | frames | data [s] | wall [s] | real-time fac
 echo "|---|---|---|---|---|---|---|---|---|---|"
 for ini in "${scenarios[@]}"; do
     name=$(basename "$ini" .ini)
-    [ -f "$rec/$name.rawlog" ] || "$sim" -c "$ini" -o "$rec/$name.rawlog" > /dev/null
+    [ -f "$rec/$name.$ext" ] || "$sim" -c "$ini" -o "$rec/$name.$ext" "${simArgs[@]}" > /dev/null
     for cores in 2 1; do
         pin=()
         [ "$cores" = 1 ] && pin=(taskset -c 0)
-        /usr/bin/time -f "%e %M" -o "$out/time.txt" "${pin[@]}" "$slam" -r "$rec/$name.rawlog" \
+        /usr/bin/time -f "%e %M" -o "$out/time.txt" "${pin[@]}" "$slam" -r "$rec/$name.$ext" \
             --config "$config" --ground-truth "$rec/$name.gt.tum" --out "$out/run" --quiet \
             > "$out/run.log" 2>&1
         read -r wall rss < "$out/time.txt"
