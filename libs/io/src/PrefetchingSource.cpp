@@ -1,8 +1,35 @@
 #include <lodestone/io/PrefetchingSource.h>
 
+#include <mrpt/obs/CObservation3DRangeScan.h>
+#include <mrpt/obs/CObservationImage.h>
+#include <mrpt/obs/CObservationStereoImages.h>
+
 #include <algorithm>
 
 namespace lodestone::io {
+
+namespace {
+/** Loads what the caller would load: external range data (load()) and the delay-loaded images,
+ * which MRPT decodes only when their pixels are first touched. A file that fails to load is
+ * left as it is: the caller meets the same error where it would have. */
+void decode(mrpt::obs::CObservation& obs) {
+    const auto attempt = [](const auto& f) {
+        try {
+            f();
+        } catch (...) {
+        }
+    };
+    attempt([&] { obs.load(); });
+    if (auto* scan = dynamic_cast<mrpt::obs::CObservation3DRangeScan*>(&obs)) {
+        if (scan->hasIntensityImage) attempt([&] { scan->intensityImage.forceLoad(); });
+    } else if (auto* image = dynamic_cast<mrpt::obs::CObservationImage*>(&obs)) {
+        attempt([&] { image->image.forceLoad(); });
+    } else if (auto* stereo = dynamic_cast<mrpt::obs::CObservationStereoImages*>(&obs)) {
+        attempt([&] { stereo->imageLeft.forceLoad(); });
+        if (stereo->hasImageRight) attempt([&] { stereo->imageRight.forceLoad(); });
+    }
+}
+}  // namespace
 
 PrefetchingSource::PrefetchingSource(std::unique_ptr<DataSource> inner, std::size_t depth,
                                      std::function<double()> progress)
@@ -30,13 +57,7 @@ void PrefetchingSource::run() {
                 if (stop_) return;
             }
             auto obs = inner_->next();
-            if (obs) {
-                try {
-                    obs->load();  // decode here, not on the caller's thread
-                } catch (...) {
-                    // Left unloaded: the caller's load() meets the error where it would have.
-                }
-            }
+            if (obs) decode(*obs);
             if (progressOf_) progress_ = progressOf_();
             std::lock_guard<std::mutex> lock(mutex_);
             if (!obs) {

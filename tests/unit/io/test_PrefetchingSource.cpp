@@ -172,3 +172,22 @@ TEST(PrefetchingSource, StaysWithinItsDepthAndStopsCleanly) {
         EXPECT_GE(inner->calls.load(), 6);
     }  // destroyed with a full queue and an endless source: joins, no hang
 }
+
+TEST(PrefetchingSource, ImagesAreDecodedOnTheWorkerNotWhenFirstTouched) {
+    // MRPT decodes a delay-loaded image when its pixels are first touched; the worker must do
+    // that itself, or the decoding stays in the caller's loop. Seen from outside: once handed
+    // over, a frame's pixels are there even if its file is gone.
+    registerAllClasses();
+    test::TempDir dir;
+    const auto path = rawlogWithExternalImages(dir);
+    io::PrefetchingSource ahead(std::make_unique<io::RawlogSource>(path), 2);
+    int frames = 0;
+    while (auto obs = ahead.next()) {
+        auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(obs);
+        if (!scan) continue;
+        std::filesystem::remove(dir.path() / "ext_Images" / scan->intensityImage.getExternalStorageFile());
+        EXPECT_EQ(pixelsOf(obs).cols, 64) << "frame " << frames;
+        ++frames;
+    }
+    EXPECT_EQ(frames, 40);
+}

@@ -14,8 +14,9 @@
 namespace lodestone::io {
 
 /** Reads and decodes ahead on a second thread: a worker takes observations from another source,
- * loads their delay-loaded images (CObservation::load(): colour PNG / JPEG files, external
- * depth) and queues them, at most `depth` ahead of the caller; next() hands them over in the
+ * loads their external data and decodes their delay-loaded images (CObservation::load(), and
+ * the colour PNG / JPEG files, which MRPT decodes only when their pixels are first touched) and
+ * queues them, at most `depth` ahead of the caller; next() hands them over in the
  * inner source's order. What comes out is exactly what the inner source gives, decoded, so
  * results do not depend on it (and are deterministic: one producer, one consumer, one order).
  *
