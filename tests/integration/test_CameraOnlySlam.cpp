@@ -139,6 +139,13 @@ TEST(CameraOnlySlam, VoLostWithNothingToRelocalizeOnStartsANewSegmentOrIsBridged
     const std::string report = reportOf(dir.file("out"));
     EXPECT_NE(report.find("\"vo_gaps\": 1"), std::string::npos) << report;
     EXPECT_NE(report.find("\"segments\": 2"), std::string::npos) << report;
+    // The segment's record: tracking lost after the last frame before the cover (frame 149 of
+    // 15 Hz), found again at frame 170.
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(report, m,
+                                  std::regex("\"lift_time\": ([0-9.e+]+),\\s*\"put_down_time\": ([0-9.e+]+)")))
+        << report;
+    EXPECT_NEAR(std::stod(m[2]) - std::stod(m[1]), 21.0 / 15.0, 0.1);
     const auto traj = lodestone::io::readTumTrajectory(dir.file("out/trajectory.tum"));
     ASSERT_FALSE(traj.empty());
     EXPECT_GT(traj.back().timestamp - traj.front().timestamp, 20.0);

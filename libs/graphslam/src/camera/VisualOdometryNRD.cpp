@@ -198,6 +198,7 @@ void VisualOdometryNRD::registerAt(const mrpt::obs::CObservation3DRangeScan& sca
                                    const mrpt::poses::CPose3DPDFGaussian& edge, bool restart) {
     bool keyframe = true;
     TNodeID id = m_graph->root;
+    const double lostAfter = lastTracked_.t;  // (lastTracked_ becomes this frame below)
     if (m_prev_registered_nodeID == mrpt::graphs::INVALID_NODEID) {
         m_graph->nodes[m_graph->root] = mrpt::poses::CPose3D();  // the camera starts the map
         m_prev_registered_nodeID = m_graph->root;
@@ -227,7 +228,7 @@ void VisualOdometryNRD::registerAt(const mrpt::obs::CObservation3DRangeScan& sca
         rec.segment = segment_;
         rec.keyframe = keyframe;
         if (restart) {
-            rec.liftTime = lastTracked_.t;  // tracking lost after this frame ...
+            rec.liftTime = lostAfter;  // tracking lost after this frame ...
             rec.putDownTime = t;            // ... and found again at this one
         }
         if (keyframe) {
