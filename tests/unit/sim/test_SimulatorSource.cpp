@@ -183,38 +183,57 @@ TEST(SimulatorSource, MagnetometerReadsTheFieldInItsFrame) {
     EXPECT_GT(checked, 100);
 }
 
-TEST(SimulatorSource, RecordedFramesWithExternalImagesReadBackExactly) {
-    registerAllClasses();
-    Scenario sc = quickOffice();
-    sc.camera.externalImages = true;
-    test::TempDir dir;
-    const auto path = dir.file("office.rawlog");
+namespace {
+using Scan = mrpt::obs::CObservation3DRangeScan;
+
+/** Records `sc` (seed 4) to `path`, then replays the simulator beside the rawlog and hands each
+ * RGB-D frame to `check` as rendered and as read back (not yet loaded). Returns the frames. */
+template <typename Check>
+std::size_t recordAndCompareFrames(const Scenario& sc, const std::string& path,
+                                   RecordingSummary* summary, const Check& check) {
     {
         SimulatorSource source(sc, 4);
         const auto r = recordScenario(source, path);
-        EXPECT_EQ(std::filesystem::path(r.imagesDir), dir.path() / "office_Images");
-        EXPECT_GT(r.frames, 10u);
+        if (summary) *summary = r;
     }
     SimulatorSource again(sc, 4);
     io::RawlogSource rawlog(path);
     std::size_t frames = 0;
     while (auto expected = again.next()) {
         auto got = rawlog.next();
-        ASSERT_TRUE(got);
-        auto e = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(expected);
+        EXPECT_TRUE(got);
+        if (!got) break;
+        auto e = std::dynamic_pointer_cast<Scan>(expected);
         if (!e) continue;
-        auto g = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(got);
-        ASSERT_TRUE(g);
-        ASSERT_TRUE(g->intensityImage.isExternallyStored());
-        g->load();
-        const cv::Mat a = e->intensityImage.asCvMat<cv::Mat>(mrpt::img::SHALLOW_COPY);
-        const cv::Mat b = g->intensityImage.asCvMat<cv::Mat>(mrpt::img::SHALLOW_COPY);
-        ASSERT_EQ(a.size(), b.size());
-        EXPECT_EQ(cv::norm(a, b, cv::NORM_INF), 0.0) << "frame " << frames;
-        EXPECT_TRUE(e->rangeImage == g->rangeImage);
+        auto g = std::dynamic_pointer_cast<Scan>(got);
+        EXPECT_TRUE(g);
+        if (!g) break;
+        check(*e, *g, frames);
         ++frames;
     }
     EXPECT_FALSE(rawlog.next());
+    return frames;
+}
+}  // namespace
+
+TEST(SimulatorSource, RecordedFramesWithExternalImagesReadBackExactly) {
+    registerAllClasses();
+    Scenario sc = quickOffice();
+    sc.camera.externalImages = true;
+    test::TempDir dir;
+    RecordingSummary r;
+    const std::size_t frames = recordAndCompareFrames(
+        sc, dir.file("office.rawlog"), &r, [](const Scan& e, Scan& g, std::size_t k) {
+            ASSERT_TRUE(g.intensityImage.isExternallyStored());
+            g.load();
+            const cv::Mat a = e.intensityImage.asCvMat<cv::Mat>(mrpt::img::SHALLOW_COPY);
+            const cv::Mat b = g.intensityImage.asCvMat<cv::Mat>(mrpt::img::SHALLOW_COPY);
+            ASSERT_EQ(a.size(), b.size());
+            EXPECT_EQ(cv::norm(a, b, cv::NORM_INF), 0.0) << "frame " << k;
+            EXPECT_TRUE(e.rangeImage == g.rangeImage);
+        });
+    EXPECT_EQ(std::filesystem::path(r.imagesDir), dir.path() / "office_Images");
+    EXPECT_GT(r.frames, 10u);
     EXPECT_GT(frames, 10u);
 }
 
@@ -226,36 +245,24 @@ TEST(SimulatorSource, JpegColourIsWrittenAsJpegAndReadsBackClose) {
     sc.camera.externalImages = true;
     ASSERT_TRUE(sc.camera.setImageFormat("jpg:90"));
     test::TempDir dir;
-    const auto path = dir.file("office.rawlog");
-    {
-        SimulatorSource source(sc, 4);
-        recordScenario(source, path);
-    }
-    SimulatorSource again(sc, 4);
-    io::RawlogSource rawlog(path);
-    std::size_t frames = 0;
-    while (auto expected = again.next()) {
-        auto got = rawlog.next();
-        ASSERT_TRUE(got);
-        auto e = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(expected);
-        if (!e) continue;
-        auto g = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(got);
-        ASSERT_TRUE(g);
-        EXPECT_NE(g->intensityImage.getExternalStorageFile().find(".jpg"), std::string::npos);
-        g->load();
-        const cv::Mat a = e->intensityImage.asCvMat<cv::Mat>(mrpt::img::SHALLOW_COPY);
-        const cv::Mat b = g->intensityImage.asCvMat<cv::Mat>(mrpt::img::SHALLOW_COPY);
-        ASSERT_EQ(a.size(), b.size());
-        // What VO sees is the grey image (JPEG keeps luminance at full resolution; colour is
-        // subsampled): its mean error, a few grey levels against the renderer's own noise of 2.
-        cv::Mat greyA, greyB;
-        cv::cvtColor(a, greyA, cv::COLOR_BGR2GRAY);
-        cv::cvtColor(b, greyB, cv::COLOR_BGR2GRAY);
-        const double meanError = cv::norm(greyA, greyB, cv::NORM_L1) / static_cast<double>(greyA.total());
-        EXPECT_GT(meanError, 0.0);  // lossy indeed
-        EXPECT_LT(meanError, 4.0) << "frame " << frames;
-        EXPECT_TRUE(e->rangeImage == g->rangeImage);  // depth untouched
-        ++frames;
-    }
+    const std::size_t frames = recordAndCompareFrames(
+        sc, dir.file("office.rawlog"), nullptr, [](const Scan& e, Scan& g, std::size_t k) {
+            EXPECT_NE(g.intensityImage.getExternalStorageFile().find(".jpg"), std::string::npos);
+            g.load();
+            const cv::Mat a = e.intensityImage.asCvMat<cv::Mat>(mrpt::img::SHALLOW_COPY);
+            const cv::Mat b = g.intensityImage.asCvMat<cv::Mat>(mrpt::img::SHALLOW_COPY);
+            ASSERT_EQ(a.size(), b.size());
+            // What VO sees is the grey image (JPEG keeps luminance at full resolution; colour
+            // is subsampled): its mean error, a few grey levels against the renderer's own
+            // noise of 2 (measured 2.2-2.9 on this scenario).
+            cv::Mat greyA, greyB;
+            cv::cvtColor(a, greyA, cv::COLOR_BGR2GRAY);
+            cv::cvtColor(b, greyB, cv::COLOR_BGR2GRAY);
+            const double meanError =
+                cv::norm(greyA, greyB, cv::NORM_L1) / static_cast<double>(greyA.total());
+            EXPECT_GT(meanError, 0.0);  // lossy indeed
+            EXPECT_LT(meanError, 4.0) << "frame " << k;
+            EXPECT_TRUE(e.rangeImage == g.rangeImage);  // depth untouched
+        });
     EXPECT_GT(frames, 10u);
 }
