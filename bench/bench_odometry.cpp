@@ -1,7 +1,8 @@
 // Odometry on a simulated scenario: wheel-only, VO-only and the two fusions, run on the same VO
 // pass, against the simulator's ground truth. Prints markdown table rows:
 //   1. per method: ATE RMSE [m], RPE per second [m], RPE per metre [%], final drift [m];
-//   2. VO: frames tracked / failed / LOST, RPE per metre over stretches VO tracked throughout,
+//   2. VO: frames tracked / failed / LOST, matched guided by the wheels / guided that fell back
+//      to brute force, RPE per metre over stretches VO tracked throughout,
 //      and time per frame split into decode (observation -> frame), ORB, matching, RANSAC.
 //   bench_odometry SCENARIO.ini [WIDTHxHEIGHT@HZ|-] [SECONDS] [ODOMETRY.ini]
 #include <lodestone/eval/TrajectoryError.h>
@@ -128,10 +129,11 @@ int main(int argc, char** argv) {
         };
         const double voRpe = rmsOf(errs), texturedRpe = rmsOf(texturedErrs);
         std::fprintf(stderr,
-                     "VO | %s | %dx%d@%.0f | %zu | %zu | %zu | %.2f %% (%zu pairs) | %.2f %% (%zu "
-                     "pairs) | %.2f | %.2f | %.2f | %.2f | %.2f |\n",
+                     "VO | %s | %dx%d@%.0f | %zu | %zu | %zu | %zu / %zu | %.2f %% (%zu pairs) | "
+                     "%.2f %% (%zu pairs) | %.2f | %.2f | %.2f | %.2f | %.2f |\n",
                      sc.name.c_str(), sc.camera.width, sc.camera.height, sc.camera.rate, ok, failed,
-                     lost, 100 * voRpe, errs.size(), 100 * texturedRpe, texturedErrs.size(),
+                     lost, odo.visual().totals().guided, odo.visual().totals().guidedFallback,
+                     100 * voRpe, errs.size(), 100 * texturedRpe, texturedErrs.size(),
                      decodeMs / n, orbMs / n, matchMs / n, ransacMs / n,
                      (decodeMs + orbMs + matchMs + ransacMs) / n);
     } catch (const std::exception& e) {

@@ -1,4 +1,5 @@
 // lodestone-slam: offline graph SLAM on a rawlog or a simulated scenario.
+#include <lodestone/slamapp/FrameAllocator.h>
 #include <lodestone/slamapp/SlamApp.h>
 
 #include <unistd.h>
@@ -6,5 +7,6 @@
 #include <iostream>
 
 int main(int argc, char** argv) {
+    lodestone::slamapp::keepFrameBuffersMapped();
     return lodestone::slamapp::runSlamApp(argc, argv, std::cout, std::cerr, isatty(STDERR_FILENO));
 }

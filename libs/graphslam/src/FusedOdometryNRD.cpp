@@ -283,7 +283,14 @@ JsonObject FusedOdometryNRD::describe() const {
         .set("kidnaps", kidnaps_)
         .set("keyframes", keyframes_)
         .set("segments", segment_ + 1)
-        .set("vo_ms_per_frame", detail::voTimingJson(odometry_->visual().totals()));
+        .set("vo_ms_per_frame", detail::voTimingJson(odometry_->visual().totals()))
+        .set("vo_guided_frames", odometry_->visual().totals().guided)
+        .set("vo_guided_fallbacks", odometry_->visual().totals().guidedFallback)
+        .set("vo_guided_pairs_compared",
+             odometry_->visual().totals().guidedPairsAll > 0
+                 ? odometry_->visual().totals().guidedPairsCompared /
+                       odometry_->visual().totals().guidedPairsAll
+                 : 0.0);
     if (detector_) {
         const auto& d = detector_->stats();
         stats.set("detected_lifts", d.lifts)

@@ -5,6 +5,7 @@
 #include <mrpt/obs/CObservationStereoImages.h>
 
 #include <algorithm>
+#include <chrono>
 
 namespace lodestone::io {
 
@@ -29,60 +30,106 @@ void decode(mrpt::obs::CObservation& obs) {
         if (stereo->hasImageRight) attempt([&] { stereo->imageRight.forceLoad(); });
     }
 }
+/** Observations whose decoded data are large (images, range data): the frames. */
+bool isFrame(const mrpt::obs::CObservation& obs) {
+    return dynamic_cast<const mrpt::obs::CObservation3DRangeScan*>(&obs) ||
+           dynamic_cast<const mrpt::obs::CObservationImage*>(&obs) ||
+           dynamic_cast<const mrpt::obs::CObservationStereoImages*>(&obs);
+}
 }  // namespace
 
 PrefetchingSource::PrefetchingSource(std::unique_ptr<DataSource> inner, std::size_t depth,
-                                     std::function<double()> progress)
+                                     std::function<double()> progress, std::size_t threads)
     : inner_(std::move(inner)),
       name_(inner_->name()),
       depth_(std::max<std::size_t>(depth, 1)),
-      progressOf_(std::move(progress)),
-      worker_([this] { run(); }) {}
+      progressOf_(std::move(progress)) {
+    for (std::size_t k = 0; k < std::max<std::size_t>(threads, 1); ++k) {
+        workers_.emplace_back([this] { run(); });
+    }
+}
 
 PrefetchingSource::~PrefetchingSource() {
     {
         std::lock_guard<std::mutex> lock(mutex_);
         stop_ = true;
     }
-    notFull_.notify_all();
-    worker_.join();  // (a read in progress finishes first)
+    work_.notify_all();
+    for (auto& w : workers_) w.join();  // (reads and decodes in progress finish first)
 }
 
 void PrefetchingSource::run() {
-    try {
-        for (;;) {
-            {
-                std::unique_lock<std::mutex> lock(mutex_);
-                notFull_.wait(lock, [&] { return stop_ || queue_.size() < depth_; });
-                if (stop_) return;
+    std::unique_lock<std::mutex> lock(mutex_);
+    for (;;) {
+        // Decoding comes first (the caller waits for the front); else read the next entry.
+        const auto undecoded = [&] {
+            return std::find_if(queue_.begin(), queue_.end(),
+                                [](const Slot& s) { return !s.taken; });
+        };
+        work_.wait(lock, [&] {
+            return stop_ || undecoded() != queue_.end() ||
+                   (!reading_ && !done_ && framesQueued_ < depth_ &&
+                    queue_.size() < kLightPerFrame * depth_);
+        });
+        if (stop_) return;
+        auto slot = undecoded();
+        if (slot != queue_.end()) {
+            slot->taken = true;
+            const auto obs = slot->obs;  // (the deque may grow meanwhile: hold the pointer)
+            lock.unlock();
+            const auto t0 = std::chrono::steady_clock::now();
+            decode(*obs);
+            const auto t1 = std::chrono::steady_clock::now();
+            lock.lock();
+            time_.decodeSeconds += std::chrono::duration<double>(t1 - t0).count();
+            for (auto& s : queue_) {
+                if (s.obs == obs) s.decoded = true;
             }
-            auto obs = inner_->next();
-            if (obs) decode(*obs);
-            if (progressOf_) progress_ = progressOf_();
-            std::lock_guard<std::mutex> lock(mutex_);
-            if (!obs) {
-                done_ = true;
-                notEmpty_.notify_one();
-                return;
-            }
-            queue_.push_back(std::move(obs));
-            notEmpty_.notify_one();
+            ready_.notify_all();
+            continue;
         }
-    } catch (...) {
-        std::lock_guard<std::mutex> lock(mutex_);
-        error_ = std::current_exception();
-        done_ = true;
-        notEmpty_.notify_one();
+        reading_ = true;
+        lock.unlock();
+        mrpt::obs::CObservation::Ptr obs;
+        std::exception_ptr fault;
+        const auto t0 = std::chrono::steady_clock::now();
+        try {
+            obs = inner_->next();
+        } catch (...) {
+            fault = std::current_exception();
+        }
+        const auto t1 = std::chrono::steady_clock::now();
+        if (progressOf_) progress_ = progressOf_();
+        lock.lock();
+        reading_ = false;
+        time_.readSeconds += std::chrono::duration<double>(t1 - t0).count();
+        if (fault || !obs) {
+            error_ = fault;
+            done_ = true;
+            ready_.notify_all();
+            work_.notify_all();
+            continue;  // (other workers may still be decoding; this one waits for stop)
+        }
+        const bool heavy = isFrame(*obs);
+        framesQueued_ += heavy;
+        queue_.push_back({obs, false, false, heavy});
+        work_.notify_all();
     }
+}
+
+PrefetchingSource::WorkerTime PrefetchingSource::workerTime() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return time_;
 }
 
 mrpt::obs::CObservation::Ptr PrefetchingSource::next() {
     std::unique_lock<std::mutex> lock(mutex_);
-    notEmpty_.wait(lock, [&] { return !queue_.empty() || done_; });
+    ready_.wait(lock, [&] { return (!queue_.empty() && queue_.front().decoded) || (queue_.empty() && done_); });
     if (!queue_.empty()) {
-        auto obs = std::move(queue_.front());
+        auto obs = std::move(queue_.front().obs);
+        framesQueued_ -= queue_.front().heavy;
         queue_.pop_front();
-        notFull_.notify_one();
+        work_.notify_all();
         return obs;
     }
     if (error_) {

@@ -25,6 +25,11 @@ void FusedOdometry::Params::loadFromConfigFile(const mrpt::config::CConfigFileBa
     poseHeadingNoise = s.getDouble("pose_heading_noise", poseHeadingNoise);
     if (!(posePositionNoise > 0)) s.fail("pose_position_noise", "must be > 0");
     if (!(poseHeadingNoise > 0)) s.fail("pose_heading_noise", "must be > 0");
+    guidedTiltSigma =
+        s.getDouble("guided_tilt_sigma_deg", guidedTiltSigma * 180 / M_PI) * M_PI / 180;
+    guidedRiseSigma = s.getDouble("guided_rise_sigma", guidedRiseSigma);
+    if (!(guidedTiltSigma >= 0)) s.fail("guided_tilt_sigma_deg", "must be >= 0");
+    if (!(guidedRiseSigma >= 0)) s.fail("guided_rise_sigma", "must be >= 0");
     if (kalmanWeight <= 0 || kalmanWeight >= 1) s.fail("kalman_weight", "must be in (0, 1)");
     try {
         makePlanarFusion(method);
@@ -43,7 +48,9 @@ void FusedOdometry::Params::dumpToTextStream(std::ostream& out) const {
         << "\nkalman_process_noise = " << kalmanProcessNoise
         << "\nkalman_measurement_noise = " << kalmanMeasurementNoise
         << "\npose_position_noise = " << posePositionNoise
-        << "\npose_heading_noise = " << poseHeadingNoise << "\n";
+        << "\npose_heading_noise = " << poseHeadingNoise
+        << "\nguided_tilt_sigma_deg = " << guidedTiltSigma * 180 / M_PI
+        << "\nguided_rise_sigma = " << guidedRiseSigma << "\n";
 }
 
 FusedOdometry::FusedOdometry(const Params& params, std::vector<std::string> methods)
@@ -86,7 +93,9 @@ std::vector<FusedOdometry::Estimate> FusedOdometry::process(
             return out;
         }
         vision::RgbdFrame frame = frameFromObservation(*scan);
-        Pending p{frame.timestamp, visual_.process(frame), opticalFrameOnRobot(scan->sensorPose)};
+        const Eigen::Isometry3d A = opticalFrameOnRobot(scan->sensorPose);
+        const auto prior = wheelPrior(frame.timestamp, A);
+        Pending p{frame.timestamp, visual_.process(frame, prior ? &*prior : nullptr), A};
         scan->unload();
         pending_.push_back(std::move(p));
         ++frames_;
@@ -116,6 +125,51 @@ Eigen::Vector2d FusedOdometry::travelAt(double t) const {
         }
     }
     return {wheel_history_.back().left, wheel_history_.back().right};
+}
+
+std::optional<vision::MotionPrior> FusedOdometry::wheelPrior(
+    double t, const Eigen::Isometry3d& T_robot_optical) const {
+    // Beyond this the wheels are silent (unplugged, a lift): no prediction.
+    constexpr double kMaxExtrapolation = 0.1;  // [s]
+    const auto reference = visual_.referenceTimestamp();
+    if (!reference || wheel_history_.size() < 2 || *reference < wheel_history_.front().t)
+        return std::nullopt;
+    const auto& last = wheel_history_.back();
+    const auto& before = wheel_history_[wheel_history_.size() - 2];
+    const double ahead = t - last.t;
+    if (ahead > kMaxExtrapolation) return std::nullopt;
+    Eigen::Vector2d now = travelAt(t);
+    Eigen::Vector2d extrapolated{0, 0};  // each wheel's travel assumed past the last sample
+    if (ahead > 0 && last.t > before.t) {
+        extrapolated = Eigen::Vector2d(last.left - before.left, last.right - before.right) *
+                       (ahead / (last.t - before.t));
+        now += extrapolated;
+    }
+    const Eigen::Vector2d d = now - travelAt(*reference);
+    const auto step = DiffDriveOdometry::stepFromOrigin(d[0], d[1], params_.wheels);
+    // Robot frame, twist order (w, v): the planar step's covariance, the floor's tilt and rise,
+    // and the extrapolation wholly uncertain (the robot may have stopped).
+    Eigen::Matrix<double, 6, 6> C = Eigen::Matrix<double, 6, 6>::Zero();
+    const int idx[3] = {3, 4, 2};  // (x, y, yaw) -> (v_x, v_y, w_z)
+    for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) C(idx[i], idx[j]) = step.cov(i, j);
+    }
+    const double e2 = extrapolated.squaredNorm();
+    C(3, 3) += e2;
+    C(4, 4) += e2;
+    C(2, 2) += e2 / (params_.wheels.wheelBase * params_.wheels.wheelBase);
+    C(0, 0) = C(1, 1) = params_.guidedTiltSigma * params_.guidedTiltSigma;
+    C(5, 5) = params_.guidedRiseSigma * params_.guidedRiseSigma;
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = Eigen::AngleAxisd(step.mean.phi(), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    T.translation() = Eigen::Vector3d(step.mean.x(), step.mean.y(), 0);
+    // Into the optical frame: A^-1 exp(xi) T A = exp(Ad(A^-1) xi) A^-1 T A.
+    const Eigen::Isometry3d Ainv = T_robot_optical.inverse();
+    const Eigen::Matrix<double, 6, 6> Ad = vision::adjoint(Ainv);
+    vision::MotionPrior prior;
+    prior.T_ref_cur = Ainv * T * T_robot_optical;
+    prior.covariance = Ad * C * Ad.transpose();
+    return prior;
 }
 
 mrpt::poses::CPosePDFGaussian FusedOdometry::visualOnRobot(const Pending& p, double* rise,

@@ -23,9 +23,13 @@ int runSlamApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
     TCLAP::ValueArg<double> maxSeconds("", "max-seconds", "process only this much data [s]", false,
                                        0, "S", cmd);
     TCLAP::ValueArg<int> decodeAhead("", "decode-ahead",
-                                     "observations read and decoded ahead on a second thread (0: "
-                                     "in the frame loop; results are the same)",
+                                     "frames (observations with images or range data) read and "
+                                     "decoded ahead on other threads (0: in the frame loop; "
+                                     "results are the same)",
                                      false, 8, "N", cmd);
+    TCLAP::ValueArg<int> decodeThreads("", "decode-threads",
+                                       "threads that read and decode ahead (0: one per core this process may use)",
+                                       false, 0, "N", cmd);
     TCLAP::SwitchArg quiet("q", "quiet", "no progress output", cmd);
     const auto outcome = config::parseCommandLine(cmd, std::vector<std::string>(argv, argv + argc));
     if (outcome.kind == config::ParseOutcome::Kind::HelpShown) return 0;
@@ -40,6 +44,9 @@ int runSlamApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
     if (usage.empty() && (decodeAhead.getValue() < 0 || decodeAhead.getValue() > 1000)) {
         usage = "--decode-ahead must be 0..1000";
     }
+    if (usage.empty() && (decodeThreads.getValue() < 0 || decodeThreads.getValue() > 64)) {
+        usage = "--decode-threads must be 0..64";
+    }
     if (!usage.empty()) {
         err << "lodestone-slam: " << usage << " (see lodestone-slam --help)\n";
         return 2;
@@ -52,6 +59,7 @@ int runSlamApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
     o.groundTruth = gt.getValue();
     if (maxSeconds.isSet()) o.maxSeconds = maxSeconds.getValue();
     o.decodeAhead = static_cast<std::size_t>(decodeAhead.getValue());
+    o.decodeThreads = static_cast<std::size_t>(decodeThreads.getValue());
     o.quiet = quiet.getValue();
     o.terminal = terminal;
     return runSlam(o, out, err).exitCode;

@@ -5,14 +5,13 @@
 
 namespace lodestone::vision::detail {
 
-namespace {
-
-/** Rows packed as 64-bit words (a copy: cv::Mat rows need not be 8-byte aligned). */
 std::vector<std::uint64_t> packed(const cv::Mat& m, int words) {
     std::vector<std::uint64_t> out(static_cast<std::size_t>(m.rows) * words);
     for (int r = 0; r < m.rows; ++r) std::memcpy(&out[static_cast<std::size_t>(r) * words], m.ptr(r), words * 8);
     return out;
 }
+
+namespace {
 
 // Compiled twice: with the popcnt instruction, and plain for CPUs without it (the loader picks).
 __attribute__((target_clones("popcnt", "default"))) void scan(

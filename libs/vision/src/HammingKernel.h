@@ -19,6 +19,16 @@ struct HammingBest {
     std::vector<int> reverseBest;
 };
 
+/** Rows packed as 64-bit words (a copy: cv::Mat rows need not be 8-byte aligned). */
+std::vector<std::uint64_t> packed(const cv::Mat& m, int words);
+
+/** The Hamming distance of two packed descriptors of `words` 64-bit words. */
+inline int hammingDistance(const std::uint64_t* a, const std::uint64_t* b, int words) {
+    int d = 0;
+    for (int w = 0; w < words; ++w) d += __builtin_popcountll(a[w] ^ b[w]);
+    return d;
+}
+
 /** Both matrices CV_8U, one descriptor per row, the same number of columns, a multiple of 8. */
 HammingBest hammingBest(const cv::Mat& query, const cv::Mat& train);
 

@@ -55,7 +55,12 @@ void RgbdVisualOdometry::Params::loadFromConfigFile(const mrpt::config::CConfigF
     seed = static_cast<std::uint64_t>(s.getInt("seed", static_cast<int>(seed)));
     keyframeDistance = s.getDouble("keyframe_distance", keyframeDistance);
     keyframeAngle = s.getDouble("keyframe_angle_deg", keyframeAngle * 180 / M_PI) * M_PI / 180;
+    guidedMatching = s.getBool("guided_matching", guidedMatching);
+    guidedGateChi2 = s.getDouble("guided_gate_chi2", guidedGateChi2);
+    guidedKeypointSigma = s.getDouble("guided_keypoint_sigma", guidedKeypointSigma);
     if (lostAfter < 1) s.fail("lost_after", "must be >= 1");
+    if (!(guidedGateChi2 > 0)) s.fail("guided_gate_chi2", "must be > 0");
+    if (!(guidedKeypointSigma > 0)) s.fail("guided_keypoint_sigma", "must be > 0");
     s.finish();
 }
 
@@ -68,13 +73,40 @@ void RgbdVisualOdometry::Params::dumpToTextStream(std::ostream& out) const {
         << "max_rotation_deg   = " << maxRotation * 180 / M_PI << "  [deg per frame]\n"
         << "seed               = " << seed << "\n"
         << "keyframe_distance  = " << keyframeDistance << "  [m]\n"
-        << "keyframe_angle_deg = " << keyframeAngle * 180 / M_PI << "  [deg]\n";
+        << "keyframe_angle_deg = " << keyframeAngle * 180 / M_PI << "  [deg]\n"
+        << "guided_matching    = " << (guidedMatching ? "true" : "false") << "\n"
+        << "guided_gate_chi2   = " << guidedGateChi2 << "  (2 dof)\n"
+        << "guided_keypoint_sigma = " << guidedKeypointSigma << "  [px]\n";
 }
 
 RgbdVisualOdometry::RgbdVisualOdometry() : RgbdVisualOdometry(Params()) {}
 
+namespace {
+GuidedMatcher::Params guidedParams(const RgbdVisualOdometry::Params& p) {
+    GuidedMatcher::Params g;
+    g.gateChi2 = p.guidedGateChi2;
+    g.keypointSigma = p.guidedKeypointSigma;
+    g.scaleFactor = p.orb.scaleFactor;
+    g.pointNoise = p.ransac.pointNoise;
+    g.depthNoise = p.ransac.depthNoise;
+    g.maxDistance = p.matcher.maxDistance;
+    g.ratio = p.matcher.ratio;
+    g.crossCheck = p.matcher.crossCheck;
+    return g;
+}
+}  // namespace
+
 RgbdVisualOdometry::RgbdVisualOdometry(const Params& params)
-    : params_(params), extractor_(params.orb), matcher_(params.matcher), ransac_(params.ransac) {}
+    : params_(params),
+      extractor_(params.orb),
+      matcher_(params.matcher),
+      guided_(guidedParams(params)),
+      ransac_(params.ransac) {}
+
+std::optional<double> RgbdVisualOdometry::referenceTimestamp() const {
+    if (!reference_ || state_ == VoState::Lost) return std::nullopt;
+    return reference_time_;
+}
 
 void RgbdVisualOdometry::reset() {
     reference_.reset();
@@ -91,15 +123,24 @@ RgbdVisualOdometry::Alignment RgbdVisualOdometry::align(const FrameFeatures& ref
         a.failure = VoFailure::FewFeatures;
         return a;
     }
-    auto t0 = std::chrono::steady_clock::now();
+    const auto t0 = std::chrono::steady_clock::now();
     const auto matches = matcher_.match(current.descriptors, reference.descriptors);
-    a.timing.matching = msSince(t0);
+    const double matching = msSince(t0);
+    a = alignMatches(reference, current, matches, seed);
+    a.timing.matching = matching;
+    return a;
+}
+
+RgbdVisualOdometry::Alignment RgbdVisualOdometry::alignMatches(
+    const FrameFeatures& reference, const FrameFeatures& current,
+    const std::vector<cv::DMatch>& matches, std::uint64_t seed) const {
+    Alignment a;
     a.matches = matches.size();
     if (matches.size() < static_cast<std::size_t>(params_.ransac.minInliers)) {
         a.failure = VoFailure::FewMatches;
         return a;
     }
-    t0 = std::chrono::steady_clock::now();
+    const auto t0 = std::chrono::steady_clock::now();
     Eigen::Matrix3Xd src(3, matches.size()), dst(3, matches.size());
     for (std::size_t i = 0; i < matches.size(); ++i) {
         src.col(static_cast<Eigen::Index>(i)) =
@@ -115,16 +156,23 @@ RgbdVisualOdometry::Alignment RgbdVisualOdometry::align(const FrameFeatures& ref
     return a;
 }
 
-VoResult RgbdVisualOdometry::process(const RgbdFrame& frame) {
-    VoResult r = processFrame(frame);
+bool RgbdVisualOdometry::plausible(const RigidEstimate& est) const {
+    const double angle = Eigen::AngleAxisd(est.transform.rotation()).angle();
+    return est.transform.translation().norm() <= params_.maxTranslation &&
+           angle <= params_.maxRotation;
+}
+
+VoResult RgbdVisualOdometry::process(const RgbdFrame& frame, const MotionPrior* prior) {
+    VoResult r = processFrame(frame, prior);
     ++totals_.frames;
+    if (r.guided) ++totals_.guided;
     totals_.ms.orb += r.timing.orb;
     totals_.ms.matching += r.timing.matching;
     totals_.ms.ransac += r.timing.ransac;
     return r;
 }
 
-VoResult RgbdVisualOdometry::processFrame(const RgbdFrame& frame) {
+VoResult RgbdVisualOdometry::processFrame(const RgbdFrame& frame, const MotionPrior* prior) {
     VoResult r;
     ++frame_count_;
     auto t0 = std::chrono::steady_clock::now();
@@ -158,18 +206,36 @@ VoResult RgbdVisualOdometry::processFrame(const RgbdFrame& frame) {
         return r;
     }
     r.referenceTimestamp = reference_time_;
-    const auto aligned = align(*reference_, current, params_.seed + frame_count_);
-    r.timing.matching = aligned.timing.matching;
-    r.timing.ransac = aligned.timing.ransac;
-    r.matches = aligned.matches;
-    r.inliers = aligned.inliers;
-    if (!aligned.success) return fail(aligned.failure);
-    const RigidEstimate& est = aligned.estimate;
-    const double angle = Eigen::AngleAxisd(est.transform.rotation()).angle();
-    if (est.transform.translation().norm() > params_.maxTranslation ||
-        angle > params_.maxRotation) {
-        return fail(VoFailure::Implausible);
+    const std::uint64_t seed = params_.seed + frame_count_;
+    std::optional<Alignment> aligned;
+    if (prior && params_.guidedMatching && current.size() > 0) {
+        // Guided first; a prior the frame contradicts (slip, a lift) leaves too few matches or
+        // an implausible motion, and brute force decides instead.
+        const auto tg = std::chrono::steady_clock::now();
+        const auto g = guided_.match(current, *reference_, frame.intrinsics, *prior);
+        const double matching = msSince(tg);
+        totals_.guidedPairsCompared += static_cast<double>(g.compared);
+        totals_.guidedPairsAll += static_cast<double>(current.size() * reference_->size());
+        auto a = alignMatches(*reference_, current, g.matches, seed);
+        a.timing.matching = matching;
+        if (a.success && plausible(a.estimate)) {
+            aligned = a;
+            r.guided = true;
+        } else {
+            ++totals_.guidedFallback;
+            r.timing.matching += a.timing.matching;
+            r.timing.ransac += a.timing.ransac;
+        }
     }
+    if (!aligned) aligned = align(*reference_, current, seed);
+    r.timing.matching += aligned->timing.matching;
+    r.timing.ransac += aligned->timing.ransac;
+    r.matches = aligned->matches;
+    r.inliers = aligned->inliers;
+    if (!aligned->success) return fail(aligned->failure);
+    const RigidEstimate& est = aligned->estimate;
+    const double angle = Eigen::AngleAxisd(est.transform.rotation()).angle();
+    if (!plausible(est)) return fail(VoFailure::Implausible);
     r.success = true;
     r.T_ref_cur = est.transform;
     r.covariance = est.covariance;

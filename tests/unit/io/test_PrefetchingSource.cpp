@@ -56,26 +56,35 @@ std::string rawlogWithExternalImages(const test::TempDir& dir) {
     return path;
 }
 
-/** A source counting how often it was asked, endless. */
+/** Every test runs with one, two and three workers: several decode at once, one reads. */
+class PrefetchingSource : public ::testing::TestWithParam<std::size_t> {};
+
+/** A source counting how often it was asked, endless: RGB-D frames, or magnetometer samples. */
 class CountingSource : public io::DataSource {
   public:
+    explicit CountingSource(bool frames) : frames_(frames) {}
     std::atomic<int> calls{0};
     mrpt::obs::CObservation::Ptr next() override {
         ++calls;
+        if (frames_) return test::makeRangeScan(calls * 0.01, 8, 6, 1.0);
         return test::makeMagnetometer(calls * 0.01, "MAG", 1.0);
     }
     std::string name() const override { return "counting"; }
+
+  private:
+    bool frames_;
 };
 }  // namespace
 
-TEST(PrefetchingSource, GivesByteForByteWhatTheRawlogGives) {
+TEST_P(PrefetchingSource, GivesByteForByteWhatTheRawlogGives) {
     registerAllClasses();
     test::TempDir dir;
     const auto path = rawlogWithExternalImages(dir);
     io::RawlogSource direct(path);
     auto inner = std::make_unique<io::RawlogSource>(path);
     const io::RawlogSource* rawlog = inner.get();
-    io::PrefetchingSource ahead(std::move(inner), 3, [rawlog] { return rawlog->fractionRead(); });
+    io::PrefetchingSource ahead(std::move(inner), 3, [rawlog] { return rawlog->fractionRead(); },
+                                GetParam());
     std::size_t n = 0;
     for (;;) {
         auto a = direct.next();
@@ -97,7 +106,7 @@ TEST(PrefetchingSource, GivesByteForByteWhatTheRawlogGives) {
     EXPECT_NEAR(ahead.progress(), 1.0, 1e-9);
 }
 
-TEST(PrefetchingSource, AFaultComesAfterEverythingBeforeIt) {
+TEST_P(PrefetchingSource, AFaultComesAfterEverythingBeforeIt) {
     registerAllClasses();
     test::TempDir dir;
     const auto good = rawlogWithExternalImages(dir);
@@ -108,7 +117,7 @@ TEST(PrefetchingSource, AFaultComesAfterEverythingBeforeIt) {
     io::RawlogSource direct(cut);
     const auto expected = test::drain(direct);
     ASSERT_FALSE(expected.error.empty());
-    io::PrefetchingSource ahead(std::make_unique<io::RawlogSource>(cut), 4);
+    io::PrefetchingSource ahead(std::make_unique<io::RawlogSource>(cut), 4, {}, GetParam());
     const auto got = test::drain(ahead);
     EXPECT_EQ(got.observations.size(), expected.observations.size());
     EXPECT_EQ(got.error, expected.error);
@@ -143,13 +152,13 @@ std::string whatLoadingGives(const mrpt::obs::CObservation::Ptr& o) {
 }
 }  // namespace
 
-TEST(PrefetchingSource, AMissingImageIsMetAsWithoutPrefetching) {
+TEST_P(PrefetchingSource, AMissingImageIsMetAsWithoutPrefetching) {
     registerAllClasses();
     test::TempDir dir;
     const auto path = rawlogWithExternalImages(dir);
     std::filesystem::remove(dir.path() / "ext_Images" / "rgb_3.png");
     io::RawlogSource direct(path);
-    io::PrefetchingSource ahead(std::make_unique<io::RawlogSource>(path), 8);
+    io::PrefetchingSource ahead(std::make_unique<io::RawlogSource>(path), 8, {}, GetParam());
     for (int k = 0; k < 80; ++k) {
         const auto a = direct.next(), b = ahead.next();
         ASSERT_TRUE(a && b);
@@ -160,27 +169,31 @@ TEST(PrefetchingSource, AMissingImageIsMetAsWithoutPrefetching) {
     }
 }
 
-TEST(PrefetchingSource, StaysWithinItsDepthAndStopsCleanly) {
-    auto counting = std::make_unique<CountingSource>();
-    const CountingSource* inner = counting.get();
-    {
-        io::PrefetchingSource ahead(std::move(counting), 5);
-        ASSERT_TRUE(ahead.next());
-        std::this_thread::sleep_for(std::chrono::milliseconds(200));
-        // One handed over, five queued, at most one more being read: never more.
-        EXPECT_LE(inner->calls.load(), 7);
-        EXPECT_GE(inner->calls.load(), 6);
-    }  // destroyed with a full queue and an endless source: joins, no hang
+TEST_P(PrefetchingSource, StaysWithinItsDepthAndStopsCleanly) {
+    for (const bool frames : {true, false}) {
+        auto counting = std::make_unique<CountingSource>(frames);
+        const CountingSource* inner = counting.get();
+        {
+            io::PrefetchingSource ahead(std::move(counting), 5, {}, GetParam());
+            ASSERT_TRUE(ahead.next());
+            std::this_thread::sleep_for(std::chrono::milliseconds(200));
+            // One handed over, five frames queued (light observations: 64 per frame), at most
+            // one more being read: never more.
+            const int depth = frames ? 5 : 5 * static_cast<int>(io::PrefetchingSource::kLightPerFrame);
+            EXPECT_LE(inner->calls.load(), depth + 2) << (frames ? "frames" : "light");
+            EXPECT_GE(inner->calls.load(), depth + 1) << (frames ? "frames" : "light");
+        }  // destroyed with a full queue and an endless source: joins, no hang
+    }
 }
 
-TEST(PrefetchingSource, ImagesAreDecodedOnTheWorkerNotWhenFirstTouched) {
+TEST_P(PrefetchingSource, ImagesAreDecodedOnTheWorkerNotWhenFirstTouched) {
     // MRPT decodes a delay-loaded image when its pixels are first touched; the worker must do
     // that itself, or the decoding stays in the caller's loop. Seen from outside: once handed
     // over, a frame's pixels are there even if its file is gone.
     registerAllClasses();
     test::TempDir dir;
     const auto path = rawlogWithExternalImages(dir);
-    io::PrefetchingSource ahead(std::make_unique<io::RawlogSource>(path), 2);
+    io::PrefetchingSource ahead(std::make_unique<io::RawlogSource>(path), 2, {}, GetParam());
     int frames = 0;
     while (auto obs = ahead.next()) {
         auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(obs);
@@ -191,3 +204,5 @@ TEST(PrefetchingSource, ImagesAreDecodedOnTheWorkerNotWhenFirstTouched) {
     }
     EXPECT_EQ(frames, 40);
 }
+
+INSTANTIATE_TEST_SUITE_P(Workers, PrefetchingSource, ::testing::Values(1u, 2u, 3u));

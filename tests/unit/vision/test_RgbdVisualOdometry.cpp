@@ -95,6 +95,49 @@ TEST(RgbdVisualOdometry, SimulatedMotionTowardsAPostersWall) {
     EXPECT_LT(aa.axis().y() * 1.0, 0.0) << "a left turn is negative about y (down)";
 }
 
+TEST(RgbdVisualOdometry, AMotionPriorGuidesTheMatchingAndAWrongOneFallsBack) {
+    const auto sc = lodestone::test::boxScenario("posters");
+    const lodestone::sim::World world(sc, 3);
+    lodestone::sim::CameraSpec cam;
+    // The true motion in the reference's optical frame: 8 cm forward, 1.7 deg left.
+    Eigen::Isometry3d truth = Eigen::Isometry3d::Identity();
+    truth.linear() = Eigen::AngleAxisd(-0.03, Eigen::Vector3d::UnitY()).toRotationMatrix();
+    truth.translation() = Eigen::Vector3d(0, 0, 0.08);
+    MotionPrior prior;
+    prior.T_ref_cur = truth;
+    prior.covariance.setZero();
+    prior.covariance.diagonal() << 3e-4, 3e-4, 3e-4, 1e-4, 1e-4, 1e-4;  // 1 deg, 1 cm
+    const auto first = simulatedFrame(world, cam, 5.0, 0.0);
+    const auto second = simulatedFrame(world, cam, 5.08, 0.03);
+
+    RgbdVisualOdometry brute, guided;
+    brute.process(first);
+    guided.process(first);
+    EXPECT_EQ(guided.referenceTimestamp(), std::optional<double>(first.timestamp));
+    const auto b = brute.process(second);
+    const auto g = guided.process(second, &prior);
+    ASSERT_TRUE(b.success && g.success) << toString(g.failure);
+    EXPECT_FALSE(b.guided);
+    EXPECT_TRUE(g.guided);
+    EXPECT_LT((g.T_ref_cur.translation() - truth.translation()).norm(), 0.01);
+    EXPECT_LT(Eigen::AngleAxisd(g.T_ref_cur.rotation().transpose() * truth.rotation()).angle(),
+              0.005);
+    EXPECT_GE(g.inliers, b.inliers * 9 / 10) << "the gate keeps what brute force found";
+    EXPECT_EQ(guided.totals().guided, 1u);
+
+    // A prior 40 cm sideways of the truth (a push the wheels did not feel): the gates miss the
+    // true keypoints, and brute force finds the motion.
+    RgbdVisualOdometry misled;
+    misled.process(first);
+    MotionPrior wrong = prior;
+    wrong.T_ref_cur.translation() += Eigen::Vector3d(0.4, 0, 0);
+    const auto m = misled.process(second, &wrong);
+    ASSERT_TRUE(m.success) << toString(m.failure);
+    EXPECT_FALSE(m.guided);
+    EXPECT_EQ(misled.totals().guidedFallback, 1u);
+    EXPECT_LT((m.T_ref_cur.translation() - truth.translation()).norm(), 0.01);
+}
+
 TEST(RgbdVisualOdometry, PlainWallsMissingDepthAndNaNsFailThenLost) {
     const auto plain = lodestone::test::boxScenario("plain");
     const lodestone::sim::World world(plain, 3);

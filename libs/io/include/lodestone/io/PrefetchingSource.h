@@ -10,26 +10,37 @@
 #include <memory>
 #include <mutex>
 #include <thread>
+#include <vector>
 
 namespace lodestone::io {
 
-/** Reads and decodes ahead on a second thread: a worker takes observations from another source,
- * loads their external data and decodes their delay-loaded images (CObservation::load(), and
+/** Reads and decodes ahead on other threads: workers take observations from another source,
+ * load their external data and decode their delay-loaded images (CObservation::load(), and
  * the colour PNG / JPEG files, which MRPT decodes only when their pixels are first touched) and
- * queues them, at most `depth` ahead of the caller; next() hands them over in the
+ * queue them, at most `depth` frames ahead of the caller; next() hands them over in the
  * inner source's order. What comes out is exactly what the inner source gives, decoded, so
- * results do not depend on it (and are deterministic: one producer, one consumer, one order).
+ * results do not depend on it (and are deterministic: one reader at a time, one order; the
+ * decoders only fill in pixels).
  *
+ * - `threads` workers share the work: whichever is free reads the next entry (one at a time:
+ *   the inner source is sequential) or decodes one already read, so decoding runs on several
+ *   cores when one is not enough (PNG colour costs ~7 ms a frame, more than the frame loop).
  * - A fault of the inner source is handed over after every observation before it, as the inner
  *   source itself does. An image that fails to load is left unloaded: the consumer's own load()
  *   meets the same error where it would have without prefetching.
- * - Memory: at most `depth` decoded observations besides the one the caller holds.
- * - The inner source is only touched from the worker; `progress` (e.g. a rawlog's fraction
- *   read) is sampled there after each observation and read back with progress(). */
+ * - Memory: at most `depth` frames (observations with images or range data) besides the one
+ *   the caller holds, and at most kLightPerFrame x `depth` observations in all. The light ones
+ *   (magnetometers, odometry) come at several times the camera's rate; counting them against
+ *   the depth would leave less than a frame queued, and reading and decoding would wait on the
+ *   frame loop instead of running beside it.
+ * - The inner source is touched by one worker at a time; `progress` (e.g. a rawlog's fraction
+ *   read) is sampled after each read and read back with progress(). */
 class PrefetchingSource : public DataSource {
   public:
+    static constexpr std::size_t kLightPerFrame = 64;
+
     PrefetchingSource(std::unique_ptr<DataSource> inner, std::size_t depth,
-                      std::function<double()> progress = {});
+                      std::function<double()> progress = {}, std::size_t threads = 1);
     ~PrefetchingSource() override;
     PrefetchingSource(const PrefetchingSource&) = delete;
     PrefetchingSource& operator=(const PrefetchingSource&) = delete;
@@ -38,7 +49,20 @@ class PrefetchingSource : public DataSource {
     std::string name() const override { return name_; }
     double progress() const { return progress_.load(); }
 
+    /** The workers' time so far [s], summed over them: reading entries from the inner source,
+     * and decoding what they load (external files, images). */
+    struct WorkerTime {
+        double readSeconds{0}, decodeSeconds{0};
+    };
+    WorkerTime workerTime() const;
+
   private:
+    struct Slot {
+        mrpt::obs::CObservation::Ptr obs;
+        bool taken{false};    // a worker is decoding it
+        bool decoded{false};  // ready for the caller
+        bool heavy{false};    // a frame: counts against the depth
+    };
     void run();
 
     std::unique_ptr<DataSource> inner_;
@@ -46,12 +70,16 @@ class PrefetchingSource : public DataSource {
     const std::size_t depth_;
     std::function<double()> progressOf_;
     std::atomic<double> progress_{0};
-    std::mutex mutex_;
-    std::condition_variable notEmpty_, notFull_;
-    std::deque<mrpt::obs::CObservation::Ptr> queue_;
+    mutable std::mutex mutex_;
+    std::condition_variable ready_;  // the front slot was decoded, or the end / a fault came
+    std::condition_variable work_;   // a slot to decode, room to read, or stop
+    std::deque<Slot> queue_;
+    std::size_t framesQueued_{0};
+    bool reading_{false};  // a worker is inside inner_->next()
     bool done_{false}, stop_{false};
     std::exception_ptr error_;
-    std::thread worker_;  // last: starts once everything above exists
+    WorkerTime time_;                  // guarded by mutex_
+    std::vector<std::thread> workers_;  // last: start once everything above exists
 };
 
 }  // namespace lodestone::io

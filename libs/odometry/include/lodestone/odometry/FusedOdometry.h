@@ -10,6 +10,7 @@
 #include <deque>
 #include <map>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace lodestone::odometry {
@@ -43,6 +44,10 @@ class FusedOdometry {
         std::string cameraLabel;              ///< only this RGB-D label ("" = any)
         double posePositionNoise{1e-4};  ///< pose-only odometry: variance per sample and axis [m^2]
         double poseHeadingNoise{1e-4};   ///< pose-only odometry: variance per sample [rad^2]
+        /** The wheels' prediction that guides VO's matching is planar; the floor tilts and
+         * lifts the camera this much (1 sigma) between VO's reference and the frame. */
+        double guidedTiltSigma{1.0 * M_PI / 180};  ///< [rad] roll and pitch
+        double guidedRiseSigma{0.01};              ///< [m]
 
         /** Reads [wheel_odometry], [visual_odometry] and [odometry_fusion] (`section` is the
          * fusion one). */
@@ -94,6 +99,10 @@ class FusedOdometry {
     };
     Eigen::Vector2d travelAt(double t) const;
     Estimate resolve(const Pending& p);
+    /** The wheels' prediction of the frame at `t` relative to VO's reference frame, in the
+     * optical frame (for guided matching); none without encoder samples around both. */
+    std::optional<vision::MotionPrior> wheelPrior(double t,
+                                                  const Eigen::Isometry3d& T_robot_optical) const;
     Estimate fromPoseSample(double t, const mrpt::poses::CPose2D& pose);
     /** VO's motion in the robot frame, projected on the plane; `rise` / `riseVariance`, when
      * given, get its vertical part. */

@@ -15,9 +15,12 @@ struct SlamRunOptions {
     std::string outDir;
     std::string groundTruth;  ///< TUM file for the ATE (with --sim: the simulator's own)
     double maxSeconds{std::numeric_limits<double>::infinity()};  ///< of data, from its start
-    /** Observations read and decoded ahead on a second thread (io::PrefetchingSource); 0:
-     * read and decode in the frame loop. Results are the same either way. */
+    /** Frames read and decoded ahead on other threads (io::PrefetchingSource); 0: read and
+     * decode in the frame loop. Results are the same either way. */
     std::size_t decodeAhead{8};
+    /** Threads reading and decoding ahead (with decodeAhead > 0); 0: one per core the
+     * process may run on (its affinity: `taskset -c 0` gives one). */
+    std::size_t decodeThreads{0};
     bool quiet{false};
     bool terminal{false};  ///< draw the progress bar in place
 };

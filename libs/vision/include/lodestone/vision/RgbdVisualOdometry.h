@@ -1,6 +1,7 @@
 #pragma once
 
 #include <lodestone/vision/DescriptorMatcher.h>
+#include <lodestone/vision/GuidedMatcher.h>
 #include <lodestone/vision/OrbFeatures.h>
 #include <lodestone/vision/RgbdFrame.h>
 #include <lodestone/vision/RigidRansac.h>
@@ -34,6 +35,10 @@ struct VoTiming {
 struct VoTotals {
     std::size_t frames{0};
     VoTiming ms;
+    std::size_t guided{0};          ///< frames aligned by matching guided by a motion prior
+    std::size_t guidedFallback{0};  ///< frames with a prior whose guided match failed (brute force then)
+    /** Descriptor pairs the guided matcher compared, against the n x m brute force would. */
+    double guidedPairsCompared{0}, guidedPairsAll{0};
 };
 
 /** What one frame gave. */
@@ -47,6 +52,8 @@ struct VoResult {
         Eigen::Matrix<double, 6, 6>::Identity()};  ///< see RigidEstimate
     double referenceTimestamp{0};  ///< [s] of the reference frame T_ref_cur is relative to
     std::size_t features{0}, matches{0}, inliers{0};
+    /** The motion was found by matching guided by the caller's prior (else by brute force). */
+    bool guided{false};
     /** This frame's features (optical frame), for whoever keeps keyframes (the SLAM node
      * decider, loop closers). */
     std::shared_ptr<const FrameFeatures> frameFeatures;
@@ -73,6 +80,11 @@ class RgbdVisualOdometry {
         double keyframeDistance{0.10};
         double keyframeAngle{5 * M_PI / 180};
         std::uint64_t seed{1};  ///< RANSAC seed (deterministic results)
+        /** With a motion prior, match each reference feature only against the keypoints in
+         * its predicted gate (GuidedMatcher); brute force when that fails. */
+        bool guidedMatching{true};
+        double guidedGateChi2{11.83};      ///< the gate, chi-square with 2 dof
+        double guidedKeypointSigma{1.0};  ///< ORB keypoint noise at level 0 [px]
 
         /** All keys in one section (ORB, matcher and RANSAC keys included). */
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
@@ -83,8 +95,11 @@ class RgbdVisualOdometry {
     RgbdVisualOdometry();
     explicit RgbdVisualOdometry(const Params& params);
 
-    /** Processes the next frame. */
-    VoResult process(const RgbdFrame& frame);
+    /** Processes the next frame. With a `prior` (where the frame is relative to the current
+     * reference, `referenceTimestamp()`) and `guidedMatching`, matching is guided by it. */
+    VoResult process(const RgbdFrame& frame, const MotionPrior* prior = nullptr);
+    /** The timestamp of the frame the next one will be aligned with, if any. */
+    std::optional<double> referenceTimestamp() const;
 
     /** Two frames' features aligned as `process` aligns a frame with its reference (matching,
      * RANSAC; no plausibility gate on the motion, no state change): `estimate.transform` is
@@ -107,11 +122,16 @@ class RgbdVisualOdometry {
     const Params& params() const { return params_; }
 
   private:
-    VoResult processFrame(const RgbdFrame& frame);
+    VoResult processFrame(const RgbdFrame& frame, const MotionPrior* prior);
+    /** RANSAC on given matches (the second half of `align`). */
+    Alignment alignMatches(const FrameFeatures& reference, const FrameFeatures& current,
+                           const std::vector<cv::DMatch>& matches, std::uint64_t seed) const;
+    bool plausible(const RigidEstimate& estimate) const;
 
     Params params_;
     OrbExtractor extractor_;
     DescriptorMatcher matcher_;
+    GuidedMatcher guided_;
     RigidRansac ransac_;
     std::optional<FrameFeatures> reference_;
     double reference_time_{0};
