@@ -45,10 +45,11 @@ r = json.load(open(sys.argv[1]))
 wall, rss, laps, camera = float(sys.argv[2]), int(sys.argv[3]), sys.argv[4], sys.argv[5]
 t = r["timing"]
 deciles = " / ".join("%.1f" % d for d in t["node_ms_by_decile"])
-print("| laps | camera | data [s] | wall [s] | peak RSS [MB] | nodes | ATE [m] | node ms mean / p99 / max | node ms by decile |")
-print("|---|---|---|---|---|---|---|---|---|")
-nodes = r["engine"].get("nodes", "?")
-print("| %s | %s | %.0f | %.0f | %d | %s | %.4f | %.1f / %.1f / %.0f | %s |" % (
-    laps, camera, t["data_s"], wall, rss // 1024, nodes, r.get("ate", {}).get("rmse_m", float("nan")),
+print("| laps | camera | data [s] | wall [s] | peak RSS [MB] | nodes | loop closures | relocations | ATE [m] | node ms mean / p99 / max | node ms by decile |")
+print("|---|---|---|---|---|---|---|---|---|---|---|")
+c = r["engine"]["counts"]
+print("| %s | %s | %.0f | %.0f | %d | %d | %d | %d | %.4f | %.1f / %.1f / %.0f | %s |" % (
+    laps, camera, t["data_s"], wall, rss // 1024, c["nodes"], c["loop_closures"], c["relocations"],
+    r.get("ate", {}).get("rmse_m", float("nan")),
     t["node_ms"]["mean"], t["node_ms"]["p99"], t["node_ms"]["max"], deciles))
 PY

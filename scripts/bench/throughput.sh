@@ -3,8 +3,11 @@
 # lodestone-sim at its INI's camera (640x480 @ 30 Hz; colour as PNG files beside the rawlog,
 # as a user's recording is), then `lodestone-slam --rawlog ... --config CONFIG` timed as a user
 # runs it - the whole process, start to outputs written - on both cores and pinned to one
-# (taskset -c 0). Prints a markdown table: wall time, real-time factor, the engine's frame time
-# (report.json), peak RSS (/usr/bin/time), ATE.
+# (taskset -c 0). Prints two markdown tables: wall time, real-time factor, the engine's frame
+# time (report.json), peak RSS (/usr/bin/time), ATE; then each run's time per RGB-D frame by
+# stage (report.json): read and decode (the decode-ahead workers, summed over them; "-" where
+# the build did not report them), ORB, matching, RANSAC (VO), the rest of the node decider
+# (fusion, keyframes, graph), the loop closers, the solves, and the frame loop's wait for data.
 # Usage: scripts/bench/throughput.sh [--config INI] [--recordings DIR] [--slam BINARY] [SCENARIO.ini ...]
 #   --config      SLAM INI (default config_ini/slam.ini)
 #   --recordings  keep the recorded rawlogs in DIR and reuse them when there (they are large:
@@ -39,6 +42,8 @@ mkdir -p "$rec"
 scenarios=("$@")
 [ ${#scenarios[@]} -gt 0 ] || scenarios=("$root/config_ini/office.ini" "$root/config_ini/paper_loop.ini")
 json() { python3 -c "import json,sys; r=json.load(open(sys.argv[1])); print(eval(sys.argv[2]))" "$@"; }
+stages="$out/stages.md"
+: > "$stages"
 echo "| scenario | config | cores | frames | data [s] | wall [s] | real-time factor | frame ms mean / p99 | peak RSS [MB] | ATE [m] |"
 echo "|---|---|---|---|---|---|---|---|---|---|"
 for ini in "${scenarios[@]}"; do
@@ -58,7 +63,30 @@ for ini in "${scenarios[@]}"; do
         ate=$(grep -o "ATE RMSE [0-9.]*" "$out/run.log" | awk '{print $3}')
         rtf=$(python3 -c "print('%.2fx' % ($data / $wall))")
         echo "| $name | $(basename "$config") | $cores | $frames | $data | $wall | $rtf | $frame | $((rss / 1024)) | $ate |"
+        python3 - "$report" "$name" "$cores" >> "$stages" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+t, e = r["timing"], r["engine"]
+st = e["node_decider"]["stats"]
+frames = max(1, st.get("rgbd_frames", 1))
+vo = st.get("vo_ms_per_frame", {})
+ms = lambda s: "%.2f" % (1e3 * s / frames) if s is not None else "-"
+voSum = sum(vo.get(k, 0) for k in ("orb", "matching", "ransac"))
+nrdRest = 1e3 * e["stage_seconds"]["node_decider_s"] / frames - voSum
+cells = [ms(t.get("worker_read_s")), ms(t.get("worker_decode_s"))]
+cells += ["%.2f" % vo[k] if k in vo else "-" for k in ("orb", "matching", "ransac")]
+cells += ["%.2f" % nrdRest, ms(e["stage_seconds"]["edge_decider_s"]),
+          ms(e["stage_seconds"]["optimizer_s"]), ms(t["source_s"])]
+print("| %s | %s | %s |" % (sys.argv[2], sys.argv[3], " | ".join(cells)))
+PY
         rm -rf "$out/run"
     done
     [ -n "$recordings" ] || rm -rf "$out/$name"*
 done
+echo
+echo "Per RGB-D frame [ms]: read and decode on the workers (their CPU time), the rest in the frame"
+echo "loop (wall time: on one core it includes the turns the workers took):"
+echo
+echo "| scenario | cores | read | decode | ORB | matching | RANSAC | node decider, rest | loop closers | solves | frame loop waiting for data |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|"
+cat "$stages"

@@ -49,8 +49,8 @@ class PrefetchingSource : public DataSource {
     std::string name() const override { return name_; }
     double progress() const { return progress_.load(); }
 
-    /** The workers' time so far [s], summed over them: reading entries from the inner source,
-     * and decoding what they load (external files, images). */
+    /** The workers' CPU time so far [s], summed over them: reading entries from the inner
+     * source, and decoding what they load (external files, images). */
     struct WorkerTime {
         double readSeconds{0}, decodeSeconds{0};
     };
