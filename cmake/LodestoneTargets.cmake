@@ -1,7 +1,8 @@
 # Helpers that give every lodestone library and app the same shape:
 #   lodestone_add_library(<lib> SOURCES ... DEPENDS ...) -> target lodestone_<lib>, alias
 #   lodestone::<lib>, headers under libs/<lib>/include, exported as lodestone::<lib>.
-#   lodestone_add_app(<name> SOURCES ... DEPENDS ...)    -> an installed executable.
+#   lodestone_add_app(<name> SOURCES ... DEPENDS ...)    -> an installed executable, with the
+#                                                           allocation hooks (libs/memguard).
 
 set(LODESTONE_WARNING_FLAGS -Wall -Wextra -Wpedantic)
 
@@ -40,7 +41,8 @@ endfunction()
 function(lodestone_add_app name)
     cmake_parse_arguments(ARG "" "" "SOURCES;DEPENDS" ${ARGN})
     add_executable(${name} ${ARG_SOURCES})
-    target_link_libraries(${name} PRIVATE ${ARG_DEPENDS})
+    # lodestone_allocation_hooks: what bounds a damaged rawlog entry's allocations (memguard).
+    target_link_libraries(${name} PRIVATE ${ARG_DEPENDS} lodestone_allocation_hooks)
     lodestone_apply_common_flags(${name})
     install(TARGETS ${name} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endfunction()

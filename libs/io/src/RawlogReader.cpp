@@ -1,4 +1,5 @@
 #include <lodestone/io/RawlogReadError.h>
+#include <lodestone/memguard/AllocationBudget.h>
 #include <lodestone/io/RawlogReader.h>
 #include <mrpt/serialization/CArchive.h>
 
@@ -25,6 +26,17 @@ std::string firstMeaningfulLine(const std::string& text) {
         start = end + 1;
     }
     return text;
+}
+// What reading one entry may allocate (memguard::AllocationBudget): MRPT allocates what an
+// entry's size fields say before reading the data, so a damaged size would take gigabytes.
+// Real data needs its bytes in the file, so the bound is a multiple of what is left of it:
+constexpr std::uint64_t kEntryFloor = 64ull << 20;  // MRPT's own bookkeeping, small entries
+constexpr std::uint64_t kBytesPerStoredByte = 8;    // conversions on load (e.g. 16-bit -> float)
+constexpr std::uint64_t kMaxDeflateRatio = 1032;    // deflate's limit: gzip bytes -> data bytes
+constexpr std::uint64_t kMaxEntryBytes = 2ull << 30;  // whatever the file: 2 GiB an entry
+
+std::string megabytes(std::uint64_t bytes) {
+    return std::to_string((bytes + (1 << 20) - 1) >> 20) + " MB";
 }
 }  // namespace
 
@@ -67,16 +79,41 @@ std::optional<RawlogEntry> RawlogReader::next() {
         if (!zlibError.empty()) why += " (zlib: " + zlibError + ")";
         return RawlogReadError(path_, entry.index, entry.byteOffset, why);
     };
+    // MRPT reports a refused allocation in several ways (bad_alloc, wrapped in its own
+    // exception, or a failure further on): the budget says what happened.
+    // Bytes of the file that may still hold this entry: in a plain file, from where it starts;
+    // in a gzip file, from where zlib has read to, less its read-ahead buffer.
+    std::uint64_t offset = entry.byteOffset;
+    if (compressed_) {
+        const std::uint64_t read = impl_->stream.fileOffset();
+        offset = read > detail::ZlibFileStream::kReadAhead ? read - detail::ZlibFileStream::kReadAhead : 0;
+    }
+    const std::uint64_t left = file_size_ > offset ? file_size_ - offset : 0;
+    const std::uint64_t limit =
+        std::min(kMaxEntryBytes,
+                 kEntryFloor + kBytesPerStoredByte * (compressed_ ? kMaxDeflateRatio : 1) * left);
+    memguard::AllocationBudget budget(limit);
+    const auto overBudget = [&] {
+        return fail("corrupt entry: a size field asks for " + megabytes(budget.refused()) +
+                    ", more than the " + std::to_string(left) + (compressed_ ? " compressed" : "") +
+                    " bytes left in the file can hold (limit " + megabytes(limit) + ")");
+    };
     try {
         entry.object = impl_->archive.ReadObject();
+        if (budget.exceeded()) throw overBudget();
+    } catch (const RawlogReadError&) {
+        throw;
     } catch (const mrpt::serialization::CExceptionEOF&) {
+        if (budget.exceeded()) throw overBudget();
         if (impl_->stream.getPosition() == entry.byteOffset && impl_->stream.lastError().empty()) {
             return std::nullopt;  // a clean end between two entries
         }
         throw fail("truncated: the file ends inside this entry");
     } catch (const std::bad_alloc&) {
+        if (budget.exceeded()) throw overBudget();
         throw fail("corrupt entry (an impossible size made the reader run out of memory)");
     } catch (const std::exception& e) {
+        if (budget.exceeded()) throw overBudget();
         throw fail(firstMeaningfulLine(e.what()));
     }
     if (!entry.object) throw fail("null object stored as an entry");

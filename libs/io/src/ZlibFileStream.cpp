@@ -42,7 +42,7 @@ ZlibFileStream::ZlibFileStream(const std::string& path, Mode mode, int gzipLevel
                                  (mode == Mode::Read ? "reading" : "writing"));
     }
     if (mode == Mode::Read) {
-        gzbuffer(asGz(file_), 1 << 17);
+        gzbuffer(asGz(file_), kReadAhead);
         // gzdirect() is only reliable once zlib has looked at the first bytes.
         char probe = 0;
         const int n = gzread(asGz(file_), &probe, 1);

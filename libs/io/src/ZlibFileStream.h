@@ -15,6 +15,8 @@ namespace lodestone::io::detail {
 class ZlibFileStream : public mrpt::io::CStream {
   public:
     enum class Mode { Read, WritePlain, WriteGzip };
+    /** zlib's input buffer when reading: how far fileOffset() may run ahead [bytes]. */
+    static constexpr unsigned kReadAhead = 1u << 17;
 
     /** Opens `path`; throws std::runtime_error naming the file on failure.
      * `gzipLevel` (1..9) is used in WriteGzip mode only. */
