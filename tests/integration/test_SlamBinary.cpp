@@ -191,3 +191,29 @@ TEST(SlamBinary, DecodingAheadChangesNothingButTheTime) {
     }
     EXPECT_NE(readText(dir.file("ahead8/report.json")).find("\"decode_ahead\": 8"), std::string::npos);
 }
+
+TEST(SlamBinary, ABadGroundTruthIsNamedBeforeAnyWorkAndNoStaleReportStays) {
+    lodestone::test::TempDir dir;
+    const std::string out = dir.file("out");
+    // A previous run's outputs in the folder...
+    fs::create_directories(out);
+    std::ofstream(dir.file("out/report.json")) << "{\"from\": \"an earlier run\"}\n";
+    std::ofstream(dir.file("out/trajectory.png")) << "old";
+    std::ofstream(dir.file("bad.tum")) << "1.0 0 0 0 0 0 0 1\n2.0 0 0 0 x 0 0 1\n";
+    const auto r = lodestone::test::runCommand(kSlam + " --rawlog " + kOfficeRawlog +
+                                               " --ground-truth " + dir.file("bad.tum") +
+                                               " --config " + kConfigDir + "/slam.ini --out " + out);
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.output.find("bad.tum"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("line 2"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("done "), std::string::npos) << "refused before the run: " << r.output;
+    // ... are left alone when the run never starts (nothing of it was written) ...
+    EXPECT_TRUE(fs::exists(dir.file("out/report.json")));
+    // ... and are gone once a run starts, so none stays beside this run's results.
+    const auto ok = lodestone::test::runCommand(kSlam + " --rawlog " + kOfficeRawlog + " --config " +
+                                                kConfigDir + "/slam.ini --max-seconds 2 --quiet --out " + out);
+    ASSERT_EQ(ok.exitCode, 0) << ok.output;
+    EXPECT_FALSE(fs::exists(dir.file("out/trajectory.png"))) << "no ground truth: no plot of it";
+    EXPECT_EQ(readText(dir.file("out/report.json")).find("an earlier run"), std::string::npos);
+    EXPECT_FALSE(fs::exists(dir.file("out/report.json.partial")));
+}

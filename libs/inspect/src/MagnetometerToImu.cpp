@@ -12,6 +12,7 @@ namespace lodestone::inspect {
 MagnetometerToImuResult magnetometersToImu(const std::string& inPath, const std::string& outPath,
                                            lodestone::obs::MagneticUnit imuUnit) {
     using lodestone::obs::CObservationMagnetometer;
+    io::refuseOutputOverInput(outPath, {inPath});
     io::RawlogReader reader(inPath);
     io::RawlogWriter writer(outPath, {io::isGzipPath(outPath) ? 6 : 0});
     MagnetometerToImuResult result;

@@ -1,5 +1,6 @@
 #include <lodestone/config/CommandLine.h>
 #include <lodestone/io/ImportApp.h>
+#include <lodestone/io/RawlogPaths.h>
 #include <lodestone/io/MagneticRecordingImport.h>
 #include <lodestone/io/SevenScenesImport.h>
 #include <lodestone/io/TumRgbdImport.h>
@@ -190,6 +191,9 @@ int importMagnetic(const std::string& kind, const std::vector<std::string>& word
     if (!(model.sp2 >= 0) || !(model.sh2 >= 0) || !(model.rate >= 0)) {
         return usage("--sp2, --sh2 and --odometry-rate must be >= 0");
     }
+    // (An Aalto trial is a folder; a Kok walk a file the output must not overwrite.)
+    refuseOutputOverInput(args.back(), {args[0]});
+    refuseOutputOverInput(rawlogStem(args.back()) + ".gt.tum", {args[0]});
     MagneticRecording recording;
     if (aalto) {
         int trial = 0;

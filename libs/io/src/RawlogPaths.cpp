@@ -1,5 +1,8 @@
 #include <lodestone/io/RawlogPaths.h>
 
+#include <filesystem>
+#include <stdexcept>
+
 namespace lodestone::io {
 
 namespace {
@@ -18,5 +21,17 @@ std::string rawlogStem(const std::string& rawlogPath) {
 }
 
 bool isGzipPath(const std::string& path) { return endsWith(path, ".gz"); }
+
+void refuseOutputOverInput(const std::string& output, const std::vector<std::string>& inputs) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (!fs::exists(output, ec)) return;  // a new file cannot be an input
+    for (const auto& input : inputs) {
+        if (fs::equivalent(output, input, ec) && !ec) {
+            throw std::invalid_argument("output '" + output + "' is the input '" + input +
+                                        "': refusing to overwrite it");
+        }
+    }
+}
 
 }  // namespace lodestone::io

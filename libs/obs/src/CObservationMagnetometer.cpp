@@ -2,6 +2,8 @@
 #include <mrpt/serialization/CArchive.h>
 #include <mrpt/system/datetime.h>
 
+#include "SerializedBool.h"
+
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -29,11 +31,12 @@ void CObservationMagnetometer::serializeFrom(mrpt::serialization::CArchive& in, 
             in >> timestamp >> sensorLabel >> sensorPose;
             in >> field.x >> field.y >> field.z;
             in >> noiseStd.x >> noiseStd.y >> noiseStd.z;
-            bool hasTemperature = false;
+            const bool hasTemperature =
+                detail::readBool(in, "CObservationMagnetometer", "has_temperature");
             double t = 0;
-            in >> hasTemperature >> t;
+            in >> t;
             temperature = hasTemperature ? std::optional<double>(t) : std::nullopt;
-            in >> calibrated;
+            calibrated = detail::readBool(in, "CObservationMagnetometer", "calibrated");
         } break;
         default:
             MRPT_THROW_UNKNOWN_SERIALIZATION_VERSION(version);

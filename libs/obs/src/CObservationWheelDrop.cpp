@@ -1,6 +1,8 @@
 #include <lodestone/obs/CObservationWheelDrop.h>
 #include <mrpt/serialization/CArchive.h>
 
+#include "SerializedBool.h"
+
 namespace lodestone::obs {
 
 IMPLEMENTS_SERIALIZABLE(CObservationWheelDrop, mrpt::obs::CObservation, lodestone::obs)
@@ -16,7 +18,9 @@ void CObservationWheelDrop::serializeTo(mrpt::serialization::CArchive& out) cons
 void CObservationWheelDrop::serializeFrom(mrpt::serialization::CArchive& in, uint8_t version) {
     switch (version) {
         case 0:
-            in >> timestamp >> sensorLabel >> leftDropped >> rightDropped;
+            in >> timestamp >> sensorLabel;
+            leftDropped = detail::readBool(in, "CObservationWheelDrop", "left_dropped");
+            rightDropped = detail::readBool(in, "CObservationWheelDrop", "right_dropped");
             break;
         default:
             MRPT_THROW_UNKNOWN_SERIALIZATION_VERSION(version);

@@ -35,6 +35,12 @@ namespace {
 namespace fs = std::filesystem;
 using graphslam::JsonObject;
 
+/** Every file a run writes in its output directory. */
+constexpr const char* kOutputs[] = {"trajectory.tum", "graph.graph",  "closures.csv",
+                                    "map.ply",        "graph.png",    "trajectory.png",
+                                    "report.json",    "ground_truth.tum", "events.txt",
+                                    "map_at_first_kidnap.tum"};
+
 /** Input problems found before any work: the message is the whole story. */
 struct InputError : std::runtime_error {
     using std::runtime_error::runtime_error;
@@ -211,14 +217,20 @@ SlamRunResult runSlam(const SlamRunOptions& options, std::ostream& out, std::ost
                 source = std::move(rl);
             }
         }
-        if (!options.groundTruth.empty() && !fs::exists(options.groundTruth)) {
-            throw InputError("cannot open ground truth '" + options.groundTruth + "'");
+        if (!options.groundTruth.empty()) {
+            if (!fs::exists(options.groundTruth)) {
+                throw InputError("cannot open ground truth '" + options.groundTruth + "'");
+            }
+            // Read now, not after the run: a bad line is named before any work.
+            io::readTumTrajectory(options.groundTruth);
         }
         std::error_code ec;
         fs::create_directories(dir, ec);
         if (ec || !fs::is_directory(dir)) {
             throw InputError("cannot create output directory '" + options.outDir + "': " + ec.message());
         }
+        // A previous run's outputs must not stay beside this one's if this one stops early.
+        for (const char* name : kOutputs) fs::remove(dir / name, ec);
         if (simulator) {
             simTruth = std::make_unique<io::TumTrajectoryWriter>((dir / "ground_truth.tum").string());
             io::writeKidnapEvents((dir / "events.txt").string(), simulator->scenario().name,
@@ -340,10 +352,15 @@ SlamRunResult runSlam(const SlamRunOptions& options, std::ostream& out, std::ost
             }
         }
         if (!result.error.empty()) report.set("error", result.error);
-        std::ofstream json(dir / "report.json");
-        report.write(json);
-        json << "\n";
-        if (!json) throw std::runtime_error((dir / "report.json").string() + ": write failed");
+        // Written last and whole: a report.json there means every output above was written.
+        const fs::path partial = dir / "report.json.partial";
+        {
+            std::ofstream json(partial);
+            report.write(json);
+            json << "\n";
+            if (!json) throw std::runtime_error(partial.string() + ": write failed");
+        }
+        fs::rename(partial, dir / "report.json");
 
         std::size_t rejected = 0;
         for (const auto& lc : closures) rejected += lc.rejected;

@@ -2,6 +2,7 @@
 #include <lodestone/inspect/InspectApp.h>
 #include <lodestone/obs/registerAllClasses.h>
 
+#include <filesystem>
 #include <sstream>
 
 #include "RawlogTestHelpers.h"
@@ -109,4 +110,16 @@ TEST_F(InspectApp, CorruptRawlogListsWhatPrecedesTheFaultThenFails) {
     const auto s = inspectCmd({"summary", cut});
     EXPECT_EQ(s.code, kExitBadInput);
     EXPECT_NE(s.out.find("READ ERROR"), std::string::npos);
+}
+
+TEST_F(InspectApp, AnOutputThatIsTheInputIsRefusedAndTheInputKept) {
+    const std::string before = test::readBytes(path_);
+    const auto link = dir_.file("same.rawlog");
+    std::filesystem::create_symlink(path_, link);
+    for (const auto& out : {path_, link}) {
+        const auto r = inspectCmd({"to-imu", path_, out});
+        EXPECT_EQ(r.code, kExitBadInput) << out;
+        EXPECT_NE(r.err.find("refusing to overwrite"), std::string::npos) << r.err;
+        EXPECT_EQ(test::readBytes(path_), before) << "the input was touched through " << out;
+    }
 }

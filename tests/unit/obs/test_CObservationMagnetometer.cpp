@@ -144,3 +144,28 @@ TEST_F(MagnetometerTest, DISABLED_WriteGoldenV0) {
     mrpt::io::CFileOutputStream file(path.string());
     mrpt::serialization::archiveFrom(file) << goldenV0Object();
 }
+
+TEST_F(MagnetometerTest, ABoolFieldHoldingAnotherByteIsARefusedRead) {
+    // MRPT copies a stored bool's byte as it is; 127 would be an invalid bool (and was
+    // exported as CALIBRATED=127). The payload ends ..., has_temperature, temperature,
+    // calibrated, then MRPT's end-of-object marker.
+    for (const auto& [fromEnd, field] : {std::pair<std::size_t, const char*>{2, "calibrated"},
+                                         {11, "has_temperature"}}) {
+        mrpt::io::CMemoryStream buffer;
+        auto out = mrpt::serialization::archiveFrom(buffer);
+        out << goldenV0Object();
+        auto* bytes = static_cast<uint8_t*>(buffer.getRawBufferData());
+        const std::size_t at = buffer.getTotalBytesCount() - fromEnd;
+        ASSERT_EQ(bytes[at], 1) << field;
+        bytes[at] = 127;
+        buffer.Seek(0);
+        try {
+            mrpt::serialization::archiveFrom(buffer).ReadObject();
+            ADD_FAILURE() << field << ": byte 127 read as a bool";
+        } catch (const std::exception& e) {
+            const std::string what = e.what();
+            EXPECT_NE(what.find(field), std::string::npos) << what;
+            EXPECT_NE(what.find("127"), std::string::npos) << what;
+        }
+    }
+}

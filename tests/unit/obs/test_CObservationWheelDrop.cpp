@@ -59,3 +59,23 @@ TEST(WheelDrop, DISABLED_WriteGoldenV0) {
     mrpt::io::CFileOutputStream file(path.string());
     mrpt::serialization::archiveFrom(file) << goldenV0Object();
 }
+
+TEST(WheelDrop, ABoolFieldHoldingAnotherByteIsARefusedRead) {
+    lodestone::registerAllClasses();
+    // The payload ends with left_dropped, right_dropped, then MRPT's end-of-object marker.
+    for (const auto& [fromEnd, field] : {std::pair<std::size_t, const char*>{3, "left_dropped"},
+                                         {2, "right_dropped"}}) {
+        mrpt::io::CMemoryStream buffer;
+        auto out = mrpt::serialization::archiveFrom(buffer);
+        out << goldenV0Object();
+        auto* bytes = static_cast<uint8_t*>(buffer.getRawBufferData());
+        bytes[buffer.getTotalBytesCount() - fromEnd] = 8;
+        buffer.Seek(0);
+        try {
+            mrpt::serialization::archiveFrom(buffer).ReadObject();
+            ADD_FAILURE() << field << ": byte 8 read as a bool";
+        } catch (const std::exception& e) {
+            EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
+        }
+    }
+}

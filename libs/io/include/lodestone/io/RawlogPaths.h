@@ -1,6 +1,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace lodestone::io {
 
@@ -10,5 +11,10 @@ std::string rawlogStem(const std::string& rawlogPath);
 
 /** True when the path asks for gzip compression (ends in ".gz"). */
 bool isGzipPath(const std::string& path);
+
+/** Throws std::invalid_argument naming both when `output` is one of `inputs` - the same file
+ * by any name (a link, another relative path) - before anything opens it for writing, which
+ * would truncate the input before it is read. */
+void refuseOutputOverInput(const std::string& output, const std::vector<std::string>& inputs);
 
 }  // namespace lodestone::io
