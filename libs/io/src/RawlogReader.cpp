@@ -106,7 +106,13 @@ std::optional<RawlogEntry> RawlogReader::next() {
     } catch (const mrpt::serialization::CExceptionEOF&) {
         if (budget.exceeded()) throw overBudget();
         if (impl_->stream.getPosition() == entry.byteOffset && impl_->stream.lastError().empty()) {
-            return std::nullopt;  // a clean end between two entries
+            // A clean end between two entries - unless there was none: an empty file (or a
+            // gzip that inflates to nothing) is no rawlog, however MRPT's tools take it.
+            if (entry.index == 0) {
+                throw fail(compressed_ ? "no entries: the compressed data is empty"
+                                       : "no entries: the file is empty");
+            }
+            return std::nullopt;
         }
         throw fail("truncated: the file ends inside this entry");
     } catch (const std::bad_alloc&) {

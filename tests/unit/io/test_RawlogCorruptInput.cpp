@@ -145,13 +145,19 @@ TEST_F(RawlogCorruptInput, PureGarbageFile) {
     EXPECT_NE(got.error.find(path), std::string::npos) << got.error;
 }
 
-TEST_F(RawlogCorruptInput, EmptyFileIsAnEmptyRawlog) {
-    const auto path = dir_.file("empty.rawlog");
-    test::writeBytes(path, "");
-    io::RawlogSource source(path);
-    const auto got = test::drain(source);
-    EXPECT_TRUE(got.error.empty()) << got.error;
-    EXPECT_TRUE(got.observations.empty());
+TEST_F(RawlogCorruptInput, AnEmptyFileOrAnEmptyGzipIsNoRawlog) {
+    const auto empty = dir_.file("empty.rawlog");
+    test::writeBytes(empty, "");
+    const auto emptyGz = dir_.file("empty.rawlog.gz");
+    test::writeRawlog(emptyGz, {}, 6);  // a valid gzip stream of nothing
+    for (const auto& path : {empty, emptyGz}) {
+        io::RawlogSource source(path);
+        const auto got = test::drain(source);
+        EXPECT_TRUE(got.observations.empty());
+        EXPECT_NE(got.error.find(path), std::string::npos) << got.error;
+        EXPECT_NE(got.error.find("no entries"), std::string::npos) << got.error;
+        EXPECT_EQ(got.errorEntry, 0u);
+    }
 }
 
 TEST_F(RawlogCorruptInput, MissingFileNamesThePath) {
