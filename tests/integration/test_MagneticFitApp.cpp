@@ -104,4 +104,10 @@ TEST(MagneticFitApp, BadInputsAreNamedErrors) {
     r = runFit({rawlog, "--config", dir.file("typo.ini")});
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find("gp_lenght_scale"), std::string::npos) << r.err;
+    r = runFit({dir.path().string()});  // a directory, not a rawlog
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("a directory"), std::string::npos) << r.err;
+    r = runFit({rawlog, "--step", "1e-9"});  // 10^10 points a stretch: refused, not attempted
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.err.find("--step"), std::string::npos) << r.err;
 }

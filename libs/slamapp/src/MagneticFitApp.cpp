@@ -66,6 +66,14 @@ int runMagneticFitApp(int argc, const char* const* argv, std::ostream& out, std:
     std::string usage = outcome.error;
     if (usage.empty() && !(stretchArg.getValue() > 0)) usage = "--stretch must be > 0";
     if (usage.empty() && stepArg.isSet() && !(stepArg.getValue() > 0)) usage = "--step must be > 0";
+    // A stretch's GP costs the cube of its points: beyond this, a typo (1e-9) not a fit.
+    constexpr double kMaxPointsPerStretch = 4000;
+    if (usage.empty() && stepArg.isSet() &&
+        stretchArg.getValue() / stepArg.getValue() > kMaxPointsPerStretch) {
+        usage = "--step " + std::to_string(stepArg.getValue()) + " gives " +
+                std::to_string(stretchArg.getValue() / stepArg.getValue()) +
+                " points per --stretch; at most " + std::to_string(int(kMaxPointsPerStretch));
+    }
     if (!usage.empty()) {
         err << "lodestone-magfit: " << usage << " (see lodestone-magfit --help)\n";
         return 2;
@@ -89,8 +97,9 @@ int runMagneticFitApp(int argc, const char* const* argv, std::ostream& out, std:
     }
     if (sensorArg.isSet()) p.sensorLabel = sensorArg.getValue();
     if (stepArg.isSet()) p.track.step = stepArg.getValue();
-    if (!std::filesystem::exists(path)) {
-        err << "lodestone-magfit: cannot open rawlog '" << path << "'\n";
+    if (!std::filesystem::is_regular_file(path)) {
+        err << "lodestone-magfit: cannot open rawlog '" << path << "'"
+            << (std::filesystem::is_directory(path) ? ": a directory" : "") << "\n";
         return 1;
     }
 
@@ -131,7 +140,7 @@ int runMagneticFitApp(int argc, const char* const* argv, std::ostream& out, std:
                     {t, m->sensorPose.getRotationMatrix().asEigen() * inSensor});
             }
         }
-    } catch (const io::RawlogReadError& e) {
+    } catch (const std::exception& e) {  // a read error names the file, entry and offset
         err << "lodestone-magfit: " << e.what() << "\n";
         return 1;
     }
