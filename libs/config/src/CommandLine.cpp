@@ -1,5 +1,6 @@
 #include <lodestone/config/CommandLine.h>
 
+#include <cctype>
 #include <memory>
 
 namespace lodestone::config {
@@ -12,9 +13,33 @@ class RecordingOutput : public TCLAP::StdOutput {
     }
     std::string error;
 };
+/** A word that looks like an option no argument of `cmd` has (`--bogus`, `-z`): TCLAP lets a
+ * positional multi-argument swallow it, and the user would then read "expected DIR and OUT".
+ * Numbers (`-1`, `-.5`, `-1e3`) are values, not options. */
+std::string unknownOption(TCLAP::CmdLine& cmd, const std::vector<std::string>& words) {
+    for (std::size_t i = 1; i < words.size(); ++i) {
+        const std::string& w = words[i];
+        if (w == "--") break;  // everything after it is positional
+        if (w.size() < 2 || w[0] != '-') continue;
+        if (std::isdigit(static_cast<unsigned char>(w[1])) || w[1] == '.') continue;
+        const bool longForm = w[1] == '-';
+        const std::string name = w.substr(longForm ? 2 : 1, w.find('=') == std::string::npos
+                                                                 ? std::string::npos
+                                                                 : w.find('=') - (longForm ? 2 : 1));
+        bool known = false;
+        for (TCLAP::Arg* a : cmd.getArgList()) {
+            known = known || (longForm ? a->getName() == name : a->getFlag() == name);
+        }
+        if (!known) return w;
+    }
+    return {};
+}
 }  // namespace
 
 ParseOutcome parseCommandLine(TCLAP::CmdLine& cmd, const std::vector<std::string>& words) {
+    if (const auto unknown = unknownOption(cmd, words); !unknown.empty()) {
+        return {ParseOutcome::Kind::UsageError, "unknown option '" + unknown + "'"};
+    }
     std::vector<const char*> argv;
     for (const auto& w : words) argv.push_back(w.c_str());
     RecordingOutput output;
