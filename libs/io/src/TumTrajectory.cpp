@@ -2,6 +2,7 @@
 #include <mrpt/math/CQuaternion.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <sstream>
 #include <stdexcept>
@@ -32,14 +33,36 @@ std::vector<TumPose> readTumTrajectory(const std::string& path) {
     for (int lineNo = 1; std::getline(in, line); ++lineNo) {
         const auto first = line.find_first_not_of(" \t\r");
         if (first == std::string::npos || line[first] == '#') continue;
+        const auto bad = [&](const std::string& why) {
+            return std::runtime_error(path + ": line " + std::to_string(lineNo) + ": " + why);
+        };
         std::istringstream s(line);
         double v[8];
-        for (double& x : v) s >> x;
-        if (!s || !std::isfinite(v[0])) {
-            throw std::runtime_error(path + ": line " + std::to_string(lineNo) +
-                                     ": expected 'timestamp tx ty tz qx qy qz qw'");
+        for (double& x : v) {
+            std::string word;
+            char* end = nullptr;
+            if (!(s >> word) || (x = std::strtod(word.c_str(), &end), *end != '\0')) {
+                throw bad("expected 'timestamp tx ty tz qx qy qz qw'");
+            }
         }
-        const mrpt::math::CQuaternionDouble q(v[7], v[4], v[5], v[6]);
+        for (double x : v) {
+            if (!std::isfinite(x)) throw bad("a value is not a finite number");
+        }
+        // Positions beyond any building: a unit mistake or a damaged file (and the squares
+        // in an ATE would overflow).
+        constexpr double kMaxCoordinate = 1e6;  // [m]
+        for (int k = 1; k <= 3; ++k) {
+            if (std::abs(v[k]) > kMaxCoordinate) throw bad("a position beyond 1e6 m");
+        }
+        const double norm = std::sqrt(v[4] * v[4] + v[5] * v[5] + v[6] * v[6] + v[7] * v[7]);
+        if (!(norm > 1e-6)) throw bad("the quaternion is zero: no orientation");
+        // (Equal times are fine: a recording's truth is written at every observation, and two
+        // sensors may share a time.)
+        if (!out.empty() && v[0] < out.back().timestamp) {
+            throw bad("timestamp " + std::to_string(v[0]) + " is before the previous line's " +
+                      std::to_string(out.back().timestamp) + " (a trajectory is in time order)");
+        }
+        const mrpt::math::CQuaternionDouble q(v[7] / norm, v[4] / norm, v[5] / norm, v[6] / norm);
         out.push_back({v[0], mrpt::poses::CPose3D(q, v[1], v[2], v[3])});
     }
     return out;
