@@ -40,6 +40,10 @@ void positive(IniSection& s, const std::string& key, double v) {
     if (!(v > 0)) s.fail(key, "must be > 0");
 }
 
+void notNegative(IniSection& s, const std::string& key, double v) {
+    if (!(v >= 0)) s.fail(key, "must be >= 0 (a standard deviation)");
+}
+
 void readWorld(IniSection& s, Scenario& sc) {
     sc.wallHeight = s.getDouble("wall_height", sc.wallHeight);
     positive(s, "wall_height", sc.wallHeight);
@@ -107,8 +111,11 @@ void readEncoders(IniSection& s, EncoderSpec& e) {
     e.ticksPerRev = s.getDouble("ticks_per_rev", e.ticksPerRev);
     positive(s, "ticks_per_rev", e.ticksPerRev);
     e.slipStd = s.getDouble("slip_std", e.slipStd);
+    notNegative(s, "slip_std", e.slipStd);
     e.leftScale = s.getDouble("left_scale", e.leftScale);
     e.rightScale = s.getDouble("right_scale", e.rightScale);
+    positive(s, "left_scale", e.leftScale);
+    positive(s, "right_scale", e.rightScale);
     e.wheelDropLabel = s.getString("wheel_drop_label", e.wheelDropLabel);
 }
 
@@ -120,6 +127,10 @@ void readCamera(IniSection& s, CameraSpec& c) {
     c.width = s.getInt("width", c.width);
     c.height = s.getInt("height", c.height);
     if (c.width < 16 || c.height < 16) s.fail("width", "image must be at least 16x16");
+    if (c.width > CameraSpec::kMaxSide || c.height > CameraSpec::kMaxSide) {
+        s.fail("width", "image must be at most " + std::to_string(CameraSpec::kMaxSide) +
+                            " pixels a side");
+    }
     // Intrinsics default to the Kinect's, scaled to the image size.
     const double scale = c.width / 640.0;
     c.fx = s.getDouble("fx", 570.3 * scale);
@@ -131,9 +142,12 @@ void readCamera(IniSection& s, CameraSpec& c) {
     c.maxRange = s.getDouble("max_range", c.maxRange);
     if (c.minRange >= c.maxRange) s.fail("max_range", "must exceed min_range");
     c.depthNoise = s.getDouble("depth_noise", c.depthNoise);
+    notNegative(s, "depth_noise", c.depthNoise);
     c.disparityStep = s.getDouble("disparity_step", c.disparityStep);
+    notNegative(s, "disparity_step", c.disparityStep);
     c.maxIncidence = s.getDouble("max_incidence_deg", c.maxIncidence / kDeg) * kDeg;
     c.rgbNoise = s.getDouble("rgb_noise", c.rgbNoise);
+    notNegative(s, "rgb_noise", c.rgbNoise);
     c.externalImages = s.getBool("external_images", c.externalImages);
     c.imageFormat = s.getString("image_format", c.imageFormat);
     if (c.imageFormat != "png" && c.imageFormat != "jpg") s.fail("image_format", "must be png or jpg");
@@ -147,6 +161,7 @@ void readMagnetometer(IniSection& s, MagnetometerSpec& m) {
     positive(s, "rate", m.rate);
     m.pose = readMount(s, "pose", m.pose);
     m.noiseStd = s.getDouble("noise_std", m.noiseStd);
+    notNegative(s, "noise_std", m.noiseStd);
     const auto b = s.getDoubles("bias", {0, 0, 0}, 3);
     m.bias = {b[0], b[1], b[2]};
 }
@@ -233,7 +248,7 @@ bool CameraSpec::override(const std::string& widthHeightRate) {
     double hz = 0;
     char tail = 0;
     if (std::sscanf(widthHeightRate.c_str(), "%dx%d@%lf%c", &w, &h, &hz, &tail) != 3 || w < 16 ||
-        h < 16 || !(hz > 0)) {
+        h < 16 || w > kMaxSide || h > kMaxSide || !(hz > 0) || hz > 1000) {
         return false;
     }
     resize(w, h);

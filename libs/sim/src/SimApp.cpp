@@ -30,7 +30,8 @@ int runSimApp(int argc, const char* const* argv, std::ostream& out, std::ostream
     TCLAP::ValueArg<std::string> plot("p", "plot", "write a top-view picture of the scenario",
                                       false, "", "PNG", cmd);
     TCLAP::ValueArg<std::string> camera("", "camera",
-                                        "override the camera: WIDTHxHEIGHT@RATE (e.g. 320x240@15)",
+                                        "override the camera: WIDTHxHEIGHT@RATE (e.g. 320x240@15; "
+                                        "sides 16..4096 px, rate up to 1000 Hz)",
                                         false, "", "WxH@HZ", cmd);
     TCLAP::ValueArg<std::string> imageFormat(
         "", "image-format",
@@ -62,7 +63,7 @@ int runSimApp(int argc, const char* const* argv, std::ostream& out, std::ostream
     try {
         Scenario scenario = Scenario::load(config.getValue());
         if (camera.isSet() && !scenario.camera.override(camera.getValue())) {
-            err << "lodestone-sim: --camera: expected WIDTHxHEIGHT@RATE, got '"
+            err << "lodestone-sim: --camera: expected WIDTHxHEIGHT@RATE (sides 16..4096 px, rate 0..1000 Hz), got '"
                 << camera.getValue() << "'\n";
             return 2;
         }

@@ -93,6 +93,14 @@ TEST(Scenario, BadSurfaceIsNamed) {
     EXPECT_NE(msg.find("'brick'"), std::string::npos) << msg;
 }
 
+TEST(Scenario, NegativeNoiseAndHugeImagesAreNamed) {
+    auto msg = loadError("noise_std = 0.3", "noise_std = -0.3");
+    EXPECT_NE(msg.find("key 'noise_std'"), std::string::npos) << msg;
+    msg = loadError("width     = 640", "width     = 100000");
+    EXPECT_NE(msg.find("key 'width'"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("4096"), std::string::npos) << msg;
+}
+
 TEST(Scenario, MissingFileIsNamed) {
     try {
         Scenario::load("/nonexistent/scenario.ini");
@@ -109,7 +117,8 @@ TEST(Scenario, CameraOverrideTakesWidthHeightAndRate) {
     EXPECT_EQ(cam.width, 320);
     EXPECT_EQ(cam.height, 240);
     EXPECT_DOUBLE_EQ(cam.rate, 15);
-    for (const char* bad : {"320x240", "8x8@15", "320x240@0", "320x240@15fps", "big"}) {
+    for (const char* bad : {"320x240", "8x8@15", "320x240@0", "320x240@15fps", "big",
+                            "100000x100000@1", "640x480@1e6"}) {
         CameraSpec c;
         EXPECT_FALSE(c.override(bad)) << bad;
         EXPECT_EQ(c.width, w) << bad;

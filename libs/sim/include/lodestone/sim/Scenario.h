@@ -24,6 +24,8 @@ struct MountPose {
 };
 
 struct CameraSpec {
+    /** Largest image side the simulator renders [px] (a 100000x100000 typo is 30 GB). */
+    static constexpr int kMaxSide = 4096;
     bool enabled{true};
     std::string label{"RGBD"};
     double rate{30};                                    ///< [Hz]
