@@ -14,6 +14,24 @@ double unwrapNear(double a, double previous) {
     return previous + std::remainder(a - previous, 2 * M_PI);
 }
 
+/** A recording needs samples, and numbers: `inf` or `nan` in a cell would travel on into the
+ * rawlog and the ground truth. */
+void requireFiniteSamples(const CsvTable& t, std::size_t columns) {
+    if (t.rows() < 2) {
+        throw std::runtime_error(t.path() + ": " + std::to_string(t.rows()) +
+                                 " data rows; a recording needs at least 2");
+    }
+    for (std::size_t r = 0; r < t.rows(); ++r) {
+        for (std::size_t c = 0; c < columns; ++c) {
+            if (!std::isfinite(t.at(r, c))) {
+                throw std::runtime_error(t.path() + ": line " + std::to_string(t.lineOf(r)) +
+                                         ", column " + std::to_string(c + 1) +
+                                         ": not a finite number");
+            }
+        }
+    }
+}
+
 void requireTimeOrder(const CsvTable& times, std::size_t column) {
     for (std::size_t r = 1; r < times.rows(); ++r) {
         if (!(times.at(r, column) > times.at(r - 1, column))) {
@@ -64,6 +82,7 @@ double MagneticRecording::pathLength() const {
 MagneticRecording readAaltoTrial(const std::string& dir, int trial, double headingBaseline) {
     const std::string stem = dir + "/" + std::to_string(trial) + "-";
     const auto times = CsvTable::read(stem + "time.csv", 1);
+    requireFiniteSamples(times, 1);
     requireTimeOrder(times, 0);
     const auto loc = CsvTable::read(stem + "loc.csv", 2);
     const auto mag = CsvTable::read(stem + "mag.csv", 3);
@@ -73,6 +92,8 @@ MagneticRecording readAaltoTrial(const std::string& dir, int trial, double headi
                                      times.path() + " has " + std::to_string(times.rows()));
         }
     }
+    requireFiniteSamples(loc, 2);
+    requireFiniteSamples(mag, 3);
     std::vector<Eigen::Vector2d> p(loc.rows());
     for (std::size_t r = 0; r < loc.rows(); ++r) {
         p[r] = {loc.at(r, 0), loc.at(r, 1)};
@@ -102,6 +123,7 @@ MagneticRecording readAaltoTrial(const std::string& dir, int trial, double headi
 
 MagneticRecording readKokWalk(const std::string& csvPath) {
     const auto t = CsvTable::read(csvPath, 12, 1);
+    requireFiniteSamples(t, 12);
     requireTimeOrder(t, 0);
     MagneticRecording rec;
     rec.name = "kok " + csvPath.substr(csvPath.find_last_of('/') + 1);

@@ -239,4 +239,15 @@ TEST(MagneticImport, AppRefusesBadArgumentsAndNamesBadFiles) {
         << err.str();
     const char* negative[] = {"lodestone-import", "kok", walk.c_str(), o.c_str(), "--sp2", "-1"};
     EXPECT_EQ(io::runImportApp(6, negative, out, err), 2);
+    // Only a header, or an `inf` in a cell: named, and no rawlog of 0 samples / inf written.
+    const char* run[] = {"lodestone-import", "kok", walk.c_str(), o.c_str()};
+    writeText(walk, "t,tm,px,py,pz,q0,q1,q2,q3,mx,my,mz\n");
+    EXPECT_EQ(io::runImportApp(4, run, out, err), 1);
+    EXPECT_NE(err.str().find("walk.csv: 0 data rows"), std::string::npos) << err.str();
+    writeText(walk, "t,tm,px,py,pz,q0,q1,q2,q3,mx,my,mz\n0,0,0,0,0,1,0,0,0,1,2,3\n"
+                    "0.1,0,inf,0,0,1,0,0,0,1,2,3\n");
+    EXPECT_EQ(io::runImportApp(4, run, out, err), 1);
+    EXPECT_NE(err.str().find("walk.csv: line 3, column 3: not a finite number"), std::string::npos)
+        << err.str();
+    EXPECT_FALSE(fs::exists(o));
 }
