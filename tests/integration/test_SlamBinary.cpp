@@ -217,3 +217,21 @@ TEST(SlamBinary, ABadGroundTruthIsNamedBeforeAnyWorkAndNoStaleReportStays) {
     EXPECT_EQ(readText(dir.file("out/report.json")).find("an earlier run"), std::string::npos);
     EXPECT_FALSE(fs::exists(dir.file("out/report.json.partial")));
 }
+
+TEST(SlamBinary, MrptsStockActionsAndSensoryFramesRawlogBecomesMotion) {
+    // MRPT's localization_demo.rawlog: odometry as CActionRobotMovement2D without timestamps
+    // and with an encoder flag MRPT never set (byte 8). It ran to "0 nodes, 1.14e9 s of data",
+    // exit 0; its actions are now the motion, stamped by the frames that follow them.
+    const std::string stock = (lodestone::test::mrptDatasetsDir() / "localization_demo.rawlog").string();
+    if (!fs::exists(stock)) GTEST_SKIP() << "MRPT's sample datasets are not installed";
+    lodestone::test::TempDir dir;
+    const auto r = lodestone::test::runCommand(kSlam + " --rawlog " + stock + " --config " +
+                                               kConfigDir + "/odometry_only.ini --quiet --out " +
+                                               dir.file("out"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(r.output, m, std::regex("([0-9]+) nodes.* ([0-9.]+) s of data")))
+        << r.output;
+    EXPECT_GE(std::stoi(m[1]), 30) << r.output;        // 37 actions over ~6 m
+    EXPECT_NEAR(std::stod(m[2]), 9.3, 0.5) << r.output;  // the frames' time span
+}

@@ -5,6 +5,8 @@
 #include <mrpt/img/CImage.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
+
+#include <cstring>
 #include <mrpt/obs/CObservationOdometry.h>
 
 namespace lodestone::io {
@@ -25,7 +27,15 @@ RawlogSource::RawlogSource(const std::string& path, Options options)
 
 CObservation::Ptr RawlogSource::next() {
     while (!input_done_ && window_.size() < options_.reorderWindow) {
-        if (!readOneEntry()) input_done_ = true;
+        if (!readOneEntry()) {
+            input_done_ = true;
+            // Actions after the last observation: the motion ended no earlier than it.
+            for (auto& odo : unstamped_) {
+                odo->timestamp = latest_stamp_;
+                push(std::move(odo));
+            }
+            unstamped_.clear();
+        }
     }
     if (!window_.empty()) return pop();
     if (pending_error_) {
@@ -48,7 +58,17 @@ bool RawlogSource::readOneEntry() {
     ++entries_read_;
     const auto& object = *entry->object;
     format_ = updateFormat(format_, object);
-    for (auto& obs : observationsOf(entry->object)) push(std::move(obs));
+    for (auto& obs : observationsOf(entry->object)) {
+        if (!unstamped_.empty() && obs->timestamp != INVALID_TIMESTAMP) {
+            // The motion of unstamped actions ended when the next frame was observed.
+            for (auto& odo : unstamped_) {
+                odo->timestamp = obs->timestamp;
+                push(std::move(odo));
+            }
+            unstamped_.clear();
+        }
+        push(std::move(obs));
+    }
     if (IS_CLASS(object, mrpt::obs::CActionCollection)) pushOdometryFromActions(object);
     return true;
 }
@@ -66,22 +86,36 @@ void RawlogSource::pushOdometryFromActions(const mrpt::serialization::CSerializa
         odo->timestamp = move->timestamp;
         odo->sensorLabel = options_.odometryLabel;
         odo->odometry = odometry_pose_;
-        if (move->hasEncodersInfo) {
+        // MRPT leaves the flag unset when an old format version did not store it (MRPT's own
+        // localization_demo.rawlog reads byte 8 there): anything but 0 / 1 means "unknown",
+        // and ticks that may be garbage are not used. (Read as a byte: a bool holding 8 is
+        // undefined behaviour.)
+        std::uint8_t encodersFlag = 0;
+        std::memcpy(&encodersFlag, &move->hasEncodersInfo, 1);
+        if (encodersFlag > 1) ++unknown_encoder_flags_;
+        if (encodersFlag == 1) {
             left_ticks_ += move->encoderLeftTicks;
             right_ticks_ += move->encoderRightTicks;
             odo->hasEncodersInfo = true;
             odo->encoderLeftTicks = static_cast<int32_t>(left_ticks_);
             odo->encoderRightTicks = static_cast<int32_t>(right_ticks_);
         }
-        if (move->hasVelocities) {
+        std::uint8_t velocitiesFlag = 0;
+        std::memcpy(&velocitiesFlag, &move->hasVelocities, 1);
+        if (velocitiesFlag == 1) {
             odo->hasVelocities = true;
             odo->velocityLocal = move->velocityLocal;
         }
-        push(odo);
+        if (odo->timestamp == INVALID_TIMESTAMP) {
+            unstamped_.push_back(std::move(odo));  // stamped by the next observation
+        } else {
+            push(odo);
+        }
     }
 }
 
 void RawlogSource::push(CObservation::Ptr obs) {
+    if (obs->timestamp != INVALID_TIMESTAMP && obs->timestamp > latest_stamp_) latest_stamp_ = obs->timestamp;
     window_.push(Pending{obs->timestamp, sequence_++, std::move(obs)});
 }
 

@@ -283,6 +283,15 @@ SlamRunResult runSlam(const SlamRunOptions& options, std::ostream& out, std::ost
         result.exitCode = 1;
         if (result.error.empty()) result.error = e.what();
     }
+    if (result.error.empty() && engine->graph().nodes.empty()) {
+        // Exit 0 with an empty map would read as success.
+        result.error = "the run made no nodes: the node decider got no motion from the " +
+                       std::to_string(engine->stats().observations) + " observations (" +
+                       std::to_string(engine->stats().frames) +
+                       " RGB-D frames) - is this the recording the configured deciders need?";
+        result.exitCode = 1;
+        err << "lodestone-slam: error: " << result.error << "\n";
+    }
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
     progress.finish(dataSeconds);

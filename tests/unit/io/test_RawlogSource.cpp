@@ -3,6 +3,13 @@
 #include <lodestone/obs/registerAllClasses.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/obs/CObservationOdometry.h>
+#include <mrpt/io/CFileOutputStream.h>
+#include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CActionRobotMovement2D.h>
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include <cstring>
 
 #include "RawlogTestHelpers.h"
 #include "SampleObservations.h"
@@ -64,6 +71,43 @@ TEST(RawlogSource, ActionsAndSensoryFramesFormatBecomesObservations) {
     EXPECT_EQ(odometry, actionEntries);  // one odometry action per entry in this dataset
     EXPECT_GT(got.observations.size(), odometry);
     EXPECT_GT(last.norm(), 1.0);  // the accumulated pose moved: increments were composed
+}
+
+TEST(RawlogSource, UnstampedActionsTakeTheNextFramesTimeAndAnUnsetEncoderFlagMeansNoTicks) {
+    // As in MRPT's localization_demo.rawlog: actions without a timestamp, and an encoder flag
+    // an old format version never stored (MRPT leaves the byte as it finds it: 8 there).
+    registerAllClasses();
+    test::TempDir dir;
+    const auto path = dir.file("stock.rawlog");
+    {
+        mrpt::io::CFileOutputStream f(path);
+        auto out = mrpt::serialization::archiveFrom(f);
+        for (int k = 0; k < 3; ++k) {
+            mrpt::obs::CActionCollection actions;
+            mrpt::obs::CActionRobotMovement2D move;
+            move.computeFromOdometry(mrpt::poses::CPose2D(0.1, 0, 0), {});
+            move.timestamp = INVALID_TIMESTAMP;
+            const std::uint8_t eight = 8;
+            std::memcpy(&move.hasEncodersInfo, &eight, 1);
+            move.encoderLeftTicks = 123456;
+            actions.insert(move);
+            mrpt::obs::CSensoryFrame frame;
+            frame.insert(test::makeMagnetometer(10.0 + k, "MAG", k));
+            out << actions << frame;
+        }
+    }
+    io::RawlogSource source(path);
+    const auto got = test::drain(source);
+    ASSERT_TRUE(got.error.empty()) << got.error;
+    std::vector<double> odometryTimes;
+    for (const auto& o : got.observations) {
+        if (auto odo = std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(o)) {
+            odometryTimes.push_back(mrpt::Clock::toDouble(odo->timestamp));
+            EXPECT_FALSE(odo->hasEncodersInfo) << "garbage ticks would be wheel motion";
+        }
+    }
+    EXPECT_EQ(odometryTimes, (std::vector<double>{10.0, 11.0, 12.0}));
+    EXPECT_EQ(source.unknownEncoderFlags(), 3u);
 }
 
 TEST(RawlogSource, DelayLoadedImagesAreFoundInTheImagesFolderBesideTheRawlog) {

@@ -3,6 +3,7 @@
 #include <lodestone/io/DataSource.h>
 #include <lodestone/io/RawlogFormat.h>
 #include <lodestone/io/RawlogReader.h>
+#include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/poses/CPose2D.h>
 
 #include <cstdint>
@@ -17,7 +18,10 @@ namespace lodestone::io {
  * - Sensory frames are flattened into their observations.
  * - Odometry actions (CActionRobotMovement2D) become CObservationOdometry with the pose and
  *   encoder ticks accumulated from the increments, label `odometryLabel`, so that one code path
- *   serves both formats. Other actions are skipped (counted in skippedActions()).
+ *   serves both formats. Other actions are skipped (counted in skippedActions()). An action
+ *   without a timestamp (old MRPT datasets) takes the next observation's; an encoder flag that
+ *   is neither 0 nor 1 (an old format version that did not store it) means no ticks
+ *   (unknownEncoderFlags()).
  * - Observations are released in timestamp order through a bounded reorder window: MRPT
  *   drivers write each sensor when it is grabbed, so neighbouring entries can be slightly out
  *   of order. An observation older than one already released is still released (counted in
@@ -46,6 +50,7 @@ class RawlogSource : public DataSource {
     std::size_t entriesRead() const { return entries_read_; }
     std::size_t outOfOrder() const { return out_of_order_; }
     std::size_t skippedActions() const { return skipped_actions_; }
+    std::size_t unknownEncoderFlags() const { return unknown_encoder_flags_; }
     const std::string& imagesDir() const { return options_.imagesDir; }
 
   private:
@@ -72,10 +77,13 @@ class RawlogSource : public DataSource {
     std::exception_ptr pending_error_;
     mrpt::Clock::time_point last_released_{};
     bool released_any_{false};
-    std::size_t entries_read_{0}, out_of_order_{0}, skipped_actions_{0};
+    std::size_t entries_read_{0}, out_of_order_{0}, skipped_actions_{0},
+        unknown_encoder_flags_{0};
     // Accumulated odometry for actions -> CObservationOdometry.
     mrpt::poses::CPose2D odometry_pose_;
     std::int64_t left_ticks_{0}, right_ticks_{0};
+    std::vector<mrpt::obs::CObservationOdometry::Ptr> unstamped_;  // waiting for a timestamp
+    mrpt::Clock::time_point latest_stamp_{};
 };
 
 }  // namespace lodestone::io
