@@ -163,8 +163,8 @@ GuidedMatcher::Result GuidedMatcher::match(const FrameFeatures& current,
             continue;
         }
         const Eigen::Matrix2d Si = S.inverse();
-        const auto cellOf = [&](double x, int n) {
-            return std::clamp(static_cast<int>(std::floor(x / grid.cell)), 0, n - 1);
+        const auto cellOf = [&](double x, int n) {  // clamped before the cast: gates can be huge
+            return static_cast<int>(std::clamp(std::floor(x / grid.cell), 0.0, n - 1.0));
         };
         gates.push_back({j, static_cast<float>(u), static_cast<float>(v),
                          static_cast<float>(Si(0, 0)), static_cast<float>(Si(0, 1)),
