@@ -23,10 +23,10 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <opencv2/imgcodecs.hpp>
 #include <thread>
 
 #include <sched.h>
-#include <opencv2/imgcodecs.hpp>
 
 namespace lodestone::slamapp {
 
@@ -332,7 +332,7 @@ SlamRunResult runSlam(const SlamRunOptions& options, std::ostream& out, std::ost
         JsonObject timing = timingJson(engine->stats(), wall, dataSeconds, sourceSeconds,
                                        engine->stats().observations);
         if (prefetcher) {
-            // The worker's share (on the second core): what reading and decoding cost.
+            // The workers' CPU time: what reading and decoding cost, off the frame loop.
             const auto w = prefetcher->workerTime();
             timing.set("worker_read_s", w.readSeconds).set("worker_decode_s", w.decodeSeconds);
         }
