@@ -3,12 +3,38 @@
 #include <lodestone/io/RawlogReadError.h>
 #include <lodestone/io/RawlogSource.h>
 #include <lodestone/io/RawlogWriter.h>
+#include <mrpt/io/CFileOutputStream.h>
+#include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CActionRobotMovement2D.h>
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/serialization/CArchive.h>
 
 #include <fstream>
+#include <functional>
 #include <string>
 #include <vector>
 
 namespace lodestone::test {
+
+/** A rawlog in MRPT's actions + sensory frames format: `count` pairs of an odometry action
+ * (0.1 m forward, then `edit`ed) and a sensory frame holding `frame(k)`. */
+inline void writeActionsAndFrames(
+    const std::string& path, int count,
+    const std::function<void(mrpt::obs::CActionRobotMovement2D&, int)>& edit,
+    const std::function<mrpt::obs::CObservation::Ptr(int)>& frame) {
+    mrpt::io::CFileOutputStream f(path);
+    auto out = mrpt::serialization::archiveFrom(f);
+    for (int k = 0; k < count; ++k) {
+        mrpt::obs::CActionCollection actions;
+        mrpt::obs::CActionRobotMovement2D move;
+        move.computeFromOdometry(mrpt::poses::CPose2D(0.1, 0, 0), {});
+        edit(move, k);
+        actions.insert(move);
+        mrpt::obs::CSensoryFrame sf;
+        sf.insert(frame(k));
+        out << actions << sf;
+    }
+}
 
 inline void writeRawlog(const std::string& path,
                         const std::vector<mrpt::obs::CObservation::Ptr>& observations,

@@ -6,11 +6,6 @@
 #include <lodestone/io/RawlogReader.h>
 #include <lodestone/io/RawlogSource.h>
 #include <lodestone/obs/registerAllClasses.h>
-#include <mrpt/io/CFileOutputStream.h>
-#include <mrpt/obs/CActionCollection.h>
-#include <mrpt/obs/CActionRobotMovement2D.h>
-#include <mrpt/obs/CSensoryFrame.h>
-#include <mrpt/serialization/CArchive.h>
 
 #include <chrono>
 #include <cstring>
@@ -92,20 +87,9 @@ TEST(RawlogSizeFields, AnActionCountOfFourBillionIsRefusedNotLooped) {
     registerAllClasses();
     test::TempDir dir;
     const auto path = dir.file("actions.rawlog");
-    {
-        mrpt::io::CFileOutputStream f(path);
-        auto out = mrpt::serialization::archiveFrom(f);
-        for (int k = 0; k < 2; ++k) {
-            mrpt::obs::CActionCollection actions;
-            mrpt::obs::CActionRobotMovement2D move;
-            move.computeFromOdometry(mrpt::poses::CPose2D(0.1, 0, 0.01), {});
-            move.timestamp = mrpt::Clock::fromDouble(1.0 + k);
-            actions.insert(move);
-            mrpt::obs::CSensoryFrame frame;
-            frame.insert(test::makeMagnetometer(1.0 + k, "MAG", k));
-            out << actions << frame;
-        }
-    }
+    test::writeActionsAndFrames(
+        path, 2, [](auto& move, int k) { move.timestamp = mrpt::Clock::fromDouble(1.0 + k); },
+        [](int k) { return test::makeMagnetometer(1.0 + k, "MAG", k); });
     std::string bytes = test::readBytes(path);
     const std::string name = "CActionCollection";
     const auto first = bytes.find(name);

@@ -3,11 +3,6 @@
 #include <lodestone/obs/registerAllClasses.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/obs/CObservationOdometry.h>
-#include <mrpt/io/CFileOutputStream.h>
-#include <mrpt/obs/CActionCollection.h>
-#include <mrpt/obs/CActionRobotMovement2D.h>
-#include <mrpt/obs/CSensoryFrame.h>
-#include <mrpt/serialization/CArchive.h>
 
 #include <cstring>
 
@@ -79,23 +74,15 @@ TEST(RawlogSource, UnstampedActionsTakeTheNextFramesTimeAndAnUnsetEncoderFlagMea
     registerAllClasses();
     test::TempDir dir;
     const auto path = dir.file("stock.rawlog");
-    {
-        mrpt::io::CFileOutputStream f(path);
-        auto out = mrpt::serialization::archiveFrom(f);
-        for (int k = 0; k < 3; ++k) {
-            mrpt::obs::CActionCollection actions;
-            mrpt::obs::CActionRobotMovement2D move;
-            move.computeFromOdometry(mrpt::poses::CPose2D(0.1, 0, 0), {});
+    test::writeActionsAndFrames(
+        path, 3,
+        [](auto& move, int) {
             move.timestamp = INVALID_TIMESTAMP;
             const std::uint8_t eight = 8;
             std::memcpy(&move.hasEncodersInfo, &eight, 1);
             move.encoderLeftTicks = 123456;
-            actions.insert(move);
-            mrpt::obs::CSensoryFrame frame;
-            frame.insert(test::makeMagnetometer(10.0 + k, "MAG", k));
-            out << actions << frame;
-        }
-    }
+        },
+        [](int k) { return test::makeMagnetometer(10.0 + k, "MAG", k); });
     io::RawlogSource source(path);
     const auto got = test::drain(source);
     ASSERT_TRUE(got.error.empty()) << got.error;
