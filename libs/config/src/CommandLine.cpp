@@ -1,5 +1,6 @@
 #include <lodestone/config/CommandLine.h>
 
+#include <algorithm>
 #include <cctype>
 #include <memory>
 
@@ -26,9 +27,17 @@ std::string unknownOption(TCLAP::CmdLine& cmd, const std::vector<std::string>& w
         const std::string name = w.substr(longForm ? 2 : 1, w.find('=') == std::string::npos
                                                                  ? std::string::npos
                                                                  : w.find('=') - (longForm ? 2 : 1));
-        bool known = false;
-        for (TCLAP::Arg* a : cmd.getArgList()) {
-            known = known || (longForm ? a->getName() == name : a->getFlag() == name);
+        const auto isKnown = [&](const std::string& n, bool asLong) {
+            for (TCLAP::Arg* a : cmd.getArgList()) {
+                if (asLong ? a->getName() == n : a->getFlag() == n) return true;
+            }
+            return false;
+        };
+        // TCLAP also takes short switches run together ("-qv"): each letter a known flag.
+        bool known = isKnown(name, longForm);
+        if (!known && !longForm && name.size() > 1) {
+            known = std::all_of(name.begin(), name.end(),
+                                [&](char c) { return isKnown(std::string(1, c), false); });
         }
         if (!known) return w;
     }

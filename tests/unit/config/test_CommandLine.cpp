@@ -28,4 +28,6 @@ TEST(CommandLine, KnownOptionsNegativeNumbersAndWordsAfterDoubleDashPass) {
     EXPECT_EQ(parse({"app", "--step", "-0.5", "-q", "a", "b"}).kind, ParseOutcome::Kind::Run);
     EXPECT_EQ(parse({"app", "--quiet", "--step", "-.5", "a"}).kind, ParseOutcome::Kind::Run);
     EXPECT_EQ(parse({"app", "--", "-file-with-a-dash"}).kind, ParseOutcome::Kind::Run);
+    EXPECT_EQ(parse({"app", "-qq", "a"}).kind, ParseOutcome::Kind::Run);  // switches run together
+    EXPECT_EQ(parse({"app", "-qz", "a"}).kind, ParseOutcome::Kind::UsageError);
 }
