@@ -1,31 +1,60 @@
 #include <lodestone/io/RawlogReadError.h>
 #include <lodestone/memguard/AllocationBudget.h>
 #include <lodestone/io/RawlogReader.h>
+#include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/serialization/CArchive.h>
 
 #include <algorithm>
 #include <filesystem>
 
 #include "ZlibFileStream.h"
+#include "guards/GuardedMrptClasses.h"
 
 namespace lodestone::io {
 
 namespace {
-// MRPT exception texts carry a multi-line call trace; the first line that says what went
-// wrong is what a user needs.
-std::string firstMeaningfulLine(const std::string& text) {
+// MRPT exception texts nest one block per object being read ("Exception while parsing typed
+// object 'X' from FILE", then the inner one's), each with a call trace. A user needs the chain
+// of classes and the innermost message: "CActionCollection > CPosePDFGaussian: <message>".
+std::string condensedMrptError(const std::string& text) {
+    const std::string kMessage = "Message:";
+    const std::string kParsing = "Exception while parsing typed object '";
+    std::string chain, innermost;
+    bool afterOriginal = false;
     std::size_t start = 0;
     while (start < text.size()) {
         std::size_t end = text.find('\n', start);
         if (end == std::string::npos) end = text.size();
-        std::string line = text.substr(start, end - start);
-        const auto first = line.find_first_not_of(" \t=");
-        if (first != std::string::npos && line.find("MRPT exception") == std::string::npos) {
-            return line.substr(first);
-        }
+        const std::string line = text.substr(start, end - start);
         start = end + 1;
+        const auto at = line.find(kMessage);
+        if (at == std::string::npos) {
+            // A std::exception thrown inside a deserializer: its text follows "Original
+            // exception:" on a line of its own.
+            if (afterOriginal && innermost.empty() && line.find("MRPT exception") == std::string::npos &&
+                !line.empty()) {
+                innermost = line;
+            }
+            afterOriginal = line.rfind("Original exception:", 0) == 0;
+            continue;
+        }
+        afterOriginal = false;
+        std::string message = line.substr(at + kMessage.size());
+        message.erase(0, message.find_first_not_of(' '));
+        if (message.rfind(kParsing, 0) == 0) {
+            const auto close = message.find('\'', kParsing.size());
+            chain += (chain.empty() ? "" : " > ") + message.substr(kParsing.size(), close - kParsing.size());
+        } else if (innermost.empty()) {
+            innermost = message;
+        }
     }
-    return text;
+    if (innermost.empty() && chain.empty()) {  // not MRPT's format: its first line
+        const auto first = text.find_first_not_of(" \t=\n");
+        return first == std::string::npos ? text : text.substr(first, text.find('\n', first) - first);
+    }
+    if (innermost.empty()) innermost = "unreadable object";
+    return chain.empty() ? innermost : chain + ": " + innermost;
 }
 // What reading one entry may allocate (memguard::AllocationBudget): MRPT allocates what an
 // entry's size fields say before reading the data, so a damaged size would take gigabytes.
@@ -34,6 +63,24 @@ constexpr std::uint64_t kEntryFloor = 64ull << 20;  // MRPT's own bookkeeping, s
 constexpr std::uint64_t kBytesPerStoredByte = 8;    // conversions on load (e.g. 16-bit -> float)
 constexpr std::uint64_t kMaxDeflateRatio = 1032;    // deflate's limit: gzip bytes -> data bytes
 constexpr std::uint64_t kMaxEntryBytes = 2ull << 30;  // whatever the file: 2 GiB an entry
+
+// MRPT stores a null pointer as an object of class "nullptr"; inside a container every
+// consumer (MRPT's and ours) dereferences the elements, so a null one is a damaged entry.
+std::string nullElement(const mrpt::serialization::CSerializable& object) {
+    std::size_t i = 0;
+    if (const auto* sf = dynamic_cast<const mrpt::obs::CSensoryFrame*>(&object)) {
+        for (const auto& o : *sf) {
+            if (!o) return "corrupt entry: observation " + std::to_string(i) + " of the sensory frame is null";
+            ++i;
+        }
+    } else if (const auto* actions = dynamic_cast<const mrpt::obs::CActionCollection*>(&object)) {
+        for (const auto& a : *actions) {
+            if (!a) return "corrupt entry: action " + std::to_string(i) + " of the action collection is null";
+            ++i;
+        }
+    }
+    return {};
+}
 
 std::string megabytes(std::uint64_t bytes) {
     return std::to_string((bytes + (1 << 20) - 1) >> 20) + " MB";
@@ -49,6 +96,7 @@ struct RawlogReader::Impl {
 };
 
 RawlogReader::RawlogReader(const std::string& path) : path_(path) {
+    detail::installGuardedMrptClasses();
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec)) {
         throw std::runtime_error(path + ": no such rawlog file");
@@ -120,9 +168,10 @@ std::optional<RawlogEntry> RawlogReader::next() {
         throw fail("corrupt entry (an impossible size made the reader run out of memory)");
     } catch (const std::exception& e) {
         if (budget.exceeded()) throw overBudget();
-        throw fail(firstMeaningfulLine(e.what()));
+        throw fail(condensedMrptError(e.what()));
     }
     if (!entry.object) throw fail("null object stored as an entry");
+    if (const std::string why = nullElement(*entry.object); !why.empty()) throw fail(why);
     ++next_index_;
     return entry;
 }

@@ -1,0 +1,165 @@
+// Stock MRPT objects whose deserializers trust what they read (issue #16): a version-0/1
+// CActionRobotMovement2D whose pose PDF is stored as "nullptr" made MRPT dereference a null
+// pointer (SIGSEGV in lodestone-inspect, -slam, -magfit and MRPT's own rawlog-edit); a null
+// element inside a sensory frame or action collection crashed whoever walked it next. Each
+// must be a read error naming the entry; well-formed old versions must read as MRPT reads them.
+#include <gtest/gtest.h>
+#include <lodestone/io/RawlogReader.h>
+#include <lodestone/io/RawlogSource.h>
+#include <lodestone/obs/registerAllClasses.h>
+#include <mrpt/io/CMemoryStream.h>
+#include <mrpt/obs/CObservationOdometry.h>
+#include <mrpt/poses/CPosePDFGaussian.h>
+
+#include <cstring>
+
+#include "RawlogTestHelpers.h"
+#include "TestPaths.h"
+
+using namespace lodestone;
+
+namespace {
+template <typename T>
+std::string raw(T value) {
+    std::string s(sizeof(T), '\0');
+    std::memcpy(s.data(), &value, sizeof(T));
+    return s;
+}
+
+/** MRPT's object framing: name length | 0x80, the name, the version; the body; 0x88. */
+std::string framed(const std::string& className, int version, const std::string& body) {
+    return std::string(1, static_cast<char>(0x80 | className.size())) + className +
+           static_cast<char>(version) + body + static_cast<char>(0x88);
+}
+
+std::string serialized(const mrpt::serialization::CSerializable& object) {
+    mrpt::io::CMemoryStream buffer;
+    auto out = mrpt::serialization::archiveFrom(buffer);
+    out << object;
+    return std::string(static_cast<const char*>(buffer.getRawBufferData()), buffer.getTotalBytesCount());
+}
+
+std::string nullObject() {
+    mrpt::io::CMemoryStream buffer;
+    auto out = mrpt::serialization::archiveFrom(buffer);
+    out << mrpt::serialization::CSerializable::Ptr();
+    return std::string(static_cast<const char*>(buffer.getRawBufferData()), buffer.getTotalBytesCount());
+}
+
+/** A version 0 or 1 CActionRobotMovement2D: the PDF object, the method, then (version 1)
+ * velocities and encoder ticks. */
+std::string oldMovement(int version, const std::string& pdf) {
+    std::string body = pdf + raw<std::int32_t>(0 /* emOdometry */);
+    if (version == 1) {
+        body += raw<std::uint8_t>(1) + raw(0.5f) + raw(0.25f) + raw<std::uint8_t>(1) +
+                raw<std::int32_t>(10) + raw<std::int32_t>(-5);
+    }
+    return framed("CActionRobotMovement2D", version, body);
+}
+
+std::string actions(const std::vector<std::string>& members) {
+    std::string body = raw<std::uint32_t>(static_cast<std::uint32_t>(members.size()));
+    for (const auto& m : members) body += m;
+    return framed("CActionCollection", 0, body);
+}
+
+std::string gaussianPdf(double x, double y, double phi) {
+    mrpt::poses::CPosePDFGaussian pdf;
+    pdf.mean = mrpt::poses::CPose2D(x, y, phi);
+    pdf.cov.setIdentity();
+    return serialized(pdf);
+}
+
+std::string firstEntryError(const std::string& path) {
+    io::RawlogReader reader(path);
+    try {
+        reader.next();
+    } catch (const io::RawlogReadError& e) {
+        EXPECT_EQ(e.entryIndex(), 0u);
+        return e.what();
+    }
+    return {};
+}
+}  // namespace
+
+TEST(MalformedMrptObjects, ANullPosePdfInAnOldOdometryActionIsAReadError) {
+    registerAllClasses();
+    test::TempDir dir;
+    for (int version : {0, 1}) {
+        const auto path = dir.file("null_pdf_v" + std::to_string(version) + ".rawlog");
+        test::writeBytes(path, actions({oldMovement(version, nullObject())}));
+        const std::string error = firstEntryError(path);
+        EXPECT_NE(error.find(path), std::string::npos) << error;
+        EXPECT_NE(error.find("pose PDF is missing"), std::string::npos) << error;
+    }
+}
+
+TEST(MalformedMrptObjects, APdfOfTheWrongClassIsAReadError) {
+    registerAllClasses();
+    test::TempDir dir;
+    const auto path = dir.file("wrong_pdf.rawlog");
+    mrpt::obs::CObservationOdometry notAPdf;
+    test::writeBytes(path, actions({oldMovement(1, serialized(notAPdf))}));
+    EXPECT_NE(firstEntryError(path).find("not a CPosePDF"), std::string::npos);
+}
+
+TEST(MalformedMrptObjects, WellFormedOldVersionsReadAsMrptDefinesThem) {
+    registerAllClasses();
+    test::TempDir dir;
+    for (int version : {0, 1}) {
+        const auto path = dir.file("old_v" + std::to_string(version) + ".rawlog");
+        test::writeBytes(path, actions({oldMovement(version, gaussianPdf(0.3, -0.1, 0.2))}));
+        io::RawlogReader reader(path);
+        const auto entry = reader.next();
+        ASSERT_TRUE(entry);
+        const auto collection = std::dynamic_pointer_cast<mrpt::obs::CActionCollection>(entry->object);
+        ASSERT_TRUE(collection);
+        ASSERT_EQ(collection->size(), 1u);
+        const auto& action = *collection->get(0);
+        // What MRPT's tools see: the stock class, by runtime id and by name.
+        EXPECT_TRUE(IS_CLASS(action, mrpt::obs::CActionRobotMovement2D));
+        EXPECT_STREQ(action.GetRuntimeClass()->className, "mrpt::obs::CActionRobotMovement2D");
+        const auto& move = dynamic_cast<const mrpt::obs::CActionRobotMovement2D&>(action);
+        ASSERT_TRUE(move.poseChange);
+        EXPECT_DOUBLE_EQ(move.rawOdometryIncrementReading.x(), 0.3);
+        EXPECT_DOUBLE_EQ(move.rawOdometryIncrementReading.y(), -0.1);
+        EXPECT_NEAR(move.rawOdometryIncrementReading.phi(), 0.2, 1e-12);
+        if (version == 1) {
+            EXPECT_TRUE(move.hasVelocities);
+            EXPECT_DOUBLE_EQ(move.velocityLocal.vx, 0.5);
+            EXPECT_DOUBLE_EQ(move.velocityLocal.omega, 0.25);
+            EXPECT_TRUE(move.hasEncodersInfo);
+            EXPECT_EQ(move.encoderLeftTicks, 10);
+            EXPECT_EQ(move.encoderRightTicks, -5);
+        } else {
+            EXPECT_FALSE(move.hasEncodersInfo);
+        }
+        // Written again, it is a stock object of the current version.
+        const std::string again = serialized(move);
+        EXPECT_NE(again.find("CActionRobotMovement2D"), std::string::npos);
+        EXPECT_FALSE(reader.next());
+    }
+}
+
+TEST(MalformedMrptObjects, AnOldActionCutShortIsAReadError) {
+    registerAllClasses();
+    test::TempDir dir;
+    const auto path = dir.file("short.rawlog");
+    std::string bytes = actions({oldMovement(1, gaussianPdf(0.1, 0, 0))});
+    bytes.resize(bytes.size() - 12);
+    test::writeBytes(path, bytes);
+    EXPECT_FALSE(firstEntryError(path).empty());
+}
+
+TEST(MalformedMrptObjects, NullElementsOfContainersAreReadErrors) {
+    registerAllClasses();
+    test::TempDir dir;
+    const auto actionsPath = dir.file("null_action.rawlog");
+    test::writeBytes(actionsPath, actions({nullObject()}));
+    EXPECT_NE(firstEntryError(actionsPath).find("action 0 is null"), std::string::npos);
+
+    const auto framePath = dir.file("null_observation.rawlog");
+    test::writeBytes(framePath, framed("CSensoryFrame", 2, raw<std::uint32_t>(1) + nullObject()));
+    const std::string error = firstEntryError(framePath);
+    EXPECT_NE(error.find("observation 0 of the sensory frame is null"), std::string::npos) << error;
+}
