@@ -2,9 +2,13 @@
 #   lodestone_add_library(<lib> SOURCES ... DEPENDS ...) -> target lodestone_<lib>, alias
 #   lodestone::<lib>, headers under libs/<lib>/include, exported as lodestone::<lib>.
 #   lodestone_add_app(<name> SOURCES ... DEPENDS ...)    -> an installed executable, with the
-#                                                           allocation hooks (libs/memguard).
+#                                                           executable hooks (below).
 
 set(LODESTONE_WARNING_FLAGS -Wall -Wextra -Wpedantic)
+# What every Lodestone executable (apps, tests, fuzz targets) links in directly: the allocation
+# hooks that bound a damaged rawlog entry (libs/memguard/hooks) and libjpeg's error handler
+# made to throw (libs/io/hooks). Object libraries: linked directly, never transitively.
+set(LODESTONE_EXECUTABLE_HOOKS lodestone_allocation_hooks lodestone_jpeg_error_hook)
 
 function(lodestone_apply_common_flags target)
     target_compile_options(${target} PRIVATE ${LODESTONE_WARNING_FLAGS})
@@ -12,6 +16,10 @@ function(lodestone_apply_common_flags target)
         target_compile_options(${target} PRIVATE -fsanitize=address,undefined
             -fno-sanitize-recover=undefined -fno-omit-frame-pointer)
         target_link_options(${target} PUBLIC -fsanitize=address,undefined)
+    endif()
+    if(LODESTONE_FUZZ)
+        # Coverage feedback for libFuzzer from every Lodestone target (MRPT is not instrumented).
+        target_compile_options(${target} PRIVATE -fsanitize=fuzzer-no-link)
     endif()
 endfunction()
 
@@ -41,8 +49,7 @@ endfunction()
 function(lodestone_add_app name)
     cmake_parse_arguments(ARG "" "" "SOURCES;DEPENDS" ${ARGN})
     add_executable(${name} ${ARG_SOURCES})
-    # lodestone_allocation_hooks: what bounds a damaged rawlog entry's allocations (memguard).
-    target_link_libraries(${name} PRIVATE ${ARG_DEPENDS} lodestone_allocation_hooks)
+    target_link_libraries(${name} PRIVATE ${ARG_DEPENDS} ${LODESTONE_EXECUTABLE_HOOKS})
     lodestone_apply_common_flags(${name})
     install(TARGETS ${name} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endfunction()

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages Lodestone builds and runs with, if any is missing.
 # Idempotent: does nothing (and needs no root) when everything is there.
+#   scripts/install-deps.sh          what the build, the apps and the tests need
+#   scripts/install-deps.sh --fuzz   and clang with its libFuzzer/sanitizer runtime (scripts/fuzz.sh)
 set -euo pipefail
 
 packages=(
@@ -8,12 +10,17 @@ packages=(
     libmrpt-dev mrpt-apps          # MRPT 2.5: obs, io, graphslam, hwdrivers; rawlog-edit for tests
     mrpt-common                    # MRPT's sample datasets: the tests compare inspect with rawlog-edit on them
     libopencv-dev libeigen3-dev libnanoflann-dev zlib1g-dev
+    libjpeg62-turbo-dev            # libjpeg's error handler made to throw (libs/io/hooks)
     libceres-dev                   # pose-graph optimization (sparse, robust losses)
     nlohmann-json3-dev             # lodestone-eval relocation reads report.json
     libgtest-dev libgmock-dev
     libbenchmark-dev               # micro-benchmarks (bench/bench_matching)
     time                           # /usr/bin/time: wall time and peak RSS in scripts/bench/throughput.sh
 )
+
+if [ "${1:-}" = "--fuzz" ]; then
+    packages+=(clang libclang-rt-dev)  # libFuzzer, ASan and UBSan runtimes for clang
+fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -31,12 +31,13 @@ std::string condensedMrptError(const std::string& text) {
         const auto at = line.find(kMessage);
         if (at == std::string::npos) {
             // A std::exception thrown inside a deserializer: its text follows "Original
-            // exception:" on a line of its own.
-            if (afterOriginal && innermost.empty() && line.find("MRPT exception") == std::string::npos &&
-                !line.empty()) {
-                innermost = line;
+            // exception:" (and a "==== MRPT exception ====" banner) on a line of its own.
+            if (line.rfind("Original exception:", 0) == 0) {
+                afterOriginal = true;
+            } else if (line.find("MRPT exception") == std::string::npos && !line.empty()) {
+                if (afterOriginal && innermost.empty()) innermost = line;
+                afterOriginal = false;
             }
-            afterOriginal = line.rfind("Original exception:", 0) == 0;
             continue;
         }
         afterOriginal = false;

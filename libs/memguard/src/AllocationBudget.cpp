@@ -20,8 +20,9 @@ bool AllocationBudget::hooksInstalled() { return installed.load(); }
 bool charge(std::size_t bytes) noexcept {
     AllocationBudget* b = active;
     if (!b || b->refused_ > 0) return true;  // none active, or already refused: stand aside
-    if (bytes > b->limit_ - b->charged_) {
-        b->refused_ = bytes > 0 ? bytes : 1;
+    const bool over = bytes > b->limit_ || b->charged_ > b->limit_ - bytes;
+    if (over && bytes >= AllocationBudget::kSmallestRefused) {
+        b->refused_ = bytes;
         return false;
     }
     b->charged_ += bytes;

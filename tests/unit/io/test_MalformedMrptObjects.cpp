@@ -8,12 +8,14 @@
 #include <lodestone/io/RawlogSource.h>
 #include <lodestone/obs/registerAllClasses.h>
 #include <mrpt/io/CMemoryStream.h>
+#include <mrpt/obs/CObservationImage.h>
 #include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/poses/CPosePDFGaussian.h>
 
 #include <cstring>
 
 #include "RawlogTestHelpers.h"
+#include "SampleObservations.h"
 #include "TestPaths.h"
 
 using namespace lodestone;
@@ -103,6 +105,48 @@ TEST(MalformedMrptObjects, APdfOfTheWrongClassIsAReadError) {
     EXPECT_NE(firstEntryError(path).find("not a CPosePDF"), std::string::npos);
 }
 
+TEST(MalformedMrptObjects, ANonOdometryActionWithoutAPdfIsAReadError) {
+    // Versions >= 2: the method first; anything but odometry is followed by the PDF object.
+    registerAllClasses();
+    test::TempDir dir;
+    const int version = 7;  // MRPT 2.5's
+    for (const auto& pdf : {nullObject(), serialized(mrpt::poses::CPose2D(1, 2, 0))}) {
+        const auto path = dir.file("no_pdf.rawlog");
+        const std::string body = raw<std::int32_t>(1 /* emScan2DMatching */) + pdf + raw<std::uint8_t>(0) +
+                                 raw(0.0) + raw(0.0) + raw<std::uint8_t>(0) + raw<std::int32_t>(0) +
+                                 raw<std::int32_t>(0) + raw<std::uint64_t>(0);
+        test::writeBytes(path, actions({framed("CActionRobotMovement2D", version, body)}));
+        EXPECT_NE(firstEntryError(path).find("pose PDF is missing"), std::string::npos);
+    }
+}
+
+TEST(MalformedMrptObjects, CurrentActionsReadBackUnchanged) {
+    // Through the guards, what MRPT writes reads back to the same bytes: odometry (PDF rebuilt
+    // from the increment) and a scan-matching estimate (PDF stored).
+    registerAllClasses();
+    test::TempDir dir;
+    mrpt::obs::CActionRobotMovement2D odometry;
+    odometry.computeFromOdometry(mrpt::poses::CPose2D(0.2, 0.01, 0.1), {});
+    odometry.hasEncodersInfo = true;
+    odometry.encoderLeftTicks = 7;
+    mrpt::obs::CActionRobotMovement2D matched;
+    matched.estimationMethod = mrpt::obs::CActionRobotMovement2D::emScan2DMatching;
+    mrpt::poses::CPosePDFGaussian pdf;
+    pdf.mean = mrpt::poses::CPose2D(0.5, -0.2, 0.3);
+    pdf.cov.setIdentity();
+    matched.poseChange = mrpt::poses::CPosePDF::Ptr(std::make_shared<mrpt::poses::CPosePDFGaussian>(pdf));
+    for (const auto* move : {&odometry, &matched}) {
+        mrpt::obs::CActionCollection written;
+        written.insert(*move);
+        const auto path = dir.file("current.rawlog");
+        test::writeBytes(path, serialized(written));
+        io::RawlogReader reader(path);
+        const auto entry = reader.next();
+        ASSERT_TRUE(entry);
+        EXPECT_EQ(serialized(*entry->object), serialized(written));
+    }
+}
+
 TEST(MalformedMrptObjects, WellFormedOldVersionsReadAsMrptDefinesThem) {
     registerAllClasses();
     test::TempDir dir;
@@ -162,4 +206,33 @@ TEST(MalformedMrptObjects, NullElementsOfContainersAreReadErrors) {
     test::writeBytes(framePath, framed("CSensoryFrame", 2, raw<std::uint32_t>(1) + nullObject()));
     const std::string error = firstEntryError(framePath);
     EXPECT_NE(error.find("observation 0 of the sensory frame is null"), std::string::npos) << error;
+}
+
+TEST(MalformedMrptObjects, ADamagedJpegImageIsAReadErrorNotAnExit) {
+    // libjpeg's default error handler calls exit(1); MRPT decodes embedded JPEGs with it. The
+    // executable's jpeg_std_error (libs/io/hooks) makes it throw: a read error, the entries
+    // before it delivered. (Without the hook this test binary would exit here.)
+    registerAllClasses();
+    test::TempDir dir;
+    const bool wasDisabled = mrpt::img::CImage::DISABLE_JPEG_COMPRESSION();
+    mrpt::img::CImage::DISABLE_JPEG_COMPRESSION(false);
+    mrpt::obs::CObservationImage photo;
+    photo.image = mrpt::img::CImage(64, 48, mrpt::img::CH_RGB);
+    photo.image.filledRectangle(0, 0, 63, 47, mrpt::img::TColor(200, 40, 10));
+    std::string image = serialized(photo);
+    mrpt::img::CImage::DISABLE_JPEG_COMPRESSION(wasDisabled);
+    const auto soi = image.find("\xFF\xD8\xFF");
+    ASSERT_NE(soi, std::string::npos) << "MRPT did not store the image as JPEG";
+    image.replace(soi, 3, std::string(3, '\0'));
+    const auto path = dir.file("damaged_jpeg.rawlog");
+    test::writeBytes(path, serialized(*test::makeMagnetometer(1.0, "MAG", 1)) + image);
+    io::RawlogReader reader(path);
+    EXPECT_TRUE(reader.next());
+    try {
+        reader.next();
+        ADD_FAILURE() << "the damaged image was read";
+    } catch (const io::RawlogReadError& e) {
+        EXPECT_EQ(e.entryIndex(), 1u);
+        EXPECT_NE(std::string(e.what()).find("CImage: JPEG image: Not a JPEG file"), std::string::npos) << e.what();
+    }
 }

@@ -67,3 +67,15 @@ TEST(AllocationBudget, WithoutABudgetNothingIsRefused) {
     std::vector<char> v(64 << 20);
     EXPECT_EQ(v.size(), 64u << 20);
 }
+
+TEST(AllocationBudget, SmallBlocksPastTheLimitAreChargedNotRefused) {
+    // What code that may not throw allocates (MRPT building an exception's call stack) is
+    // small: refusing it would end in std::terminate. The next large block is refused.
+    AllocationBudget budget(1 << 20);
+    std::vector<std::string> many;
+    for (int i = 0; i < 64; ++i) many.emplace_back(32 << 10, 'x');  // 2 MB in 32 kB blocks
+    EXPECT_FALSE(budget.exceeded());
+    EXPECT_GT(budget.charged(), 2u << 20);
+    EXPECT_THROW(std::vector<char>(AllocationBudget::kSmallestRefused), std::bad_alloc);
+    EXPECT_EQ(budget.refused(), AllocationBudget::kSmallestRefused);
+}

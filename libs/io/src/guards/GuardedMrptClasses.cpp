@@ -1,22 +1,19 @@
-// Two stock deserializers crash on a damaged file, inside MRPT, where no exception handler
-// can help:
+// Stock deserializers that crash on a damaged file, inside MRPT, where no exception handler
+// can help (found by tests/fuzz/fuzz_rawlog):
 // - CActionCollection stores each action read into a deep-copying pointer, which clones it:
 //   an action stored as "nullptr" is dereferenced.
-// - CActionRobotMovement2D::serializeFrom, versions 0 and 1, reads the pose PDF object
-// and then calls poseChange->getMean() on it. A damaged file that stores "nullptr" (or an
-// object of another class) there makes MRPT dereference a null pointer: a segfault no
-// exception handler can catch. Newer versions store the same PDF for non-odometry estimates
-// and leave the null for whoever reads the action next.
+// - CActionRobotMovement2D reads its pose PDF as an object pointer; stored as "nullptr" or as
+//   an object of another class, it is null, and MRPT dereferences it (getMean() in versions
+//   0-1, the deep-copying assignment in later ones).
 //
-// The guards: subclasses that read the risky part themselves and refuse what MRPT would
-// dereference with an exception. The collection reads its count and actions (one at a time,
-// nothing allocated from the count) and inserts each, which clones it. The movement reads its
-// PDF itself, refuses a missing one with an exception,
-// and hands MRPT's own reader the same bytes from a memory stream, so the format is still
-// MRPT's. It is registered in MRPT's class registry under the stock class's name, which is
-// how CArchive::ReadObject finds what to create. Each reports the stock class as its runtime
-// class, so IS_CLASS, class names and re-serialization see a CActionRobotMovement2D, and
-// clone() gives a plain one.
+// The guards are subclasses that read the risky part themselves and throw on what MRPT would
+// dereference. The collection reads its count and its actions one at a time (nothing is
+// allocated from the count) and inserts each, which clones it into a stock object. The
+// movement reads its leading fields and PDF, checks them, and hands MRPT's own deserializer
+// the same bytes followed by the rest of the stream (PrefixedArchive), so the format stays
+// MRPT's. Both are registered in MRPT's class registry under the stock names, which is how
+// CArchive::ReadObject finds what to create, and report the stock class as their runtime
+// class: IS_CLASS, class names and re-serialization see the stock classes.
 #include "GuardedMrptClasses.h"
 
 #include <mrpt/io/CMemoryStream.h>
@@ -26,7 +23,8 @@
 #include <mrpt/rtti/CObject.h>
 #include <mrpt/serialization/CArchive.h>
 
-#include <array>
+#include <algorithm>
+#include <cstring>
 #include <iostream>
 #include <mutex>
 #include <sstream>
@@ -37,6 +35,38 @@ namespace {
 
 using mrpt::obs::CActionRobotMovement2D;
 
+/** Reads `prefix` first, then whatever follows in `rest`: lets MRPT's own deserializer read
+ * an object whose leading part a guard has already read and checked. */
+class PrefixedArchive : public mrpt::serialization::CArchive {
+  public:
+    PrefixedArchive(std::string prefix, mrpt::serialization::CArchive& rest)
+        : prefix_(std::move(prefix)), rest_(rest) {}
+
+  protected:
+    size_t write(const void*, size_t) override {
+        throw std::logic_error("PrefixedArchive is read-only");
+    }
+    size_t read(void* buf, size_t len) override {
+        const std::size_t fromPrefix = std::min(len, prefix_.size() - used_);
+        std::memcpy(buf, prefix_.data() + used_, fromPrefix);
+        used_ += fromPrefix;
+        if (fromPrefix == len) return len;
+        return fromPrefix + rest_.ReadBuffer(static_cast<char*>(buf) + fromPrefix, len - fromPrefix);
+    }
+
+  private:
+    std::string prefix_;
+    std::size_t used_{0};
+    mrpt::serialization::CArchive& rest_;
+};
+
+std::string serializedBytes(const mrpt::serialization::CSerializable& object) {
+    mrpt::io::CMemoryStream buffer;
+    auto out = mrpt::serialization::archiveFrom(buffer);
+    out << object;
+    return std::string(static_cast<const char*>(buffer.getRawBufferData()), buffer.getTotalBytesCount());
+}
+
 class GuardedRobotMovement2D : public CActionRobotMovement2D {
   public:
     const mrpt::rtti::TRuntimeClassId* GetRuntimeClass() const override {
@@ -44,30 +74,27 @@ class GuardedRobotMovement2D : public CActionRobotMovement2D {
     }
 
   protected:
+    // Versions 0-1 start with the PDF; later ones with the estimation method, then the PDF
+    // unless the method is odometry (whose PDF MRPT rebuilds from the increment it reads).
     void serializeFrom(mrpt::serialization::CArchive& in, uint8_t version) override {
-        if (version > 1) {
-            CActionRobotMovement2D::serializeFrom(in, version);
-            if (!poseChange) throw std::runtime_error("CActionRobotMovement2D: no pose PDF stored");
-            return;
+        std::string checked;
+        if (version >= 2) {
+            std::int32_t method = 0;
+            in >> method;
+            checked.assign(reinterpret_cast<const char*>(&method), sizeof(method));
+            if (method == emOdometry) {
+                PrefixedArchive again(checked, in);
+                CActionRobotMovement2D::serializeFrom(again, version);
+                return;
+            }
         }
-        auto pdf = in.ReadObject<mrpt::poses::CPosePDF>();
+        const auto pdf = in.ReadObject<mrpt::poses::CPosePDF>();
         if (!pdf) {
-            throw std::runtime_error(
-                "CActionRobotMovement2D (version " + std::to_string(version) +
-                "): the pose PDF is missing or not a CPosePDF");
+            throw std::runtime_error("CActionRobotMovement2D (version " + std::to_string(version) +
+                                     "): the pose PDF is missing or not a CPosePDF");
         }
-        // What follows the PDF: int32 method; version 1 adds bool, 2 floats, bool, 2 int32.
-        std::array<std::uint8_t, 22> tail{};
-        const std::size_t tailBytes = version == 0 ? 4 : 22;
-        if (in.ReadBuffer(tail.data(), tailBytes) != tailBytes) {
-            throw std::runtime_error("CActionRobotMovement2D: the file ends inside the action");
-        }
-        mrpt::io::CMemoryStream buffer;
-        auto out = mrpt::serialization::archiveFrom(buffer);
-        out << *pdf;
-        out.WriteBuffer(tail.data(), tailBytes);
-        buffer.Seek(0);
-        auto again = mrpt::serialization::archiveFrom(buffer);
+        checked += serializedBytes(*pdf);
+        PrefixedArchive again(checked, in);
         CActionRobotMovement2D::serializeFrom(again, version);
     }
 };
