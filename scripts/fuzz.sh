@@ -5,6 +5,7 @@
 #   scripts/fuzz.sh [--seconds N] [--jobs J] [TARGET ...]
 #     --seconds N   time per target (default 600)
 #     --jobs J      targets run at once (default: the number of cores)
+#     --seed S      libFuzzer's random seed (default: from the clock); CI passes one
 # Findings (the crashing input, its log) go to build-fuzz/findings/TARGET/; reproduce one
 # with build-fuzz/tests/fuzz/TARGET FILE, or build/tests/fuzz/TARGET_replay FILE (gcc).
 # A finding that is fixed is added to tests/fuzz/regression/TARGET/ (ctest replays it).
@@ -12,12 +13,14 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 seconds=600
 jobs=$(nproc)
+seed=0
 targets=()
 while [ $# -gt 0 ]; do
     case "$1" in
         --seconds) seconds=$2; shift 2 ;;
         --jobs) jobs=$2; shift 2 ;;
-        -h|--help) sed -n 2,12p "$0"; exit 0 ;;
+        --seed) seed=$2; shift 2 ;;
+        -h|--help) sed -n 2,13p "$0"; exit 0 ;;
         -*) echo "fuzz.sh: unknown option '$1'" >&2; exit 2 ;;
         *) targets+=("$1"); shift ;;
     esac
@@ -43,11 +46,11 @@ run_one() {
     [ -d "$root/tests/fuzz/regression/$t" ] && dirs+=("$root/tests/fuzz/regression/$t")
     ASAN_OPTIONS=detect_leaks=0:allocator_may_return_null=0 UBSAN_OPTIONS=print_stacktrace=1 \
         "$build/tests/fuzz/$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=1024 \
-        -malloc_limit_mb=1024 -print_final_stats=1 -artifact_prefix="$findings/" \
+        -malloc_limit_mb=1024 -seed="$seed" -print_final_stats=1 -artifact_prefix="$findings/" \
         "${dirs[@]}" > "$findings/log.txt" 2>&1 || true
 }
 export -f run_one
-export build root seconds
+export build root seconds seed
 printf '%s\n' "${targets[@]}" | xargs -P "$jobs" -I{} bash -c 'run_one {}'
 
 echo

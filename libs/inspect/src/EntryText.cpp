@@ -91,11 +91,24 @@ std::string observationLine(const mrpt::obs::CObservation& obs) {
     return o.str();
 }
 
+namespace {
+// MRPT's own description of an object; it throws on values MRPT read but cannot name (an
+// enum holding a number its type lacks): said in the text rather than ending the listing.
+template <typename T>
+void mrptDescription(const T& object, std::ostream& out) {
+    try {
+        object.getDescriptionAsText(out);
+    } catch (const std::exception& e) {
+        out << "\n(MRPT cannot describe this object: " << e.what() << ")\n";
+    }
+}
+}  // namespace
+
 void describeEntry(const mrpt::serialization::CSerializable& entry, std::ostream& out) {
     out << "Class: " << entry.GetRuntimeClass()->className << "\n";
     if (const auto* obs = dynamic_cast<const mrpt::obs::CObservation*>(&entry)) {
         loadForDescription(*obs, out);
-        obs->getDescriptionAsText(out);
+        mrptDescription(*obs, out);
     } else if (const auto* sf = dynamic_cast<const mrpt::obs::CSensoryFrame*>(&entry)) {
         out << "Sensory frame with " << sf->size() << " observation(s)\n";
         std::size_t i = 0;
@@ -104,14 +117,14 @@ void describeEntry(const mrpt::serialization::CSerializable& entry, std::ostream
             out << "\n--- observation " << i++ << ": " << o->GetRuntimeClass()->className
                 << " ---\n";
             loadForDescription(*o, out);
-            o->getDescriptionAsText(out);
+            mrptDescription(*o, out);
         }
     } else if (const auto* acts = dynamic_cast<const mrpt::obs::CActionCollection*>(&entry)) {
         out << "Action collection with " << acts->size() << " action(s)\n";
         std::size_t i = 0;
         for (const auto& a : *acts) {
             out << "\n--- action " << i++ << ": " << a->GetRuntimeClass()->className << " ---\n";
-            a->getDescriptionAsText(out);
+            mrptDescription(*a, out);
         }
     }
 }

@@ -1,14 +1,13 @@
 #include <lodestone/io/RawlogReadError.h>
 #include <lodestone/memguard/AllocationBudget.h>
 #include <lodestone/io/RawlogReader.h>
-#include <mrpt/obs/CActionCollection.h>
-#include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/serialization/CArchive.h>
 
 #include <algorithm>
 #include <filesystem>
 
 #include "ZlibFileStream.h"
+#include "guards/EntryChecks.h"
 #include "guards/GuardedMrptClasses.h"
 
 namespace lodestone::io {
@@ -64,24 +63,6 @@ constexpr std::uint64_t kEntryFloor = 64ull << 20;  // MRPT's own bookkeeping, s
 constexpr std::uint64_t kBytesPerStoredByte = 8;    // conversions on load (e.g. 16-bit -> float)
 constexpr std::uint64_t kMaxDeflateRatio = 1032;    // deflate's limit: gzip bytes -> data bytes
 constexpr std::uint64_t kMaxEntryBytes = 2ull << 30;  // whatever the file: 2 GiB an entry
-
-// MRPT stores a null pointer as an object of class "nullptr"; inside a container every
-// consumer (MRPT's and ours) dereferences the elements, so a null one is a damaged entry.
-std::string nullElement(const mrpt::serialization::CSerializable& object) {
-    std::size_t i = 0;
-    if (const auto* sf = dynamic_cast<const mrpt::obs::CSensoryFrame*>(&object)) {
-        for (const auto& o : *sf) {
-            if (!o) return "corrupt entry: observation " + std::to_string(i) + " of the sensory frame is null";
-            ++i;
-        }
-    } else if (const auto* actions = dynamic_cast<const mrpt::obs::CActionCollection*>(&object)) {
-        for (const auto& a : *actions) {
-            if (!a) return "corrupt entry: action " + std::to_string(i) + " of the action collection is null";
-            ++i;
-        }
-    }
-    return {};
-}
 
 std::string megabytes(std::uint64_t bytes) {
     return std::to_string((bytes + (1 << 20) - 1) >> 20) + " MB";
@@ -172,7 +153,9 @@ std::optional<RawlogEntry> RawlogReader::next() {
         throw fail(condensedMrptError(e.what()));
     }
     if (!entry.object) throw fail("null object stored as an entry");
-    if (const std::string why = nullElement(*entry.object); !why.empty()) throw fail(why);
+    if (const std::string why = detail::damagedPart(*entry.object); !why.empty()) {
+        throw fail("corrupt entry: " + why);
+    }
     ++next_index_;
     return entry;
 }

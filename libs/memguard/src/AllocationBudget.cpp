@@ -20,8 +20,11 @@ bool AllocationBudget::hooksInstalled() { return installed.load(); }
 bool charge(std::size_t bytes) noexcept {
     AllocationBudget* b = active;
     if (!b || b->refused_ > 0) return true;  // none active, or already refused: stand aside
-    const bool over = bytes > b->limit_ || b->charged_ > b->limit_ - bytes;
-    if (over && bytes >= AllocationBudget::kSmallestRefused) {
+    // Past the limit, a large block is refused; small ones only past the slack beyond it.
+    const std::uint64_t limit = bytes >= AllocationBudget::kSmallestRefused
+                                    ? b->limit_
+                                    : b->limit_ + AllocationBudget::kSmallBlockSlack;
+    if (bytes > limit || b->charged_ > limit - bytes) {
         b->refused_ = bytes;
         return false;
     }

@@ -236,3 +236,28 @@ TEST(MalformedMrptObjects, ADamagedJpegImageIsAReadErrorNotAnExit) {
         EXPECT_NE(std::string(e.what()).find("CImage: JPEG image: Not a JPEG file"), std::string::npos) << e.what();
     }
 }
+
+TEST(MalformedMrptObjects, FieldsMrptCopiesWithoutCheckingAreValidated) {
+    // An enum holding a value its type lacks (printing it throws inside MRPT) and a bool byte
+    // that is neither 0 nor 1 (undefined behaviour where it is read): corrupt entries.
+    registerAllClasses();
+    test::TempDir dir;
+    auto scan = test::makeRangeScan(1.0, 8, 6, 1.0);
+    scan->intensityImageChannel = static_cast<mrpt::obs::CObservation3DRangeScan::TIntensityChannelID>(7);
+    const auto scanPath = dir.file("channel.rawlog");
+    test::writeBytes(scanPath, serialized(*scan));
+    EXPECT_NE(firstEntryError(scanPath).find("intensity channel id 7"), std::string::npos);
+
+    // The flag byte is where two objects that differ only in it differ.
+    mrpt::obs::CObservationOdometry odometry;
+    const std::string without = serialized(odometry);
+    odometry.hasEncodersInfo = true;
+    std::string bytes = serialized(odometry);
+    const auto odoPath = dir.file("flag.rawlog");
+    std::size_t at = 0;
+    while (at < without.size() && without[at] == bytes[at]) ++at;
+    ASSERT_EQ(bytes[at], '\x01');
+    bytes[at] = 8;
+    test::writeBytes(odoPath, bytes);
+    EXPECT_NE(firstEntryError(odoPath).find("neither 0 nor 1"), std::string::npos);
+}

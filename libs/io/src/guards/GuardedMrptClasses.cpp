@@ -17,6 +17,7 @@
 #include "GuardedMrptClasses.h"
 
 #include <mrpt/io/CMemoryStream.h>
+#include <mrpt/maps/registerAllClasses.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/poses/CPosePDF.h>
@@ -147,7 +148,10 @@ const mrpt::rtti::TRuntimeClassId kGuardedActionCollection{
 void installGuardedMrptClasses() {
     static std::once_flag once;
     std::call_once(once, [] {
-        // MRPT registers its classes lazily; ours must come after the stock ones.
+        // Observations MRPT defines in mrpt-maps (CObservationRotatingScan, point-cloud
+        // observations) are stock rawlog classes too; MRPT registers its classes lazily, and
+        // ours must come after the stock ones.
+        mrpt::maps::registerAllClasses_mrpt_maps();
         mrpt::rtti::registerAllPendingClasses();
         // The registry warns on std::cerr that a name is overwritten: that is the point here.
         std::ostringstream quiet;

@@ -10,10 +10,11 @@ namespace lodestone::memguard {
  * allocator (mrpt::aligned_malloc / aligned_calloc: CMatrixDynamic, point clouds) is charged
  * against `bytes`, summed; the first block of at least kSmallestRefused bytes that would go
  * past it throws std::bad_alloc (a `nothrow` new returns null) before anything is allocated,
- * and the budget then stands aside so the error can be reported. Smaller blocks are charged
- * but never refused: a damaged size field asks for a large block, while small ones are what
- * code that may not throw allocates (an exception's text and call stack while MRPT builds
- * it: refusing there ends in std::terminate - found by tests/fuzz/fuzz_observation).
+ * and the budget then stands aside so the error can be reported. Smaller blocks are refused
+ * only past kSmallBlockSlack beyond the limit: a damaged size field asks for a large block (or
+ * for very many small ones: a std::deque resized to it), while a few small ones are what code
+ * that may not throw allocates near the limit (an exception's text and call stack while MRPT
+ * builds it: refusing there ends in std::terminate - found by tests/fuzz/fuzz_observation).
  *
  * Why: MRPT's deserializers trust the size fields they read and allocate - and zero-fill -
  * first, so one damaged size in a rawlog entry takes gigabytes (or, through the aligned
@@ -27,8 +28,9 @@ namespace lodestone::memguard {
  * until it ends. One per thread at a time is the intended use. */
 class AllocationBudget {
   public:
-    /** Blocks smaller than this are never refused (see above). */
+    /** Blocks smaller than this are refused only past the limit plus kSmallBlockSlack. */
     static constexpr std::uint64_t kSmallestRefused = 256 * 1024;
+    static constexpr std::uint64_t kSmallBlockSlack = 16 * 1024 * 1024;
 
     explicit AllocationBudget(std::uint64_t bytes);
     ~AllocationBudget();
