@@ -135,7 +135,13 @@ std::optional<RawlogEntry> RawlogReader::next() {
         throw;
     } catch (const mrpt::serialization::CExceptionEOF&) {
         if (budget.exceeded()) throw overBudget();
-        if (impl_->stream.getPosition() == entry.byteOffset && impl_->stream.lastError().empty()) {
+        const bool atBoundary = impl_->stream.getPosition() == entry.byteOffset;
+        if (atBoundary && !impl_->stream.lastError().empty()) {
+            // Between entries, the compressed data itself is damaged or followed by garbage.
+            failed_ = true;
+            throw RawlogReadError(path_, entry.index, entry.byteOffset, impl_->stream.lastError());
+        }
+        if (atBoundary) {
             // A clean end between two entries - unless there was none: an empty file (or a
             // gzip that inflates to nothing) is no rawlog, however MRPT's tools take it.
             if (entry.index == 0) {

@@ -20,36 +20,21 @@ std::string gzErrorText(void* f) {
 
 ZlibFileStream::ZlibFileStream(const std::string& path, Mode mode, int gzipLevel)
     : path_(path), mode_(mode) {
-    std::string openMode;
-    switch (mode) {
-        case Mode::Read:
-            openMode = "rb";
-            break;
-        case Mode::WritePlain:
-            openMode = "wbT";  // 'T': transparent, i.e. no gzip framing
-            break;
-        case Mode::WriteGzip:
-            if (gzipLevel < 1 || gzipLevel > 9) {
-                throw std::invalid_argument(path + ": gzip level must be 1..9, got " +
-                                            std::to_string(gzipLevel));
-            }
-            openMode = "wb" + std::to_string(gzipLevel);
-            break;
+    if (mode == Mode::Read) {
+        reader_ = std::make_unique<GzipFileReader>(path, kReadAhead);
+        compressed_ = reader_->isCompressed();
+        return;
+    }
+    std::string openMode = "wbT";  // 'T': transparent, i.e. no gzip framing
+    if (mode == Mode::WriteGzip) {
+        if (gzipLevel < 1 || gzipLevel > 9) {
+            throw std::invalid_argument(path + ": gzip level must be 1..9, got " +
+                                        std::to_string(gzipLevel));
+        }
+        openMode = "wb" + std::to_string(gzipLevel);
     }
     file_ = gzopen(path.c_str(), openMode.c_str());
-    if (!file_) {
-        throw std::runtime_error(path + ": cannot open for " +
-                                 (mode == Mode::Read ? "reading" : "writing"));
-    }
-    if (mode == Mode::Read) {
-        gzbuffer(asGz(file_), kReadAhead);
-        // gzdirect() is only reliable once zlib has looked at the first bytes.
-        char probe = 0;
-        const int n = gzread(asGz(file_), &probe, 1);
-        compressed_ = gzdirect(asGz(file_)) == 0;
-        gzrewind(asGz(file_));
-        if (n < 0) last_error_ = gzErrorText(file_);
-    }
+    if (!file_) throw std::runtime_error(path + ": cannot open for writing");
 }
 
 ZlibFileStream::~ZlibFileStream() {
@@ -57,25 +42,11 @@ ZlibFileStream::~ZlibFileStream() {
 }
 
 size_t ZlibFileStream::Read(void* buffer, size_t count) {
-    if (mode_ != Mode::Read || !file_) return 0;
-    size_t total = 0;
-    auto* out = static_cast<char*>(buffer);
-    while (total < count) {
-        const unsigned chunk = static_cast<unsigned>(std::min<size_t>(count - total, 1u << 30));
-        const int n = gzread(asGz(file_), out + total, chunk);
-        if (n < 0) {
-            last_error_ = gzErrorText(file_);
-            break;
-        }
-        if (n == 0) {
-            // End of data: clean, or a gzip stream cut short ("unexpected end of file").
-            last_error_ = gzErrorText(file_);
-            break;
-        }
-        total += static_cast<size_t>(n);
-    }
-    position_ += total;
-    return total;
+    if (mode_ != Mode::Read || !reader_) return 0;
+    const size_t n = reader_->read(buffer, count);
+    last_error_ = reader_->error();
+    position_ += n;
+    return n;
 }
 
 size_t ZlibFileStream::Write(const void* buffer, size_t count) {
@@ -100,6 +71,7 @@ uint64_t ZlibFileStream::Seek(int64_t, mrpt::io::CStream::TSeekOrigin) {
 }
 
 uint64_t ZlibFileStream::fileOffset() const {
+    if (reader_) return reader_->fileOffset();
     const auto off = gzoffset(asGz(file_));
     return off < 0 ? 0 : static_cast<uint64_t>(off);
 }
@@ -116,6 +88,7 @@ void ZlibFileStream::flushToDisk() {
 }
 
 void ZlibFileStream::close() {
+    reader_.reset();
     if (!file_) return;
     const int rc = gzclose(asGz(file_));
     file_ = nullptr;

@@ -1,14 +1,17 @@
 #pragma once
 
-// Internal: an mrpt::io::CStream over a zlib gzFile. One class for the three ways Lodestone
-// touches rawlog bytes: reading (plain or gzip, detected by zlib from the content), writing
-// plain and writing gzip. Unlike MRPT's CFileGZ*Stream it counts uncompressed bytes (for the
+// Internal: an mrpt::io::CStream over rawlog bytes on disk. One class for the three ways
+// Lodestone touches them: reading (plain or gzip, told from the content, through
+// GzipFileReader), writing plain and writing gzip (a zlib gzFile). Unlike MRPT's CFileGZ*Stream it counts uncompressed bytes (for the
 // byte offsets in error messages) and can flush to disk after each entry.
 
 #include <mrpt/io/CStream.h>
 
 #include <cstdint>
+#include <memory>
 #include <string>
+
+#include "GzipFileReader.h"
 
 namespace lodestone::io::detail {
 
@@ -42,11 +45,13 @@ class ZlibFileStream : public mrpt::io::CStream {
     uint64_t fileOffset() const;
     /** True when reading a gzip-compressed file (false: plain). */
     bool isCompressed() const { return compressed_; }
-    /** The last zlib error text, or empty. */
+    /** What stopped reading early (damaged or cut-short gzip data, garbage after it) or the
+     * last zlib write error; empty if nothing. */
     const std::string& lastError() const { return last_error_; }
 
   private:
-    void* file_{nullptr};  // gzFile, kept opaque so zlib.h stays out of this header
+    std::unique_ptr<GzipFileReader> reader_;  // Mode::Read
+    void* file_{nullptr};  // gzFile (writing), kept opaque so zlib.h stays out of this header
     std::string path_;
     Mode mode_;
     uint64_t position_{0};

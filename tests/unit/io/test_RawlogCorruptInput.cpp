@@ -88,6 +88,40 @@ TEST_F(RawlogCorruptInput, TruncatedGzipFile) {
     EXPECT_NE(got.error.find(path), std::string::npos) << got.error;
 }
 
+TEST_F(RawlogCorruptInput, GarbageAfterTheGzipDataIsAnError) {
+    // zlib's gzread ignores what follows the last gzip member; a rawlog with bytes after its
+    // compressed data is damaged (or two files run together), and the reader says so after
+    // delivering every entry.
+    const auto gz = dir_.file("clean.rawlog.gz");
+    test::writeRawlog(gz, observations_, 6);
+    const auto path = dir_.file("garbage_after.rawlog.gz");
+    test::writeBytes(path, test::readBytes(gz) + "trailing garbage");
+    io::RawlogSource source(path);
+    const auto got = test::drain(source);
+    EXPECT_EQ(got.observations.size(), observations_.size());
+    EXPECT_EQ(got.errorEntry, observations_.size());
+    EXPECT_NE(got.error.find("garbage after the end of the gzip data"), std::string::npos) << got.error;
+    EXPECT_NE(got.error.find(path), std::string::npos) << got.error;
+}
+
+TEST_F(RawlogCorruptInput, ConcatenatedGzipMembersReadAsOneRawlog) {
+    // gzip allows members back to back (cat a.gz b.gz): both halves are read.
+    const auto first = dir_.file("first.rawlog.gz");
+    const auto second = dir_.file("second.rawlog.gz");
+    const std::size_t half = observations_.size() / 2;
+    test::writeRawlog(first, {observations_.begin(), observations_.begin() + half}, 6);
+    test::writeRawlog(second, {observations_.begin() + half, observations_.end()}, 6);
+    const auto path = dir_.file("both.rawlog.gz");
+    test::writeBytes(path, test::readBytes(first) + test::readBytes(second));
+    io::RawlogSource source(path);
+    const auto got = test::drain(source);
+    EXPECT_TRUE(got.error.empty()) << got.error;
+    ASSERT_EQ(got.observations.size(), observations_.size());
+    for (std::size_t i = 0; i < observations_.size(); ++i) {
+        EXPECT_TRUE(test::serializeEqual(*got.observations[i], *observations_[i])) << i;
+    }
+}
+
 TEST_F(RawlogCorruptInput, GarbageBytesBetweenEntries) {
     auto bytes = test::readBytes(clean_);
     std::mt19937 rng(7);
