@@ -41,6 +41,7 @@ void writeNodeTrajectory(const std::string& path, const Graph& graph, const Node
     for (TNodeID id = 0; id < nodes.size(); ++id) {
         if (graph.nodes.count(id)) w.write(nodes.at(id).timestamp, graph.nodes.at(id));
     }
+    w.close();
 }
 
 }  // namespace lodestone::graphslam

@@ -42,6 +42,7 @@ MagneticImportResult writeMagneticRecording(const MagneticRecording& recording,
         truth.write(s.t, mrpt::poses::CPose3D(s.x, s.y, 0, s.heading, 0, 0));
     }
     writer.close();
+    truth.close();
     if (!recording.samples.empty()) {
         r.duration = recording.samples.back().t - recording.samples.front().t;
     }

@@ -34,4 +34,14 @@ void refuseOutputOverInput(const std::string& output, const std::vector<std::str
     }
 }
 
+std::string partialPath(const std::string& path) { return path + ".partial"; }
+
+void commitPartial(const std::string& path) {
+    std::error_code ec;
+    std::filesystem::rename(partialPath(path), path, ec);
+    if (ec) {
+        throw std::runtime_error("cannot rename '" + partialPath(path) + "' to '" + path + "': " + ec.message());
+    }
+}
+
 }  // namespace lodestone::io

@@ -1,5 +1,8 @@
+#include <lodestone/io/RawlogPaths.h>
 #include <lodestone/io/RawlogWriter.h>
 #include <mrpt/serialization/CArchive.h>
+
+#include <exception>
 
 #include "ZlibFileStream.h"
 
@@ -20,11 +23,18 @@ struct RawlogWriter::Impl {
 RawlogWriter::RawlogWriter(const std::string& path) : RawlogWriter(path, Options{}) {}
 
 RawlogWriter::RawlogWriter(const std::string& path, Options options)
-    : impl_(std::make_unique<Impl>(path, options)), path_(path) {}
+    : impl_(std::make_unique<Impl>(partialPath(path), options)),
+      path_(path),
+      uncaught_at_start_(std::uncaught_exceptions()) {}
 
 RawlogWriter::~RawlogWriter() {
+    if (!impl_->open) return;
     try {
-        close();
+        if (std::uncaught_exceptions() > uncaught_at_start_) {
+            impl_->stream.close();  // unwinding from an error: what was written stays in .partial
+        } else {
+            close();
+        }
     } catch (...) {
         // A destructor cannot report; call close() to see write errors.
     }
@@ -46,6 +56,7 @@ void RawlogWriter::close() {
     if (!impl_->open) return;
     impl_->open = false;
     impl_->stream.close();
+    commitPartial(path_);
 }
 
 }  // namespace lodestone::io

@@ -123,6 +123,7 @@ SevenScenesImportResult importSevenScenes(const std::string& sequenceDir, const 
         }
     }
     writer.close();
+    truth.close();
     return r;
 }
 

@@ -96,6 +96,7 @@ TumImportResult importTumRgbd(const std::string& sequenceDir, const std::string&
         const auto gt = readTumTrajectory((dir / "groundtruth.txt").string());
         TumTrajectoryWriter writer(r.groundTruth);
         for (const auto& p : gt) writer.write(p.timestamp, p.pose);
+        writer.close();
         r.groundTruthPoses = gt.size();
     }
 

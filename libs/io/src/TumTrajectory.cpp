@@ -1,16 +1,19 @@
+#include <lodestone/io/RawlogPaths.h>
 #include <lodestone/io/TumTrajectory.h>
 #include <mrpt/math/CQuaternion.h>
 
 #include <cmath>
 #include <cstdlib>
 #include <cstdio>
+#include <exception>
 #include <sstream>
 #include <stdexcept>
 
 namespace lodestone::io {
 
-TumTrajectoryWriter::TumTrajectoryWriter(const std::string& path) : path_(path), out_(path) {
-    if (!out_) throw std::runtime_error(path + ": cannot create trajectory file");
+TumTrajectoryWriter::TumTrajectoryWriter(const std::string& path)
+    : path_(path), out_(partialPath(path)), uncaught_at_start_(std::uncaught_exceptions()) {
+    if (!out_) throw std::runtime_error(partialPath(path) + ": cannot create trajectory file");
     out_ << "# timestamp tx ty tz qx qy qz qw\n";
 }
 
@@ -23,6 +26,22 @@ void TumTrajectoryWriter::write(double timestamp, const mrpt::poses::CPose3D& po
     out_ << line;
     out_.flush();
     if (!out_) throw std::runtime_error(path_ + ": write error");
+}
+
+TumTrajectoryWriter::~TumTrajectoryWriter() {
+    if (!out_.is_open()) return;
+    if (std::uncaught_exceptions() > uncaught_at_start_) return;  // stays .partial
+    try {
+        close();
+    } catch (...) {
+    }
+}
+
+void TumTrajectoryWriter::close() {
+    if (!out_.is_open()) return;
+    out_.close();
+    if (!out_) throw std::runtime_error(path_ + ": write error");
+    commitPartial(path_);
 }
 
 std::vector<TumPose> readTumTrajectory(const std::string& path) {

@@ -75,6 +75,7 @@ RecordingSummary recordScenario(SimulatorSource& source, const std::string& outR
         }
     }
     writer.close();
+    gt.close();
     return r;
 }
 

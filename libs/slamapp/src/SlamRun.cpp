@@ -9,6 +9,7 @@
 #include <lodestone/io/KidnapEvents.h>
 #include <lodestone/io/PrefetchingSource.h>
 #include <lodestone/io/RawlogSource.h>
+#include <lodestone/io/RawlogPaths.h>
 #include <lodestone/io/TumTrajectory.h>
 #include <lodestone/obs/registerAllClasses.h>
 #include <lodestone/sim/SimulatorSource.h>
@@ -230,7 +231,10 @@ SlamRunResult runSlam(const SlamRunOptions& options, std::ostream& out, std::ost
             throw InputError("cannot create output directory '" + options.outDir + "': " + ec.message());
         }
         // A previous run's outputs must not stay beside this one's if this one stops early.
-        for (const char* name : kOutputs) fs::remove(dir / name, ec);
+        for (const char* name : kOutputs) {
+            fs::remove(dir / name, ec);
+            fs::remove(io::partialPath((dir / name).string()), ec);
+        }
         if (simulator) {
             simTruth = std::make_unique<io::TumTrajectoryWriter>((dir / "ground_truth.tum").string());
             io::writeKidnapEvents((dir / "events.txt").string(), simulator->scenario().name,
@@ -295,7 +299,7 @@ SlamRunResult runSlam(const SlamRunOptions& options, std::ostream& out, std::ost
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
     progress.finish(dataSeconds);
-    if (simTruth) simTruth.reset();  // flushes and closes
+    if (simTruth) simTruth->close();  // the truth of what was run, even if it stopped early
 
     // --- Outputs -----------------------------------------------------------------------------------
     try {
@@ -313,6 +317,7 @@ SlamRunResult runSlam(const SlamRunOptions& options, std::ostream& out, std::ost
             // it with the end of the run (what relocations did to the map).
             io::TumTrajectoryWriter w((dir / "map_at_first_kidnap.tum").string());
             for (const auto& [id, pose] : beforeKidnap) w.write(engine->nodes().at(id).timestamp, pose);
+            w.close();
         }
         const std::size_t mapPoints =
             graphslam::writeMapPly((dir / "map.ply").string(), graph, engine->nodes());

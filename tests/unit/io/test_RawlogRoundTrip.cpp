@@ -1,6 +1,9 @@
 #include <gtest/gtest.h>
+#include <lodestone/io/RawlogPaths.h>
 #include <lodestone/io/RawlogReader.h>
 #include <lodestone/obs/registerAllClasses.h>
+
+#include <filesystem>
 
 #include "RawlogTestHelpers.h"
 #include "SampleObservations.h"
@@ -74,15 +77,40 @@ TEST(RawlogWriter, EachEntryIsOnDiskBeforeTheNextIsWritten) {
         io::RawlogWriter writer(path, {level});
         for (int i = 0; i < 5; ++i) {
             writer.write(*test::makeMagnetometer(10.0 + i, "MAG", i));
-            // A snapshot of the file now is what a crash would leave behind.
+            // A snapshot of the file now (still the .partial one) is what a crash would leave.
             const auto snapshot = dir.file("snapshot.rawlog");
-            test::writeBytes(snapshot, test::readBytes(path));
+            test::writeBytes(snapshot, test::readBytes(io::partialPath(path)));
             io::RawlogSource source(snapshot);
             const auto got = test::drain(source);
             EXPECT_EQ(got.observations.size(), static_cast<std::size_t>(i + 1))
                 << "gzip level " << level << ", after entry " << i << ": " << got.error;
         }
     }
+}
+
+TEST(RawlogWriter, AFailedRunLeavesAPartialFileAndThePreviousOutputUntouched) {
+    // Written to OUT.partial, renamed at close: a run that stops with an error never leaves a
+    // file that looks complete, nor replaces the previous run's.
+    registerAllClasses();
+    test::TempDir dir;
+    const auto path = dir.file("out.rawlog");
+    test::writeBytes(path, "previous run");
+    try {
+        io::RawlogWriter writer(path);
+        writer.write(*test::makeMagnetometer(1.0, "MAG", 1));
+        throw std::runtime_error("the run failed");
+    } catch (const std::runtime_error&) {
+    }
+    EXPECT_EQ(test::readBytes(path), "previous run");
+    io::RawlogSource partial(io::partialPath(path));
+    EXPECT_EQ(test::drain(partial).observations.size(), 1u);  // what was written is kept
+    {
+        io::RawlogWriter writer(path);
+        writer.write(*test::makeMagnetometer(2.0, "MAG", 2));
+    }  // the normal end of the scope completes the file
+    EXPECT_FALSE(std::filesystem::exists(io::partialPath(path)));
+    io::RawlogSource complete(path);
+    EXPECT_EQ(test::drain(complete).observations.size(), 1u);
 }
 
 TEST(RawlogWriter, UnwritablePathIsAClearError) {

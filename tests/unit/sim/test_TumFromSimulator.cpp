@@ -55,6 +55,7 @@ TEST(TumFromSimulator, RenderedSequenceImportsWithItsGroundTruth) {
     }
     rgb.close();
     depth.close();
+    gt.close();
     io::TumImportOptions o;
     o.intrinsics = {sc.camera.fx, sc.camera.fy, sc.camera.cx, sc.camera.cy};
     const auto r = io::importTumRgbd(seq.string(), dir.file("office.rawlog"), o);

@@ -17,4 +17,13 @@ bool isGzipPath(const std::string& path);
  * would truncate the input before it is read. */
 void refuseOutputOverInput(const std::string& output, const std::vector<std::string>& inputs);
 
+/** Where an output is written until it is complete: `path + ".partial"`. Writers (RawlogWriter,
+ * TumTrajectoryWriter) write there and rename on close(), so a run that fails leaves a file
+ * that says it is partial, never one that looks complete beside a previous run's outputs. */
+std::string partialPath(const std::string& path);
+
+/** Renames partialPath(path) over `path` (atomically, on one file system); throws
+ * std::runtime_error naming both on failure. */
+void commitPartial(const std::string& path);
+
 }  // namespace lodestone::io

@@ -14,17 +14,26 @@ struct TumPose {
     mrpt::poses::CPose3D pose;
 };
 
-/** Writes a TUM trajectory line by line (flushed, so a crash keeps what was written). */
+/** Writes a TUM trajectory line by line (flushed, so a crash keeps what was written) to
+ * `path.partial`, renamed to `path` by close() or the destructor at the normal end of a scope,
+ * not when an exception unwinds past it (as RawlogWriter). */
 class TumTrajectoryWriter {
   public:
-    /** Creates `path` with a comment header; throws std::runtime_error naming it on failure. */
+    /** Creates `path.partial` with a comment header; throws std::runtime_error naming it on
+     * failure. */
     explicit TumTrajectoryWriter(const std::string& path);
+    ~TumTrajectoryWriter();
+    TumTrajectoryWriter(const TumTrajectoryWriter&) = delete;
+    TumTrajectoryWriter& operator=(const TumTrajectoryWriter&) = delete;
     void write(double timestamp, const mrpt::poses::CPose3D& pose);
+    /** Finishes the file and renames it to path(); throws std::runtime_error on an error. */
+    void close();
     const std::string& path() const { return path_; }
 
   private:
     std::string path_;
     std::ofstream out_;
+    int uncaught_at_start_{0};
 };
 
 /** Reads a TUM trajectory; '#' lines are comments. Throws std::runtime_error naming the file
