@@ -59,8 +59,8 @@ echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|"
 status=0
 for t in "${targets[@]}"; do
     log="$build/findings/$t/log.txt"
-    stat() { grep -m1 "^stat::$1:" "$log" | awk '{print $2}'; }
-    last=$(grep -E "^#[0-9]+.*cov: " "$log" | tail -1)
+    stat() { { grep -m1 "^stat::$1:" "$log" || true; } | awk '{print $2}'; }
+    last=$({ grep -E "^#[0-9]+.*cov: " "$log" || true; } | tail -1)
     cov=$(sed -n 's/.*cov: \([0-9]*\).*/\1/p' <<<"$last")
     ft=$(sed -n 's/.*ft: \([0-9]*\).*/\1/p' <<<"$last")
     corp=$(sed -n 's/.*corp: \([0-9]*\).*/\1/p' <<<"$last")

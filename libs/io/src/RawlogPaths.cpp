@@ -34,6 +34,20 @@ void refuseOutputOverInput(const std::string& output, const std::vector<std::str
     }
 }
 
+void prepareOutputFile(const std::string& path) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) throw std::runtime_error("output '" + path + "' is a folder");
+    const fs::path parent = fs::path(path).parent_path();
+    if (!parent.empty() && !fs::is_directory(parent, ec)) {
+        fs::create_directories(parent, ec);
+        if (ec || !fs::is_directory(parent)) {
+            throw std::runtime_error("cannot create the folder of output '" + path + "': " +
+                                     (ec ? ec.message() : "not a folder"));
+        }
+    }
+}
+
 std::string partialPath(const std::string& path) { return path + ".partial"; }
 
 void commitPartial(const std::string& path) {

@@ -3,6 +3,7 @@
 #include <mrpt/serialization/CArchive.h>
 
 #include <exception>
+#include <filesystem>
 
 #include "ZlibFileStream.h"
 
@@ -22,8 +23,16 @@ struct RawlogWriter::Impl {
 
 RawlogWriter::RawlogWriter(const std::string& path) : RawlogWriter(path, Options{}) {}
 
+namespace {
+const std::string& checkedOutput(const std::string& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) throw std::runtime_error("output '" + path + "' is a folder");
+    return path;
+}
+}  // namespace
+
 RawlogWriter::RawlogWriter(const std::string& path, Options options)
-    : impl_(std::make_unique<Impl>(partialPath(path), options)),
+    : impl_(std::make_unique<Impl>(partialPath(checkedOutput(path)), options)),
       path_(path),
       uncaught_at_start_(std::uncaught_exceptions()) {}
 

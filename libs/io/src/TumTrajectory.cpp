@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstdio>
+#include <filesystem>
 #include <exception>
 #include <sstream>
 #include <stdexcept>
@@ -45,6 +46,8 @@ void TumTrajectoryWriter::close() {
 }
 
 std::vector<TumPose> readTumTrajectory(const std::string& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) throw std::runtime_error(path + ": is a folder, not a trajectory file");
     std::ifstream in(path);
     if (!in) throw std::runtime_error(path + ": cannot open trajectory file");
     std::vector<TumPose> out;

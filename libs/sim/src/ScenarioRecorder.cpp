@@ -44,8 +44,7 @@ RecordingSummary recordScenario(SimulatorSource& source, const std::string& outR
     r.rawlog = outRawlog;
     r.groundTruth = stem + ".gt.tum";
     r.events = stem + ".events.txt";
-    const auto parent = std::filesystem::path(outRawlog).parent_path();
-    if (!parent.empty()) std::filesystem::create_directories(parent);
+    io::prepareOutputFile(outRawlog);
     const bool external = source.scenario().camera.externalImages;
     if (external) {
         r.imagesDir = io::findImagesDirectory(outRawlog);

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 #include <mrpt/obs/CSensoryFrame.h>
 
 namespace lodestone::io::detail {
@@ -15,12 +16,20 @@ namespace {
 using mrpt::obs::CActionRobotMovement2D;
 using mrpt::obs::CObservation3DRangeScan;
 
-// MRPT reads a bool by copying the stream's byte into it: anything but 0 / 1 is a damaged
-// field (and undefined behaviour wherever the bool is then read).
+// MRPT reads a bool or an enum by copying the stream's bytes into it: a value the type lacks
+// is a damaged field, and reading it as that type is undefined behaviour - so it is read as
+// the bytes it holds.
 bool validBool(const bool& b) {
     std::uint8_t byte = 0;
     std::memcpy(&byte, &b, 1);
     return byte <= 1;
+}
+
+template <typename Enum>
+long long rawEnum(const Enum& e) {
+    std::underlying_type_t<Enum> value{};
+    std::memcpy(&value, &e, sizeof value);
+    return static_cast<long long>(value);
 }
 
 std::string damagedObservation(const mrpt::obs::CObservation& obs) {
@@ -30,7 +39,7 @@ std::string damagedObservation(const mrpt::obs::CObservation& obs) {
         }
     }
     if (const auto* scan = dynamic_cast<const CObservation3DRangeScan*>(&obs)) {
-        const int channel = static_cast<int>(scan->intensityImageChannel);
+        const long long channel = rawEnum(scan->intensityImageChannel);
         if (channel != CObservation3DRangeScan::CH_VISIBLE && channel != CObservation3DRangeScan::CH_IR) {
             return "intensity channel id " + std::to_string(channel) + " is neither visible (0) nor IR (1)";
         }
@@ -40,7 +49,7 @@ std::string damagedObservation(const mrpt::obs::CObservation& obs) {
 
 std::string damagedAction(const mrpt::obs::CAction& action) {
     if (const auto* move = dynamic_cast<const CActionRobotMovement2D*>(&action)) {
-        const int method = static_cast<int>(move->estimationMethod);
+        const long long method = rawEnum(move->estimationMethod);
         if (method != CActionRobotMovement2D::emOdometry && method != CActionRobotMovement2D::emScan2DMatching) {
             return "CActionRobotMovement2D estimation method " + std::to_string(method) + " is unknown";
         }

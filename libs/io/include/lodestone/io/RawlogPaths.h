@@ -17,6 +17,10 @@ bool isGzipPath(const std::string& path);
  * would truncate the input before it is read. */
 void refuseOutputOverInput(const std::string& output, const std::vector<std::string>& inputs);
 
+/** Makes an output file's folder if it is missing and checks that `path` is not a folder,
+ * before any work: throws std::runtime_error naming the path otherwise. */
+void prepareOutputFile(const std::string& path);
+
 /** Where an output is written until it is complete: `path + ".partial"`. Writers (RawlogWriter,
  * TumTrajectoryWriter) write there and rename on close(), so a run that fails leaves a file
  * that says it is partial, never one that looks complete beside a previous run's outputs. */
