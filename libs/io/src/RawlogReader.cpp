@@ -44,7 +44,10 @@ std::string condensedMrptError(const std::string& text) {
         message.erase(0, message.find_first_not_of(' '));
         if (message.rfind(kParsing, 0) == 0) {
             const auto close = message.find('\'', kParsing.size());
-            chain += (chain.empty() ? "" : " > ") + message.substr(kParsing.size(), close - kParsing.size());
+            const std::string name = message.substr(kParsing.size(), close - kParsing.size());
+            const bool isClassName = !name.empty() && name.find_first_not_of(
+                "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_:") == std::string::npos;
+            if (isClassName) chain += (chain.empty() ? "" : " > ") + name;
         } else if (innermost.empty()) {
             innermost = message;
         }
@@ -54,6 +57,7 @@ std::string condensedMrptError(const std::string& text) {
         return first == std::string::npos ? text : text.substr(first, text.find('\n', first) - first);
     }
     if (innermost.empty()) innermost = "unreadable object";
+    if (innermost.find("(EOF?)") != std::string::npos) innermost = "the file ends inside this entry";
     return chain.empty() ? innermost : chain + ": " + innermost;
 }
 // What reading one entry may allocate (memguard::AllocationBudget): MRPT allocates what an
