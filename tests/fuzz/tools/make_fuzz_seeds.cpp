@@ -2,24 +2,20 @@
 // from the issue #16 findings (tests/fuzz/regression): small, and reproducible from this file.
 //   make_fuzz_seeds <tests/fuzz> <repository root>
 // The committed files are this tool's output; rerun it when a format changes.
-#include <lodestone/io/RawlogWriter.h>
 #include <lodestone/obs/CObservationWheelDrop.h>
 #include <lodestone/obs/registerAllClasses.h>
-#include <mrpt/io/CFileOutputStream.h>
-#include <mrpt/io/CMemoryStream.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/poses/CPosePDFGaussian.h>
-#include <mrpt/serialization/CArchive.h>
 
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
 
 #include "../FuzzInput.h"
+#include "MrptBytes.h"
 #include "SampleObservations.h"
 
 namespace fs = std::filesystem;
@@ -43,31 +39,10 @@ std::string fileBytes(const fs::path& path) {
     return s.str();
 }
 
-std::string serialized(const mrpt::serialization::CSerializable& object) {
-    mrpt::io::CMemoryStream buffer;
-    auto out = mrpt::serialization::archiveFrom(buffer);
-    out << object;
-    return std::string(static_cast<const char*>(buffer.getRawBufferData()), buffer.getTotalBytesCount());
-}
-
-std::string nullObject() {
-    mrpt::io::CMemoryStream buffer;
-    auto out = mrpt::serialization::archiveFrom(buffer);
-    out << mrpt::serialization::CSerializable::Ptr();
-    return std::string(static_cast<const char*>(buffer.getRawBufferData()), buffer.getTotalBytesCount());
-}
-
-template <typename T>
-std::string raw(T value) {
-    std::string s(sizeof(T), '\0');
-    std::memcpy(s.data(), &value, sizeof(T));
-    return s;
-}
-
-std::string framed(const std::string& className, int version, const std::string& body) {
-    return std::string(1, static_cast<char>(0x80 | className.size())) + className +
-           static_cast<char>(version) + body + static_cast<char>(0x88);
-}
+using test::framedObject;
+using test::nullObjectBytes;
+using test::rawBytes;
+using test::serializedBytes;
 
 /** An object's version byte and body: what fuzz_observation takes after its class byte. */
 std::string versionAndBody(const std::string& bytes) {
@@ -77,7 +52,7 @@ std::string versionAndBody(const std::string& bytes) {
 
 std::string rawlogOf(const std::vector<mrpt::obs::CObservation::Ptr>& observations) {
     std::string bytes;
-    for (const auto& o : observations) bytes += serialized(*o);
+    for (const auto& o : observations) bytes += serializedBytes(*o);
     return bytes;
 }
 
@@ -103,7 +78,7 @@ std::string actionsAndFrames() {
         actions.insert(move);
         mrpt::obs::CSensoryFrame frame;
         frame.insert(test::makeMagnetometer(1.7e9 + k + 0.5, "MAG", k));
-        bytes += serialized(actions) + serialized(frame);
+        bytes += serializedBytes(actions) + serializedBytes(frame);
     }
     return bytes;
 }
@@ -124,31 +99,31 @@ void rawlogSeeds() {
 void regressionRawlogs() {
     // Issue #16's table, rebuilt: each crashed or ran away before the guards.
     const std::string nullPdf =
-        framed("CActionCollection", 0,
-               raw<std::uint32_t>(1) +
-                   framed("CActionRobotMovement2D", 1,
-                          nullObject() + raw<std::int32_t>(0) + raw<std::uint8_t>(1) + raw(0.f) +
-                              raw(0.f) + raw<std::uint8_t>(0) + raw<std::int32_t>(0) + raw<std::int32_t>(0)));
+        framedObject("CActionCollection", 0,
+               rawBytes<std::uint32_t>(1) +
+                   framedObject("CActionRobotMovement2D", 1,
+                          nullObjectBytes() + rawBytes<std::int32_t>(0) + rawBytes<std::uint8_t>(1) + rawBytes(0.f) +
+                              rawBytes(0.f) + rawBytes<std::uint8_t>(0) + rawBytes<std::int32_t>(0) + rawBytes<std::int32_t>(0)));
     write("regression", "fuzz_rawlog", "action2d_v1_null_pdf.rawlog", nullPdf);
     write("regression", "fuzz_rawlog", "action2d_v0_null_pdf.rawlog",
-          framed("CActionCollection", 0,
-                 raw<std::uint32_t>(1) + framed("CActionRobotMovement2D", 0, nullObject() + raw<std::int32_t>(0))));
+          framedObject("CActionCollection", 0,
+                 rawBytes<std::uint32_t>(1) + framedObject("CActionRobotMovement2D", 0, nullObjectBytes() + rawBytes<std::int32_t>(0))));
     write("regression", "fuzz_rawlog", "action_collection_null_action.rawlog",
-          framed("CActionCollection", 0, raw<std::uint32_t>(1) + nullObject()));
+          framedObject("CActionCollection", 0, rawBytes<std::uint32_t>(1) + nullObjectBytes()));
     write("regression", "fuzz_rawlog", "action_collection_count_ffffffff.rawlog",
-          framed("CActionCollection", 0, raw<std::uint32_t>(0xFFFFFFFFu)));
+          framedObject("CActionCollection", 0, rawBytes<std::uint32_t>(0xFFFFFFFFu)));
     write("regression", "fuzz_rawlog", "sensory_frame_null_observation.rawlog",
-          framed("CSensoryFrame", 2, raw<std::uint32_t>(1) + nullObject()));
+          framedObject("CSensoryFrame", 2, rawBytes<std::uint32_t>(1) + nullObjectBytes()));
     // A magnetometer whose label length reads 0xF0000000.
     std::string label = rawlogOf({test::makeMagnetometer(1.0, "MAGB", 2)});
-    const std::string length4 = raw<std::uint32_t>(4) + "MAGB";
-    label.replace(label.find(length4), length4.size(), raw<std::uint32_t>(0xF0000000u) + "MAGB");
+    const std::string length4 = rawBytes<std::uint32_t>(4) + "MAGB";
+    label.replace(label.find(length4), length4.size(), rawBytes<std::uint32_t>(0xF0000000u) + "MAGB");
     write("regression", "fuzz_rawlog", "magnetometer_label_f0000000.rawlog", label);
     // A range image of 100 000 x 100 000 pixels.
     std::string range = rawlogOf({test::makeRangeScan(2.0, 64, 48, 1.0)});
-    const std::string dims = raw<std::uint32_t>(48) + raw<std::uint32_t>(64);
+    const std::string dims = rawBytes<std::uint32_t>(48) + rawBytes<std::uint32_t>(64);
     if (const auto at = range.find(dims); at != std::string::npos) {
-        range.replace(at, dims.size(), raw<std::uint32_t>(100000) + raw<std::uint32_t>(100000));
+        range.replace(at, dims.size(), rawBytes<std::uint32_t>(100000) + rawBytes<std::uint32_t>(100000));
         write("regression", "fuzz_rawlog", "range_image_100000_squared.rawlog", range);
     }
     // A wheel-drop flag byte of 127 (MRPT copies bytes into bools).
@@ -166,8 +141,8 @@ void regressionRawlogs() {
 
 void observationSeeds() {
     write("corpus", "fuzz_observation", "magnetometer",
-          std::string(1, '\0') + versionAndBody(serialized(*test::makeMagnetometer(1.7e9, "MAG", 1))));
-    write("corpus", "fuzz_observation", "wheel_drop", "\x01" + versionAndBody(serialized(*wheelDrop(1.7e9, true))));
+          std::string(1, '\0') + versionAndBody(serializedBytes(*test::makeMagnetometer(1.7e9, "MAG", 1))));
+    write("corpus", "fuzz_observation", "wheel_drop", "\x01" + versionAndBody(serializedBytes(*wheelDrop(1.7e9, true))));
     write("corpus", "fuzz_observation", "magnetometer_v0",
           std::string(1, '\0') + versionAndBody(fileBytes(repoRoot / "tests/data/CObservationMagnetometer_v0.bin")));
 }

@@ -7,13 +7,12 @@
 #include <lodestone/io/RawlogReader.h>
 #include <lodestone/io/RawlogSource.h>
 #include <lodestone/obs/registerAllClasses.h>
-#include <mrpt/io/CMemoryStream.h>
 #include <mrpt/obs/CObservationImage.h>
 #include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/poses/CPosePDFGaussian.h>
 
-#include <cstring>
 
+#include "MrptBytes.h"
 #include "RawlogTestHelpers.h"
 #include "SampleObservations.h"
 #include "TestPaths.h"
@@ -21,55 +20,33 @@
 using namespace lodestone;
 
 namespace {
-template <typename T>
-std::string raw(T value) {
-    std::string s(sizeof(T), '\0');
-    std::memcpy(s.data(), &value, sizeof(T));
-    return s;
-}
-
-/** MRPT's object framing: name length | 0x80, the name, the version; the body; 0x88. */
-std::string framed(const std::string& className, int version, const std::string& body) {
-    return std::string(1, static_cast<char>(0x80 | className.size())) + className +
-           static_cast<char>(version) + body + static_cast<char>(0x88);
-}
-
-std::string serialized(const mrpt::serialization::CSerializable& object) {
-    mrpt::io::CMemoryStream buffer;
-    auto out = mrpt::serialization::archiveFrom(buffer);
-    out << object;
-    return std::string(static_cast<const char*>(buffer.getRawBufferData()), buffer.getTotalBytesCount());
-}
-
-std::string nullObject() {
-    mrpt::io::CMemoryStream buffer;
-    auto out = mrpt::serialization::archiveFrom(buffer);
-    out << mrpt::serialization::CSerializable::Ptr();
-    return std::string(static_cast<const char*>(buffer.getRawBufferData()), buffer.getTotalBytesCount());
-}
+using test::framedObject;
+using test::nullObjectBytes;
+using test::rawBytes;
+using test::serializedBytes;
 
 /** A version 0 or 1 CActionRobotMovement2D: the PDF object, the method, then (version 1)
  * velocities and encoder ticks. */
 std::string oldMovement(int version, const std::string& pdf) {
-    std::string body = pdf + raw<std::int32_t>(0 /* emOdometry */);
+    std::string body = pdf + rawBytes<std::int32_t>(0 /* emOdometry */);
     if (version == 1) {
-        body += raw<std::uint8_t>(1) + raw(0.5f) + raw(0.25f) + raw<std::uint8_t>(1) +
-                raw<std::int32_t>(10) + raw<std::int32_t>(-5);
+        body += rawBytes<std::uint8_t>(1) + rawBytes(0.5f) + rawBytes(0.25f) + rawBytes<std::uint8_t>(1) +
+                rawBytes<std::int32_t>(10) + rawBytes<std::int32_t>(-5);
     }
-    return framed("CActionRobotMovement2D", version, body);
+    return framedObject("CActionRobotMovement2D", version, body);
 }
 
 std::string actions(const std::vector<std::string>& members) {
-    std::string body = raw<std::uint32_t>(static_cast<std::uint32_t>(members.size()));
+    std::string body = rawBytes<std::uint32_t>(static_cast<std::uint32_t>(members.size()));
     for (const auto& m : members) body += m;
-    return framed("CActionCollection", 0, body);
+    return framedObject("CActionCollection", 0, body);
 }
 
 std::string gaussianPdf(double x, double y, double phi) {
     mrpt::poses::CPosePDFGaussian pdf;
     pdf.mean = mrpt::poses::CPose2D(x, y, phi);
     pdf.cov.setIdentity();
-    return serialized(pdf);
+    return serializedBytes(pdf);
 }
 
 std::string firstEntryError(const std::string& path) {
@@ -89,7 +66,7 @@ TEST(MalformedMrptObjects, ANullPosePdfInAnOldOdometryActionIsAReadError) {
     test::TempDir dir;
     for (int version : {0, 1}) {
         const auto path = dir.file("null_pdf_v" + std::to_string(version) + ".rawlog");
-        test::writeBytes(path, actions({oldMovement(version, nullObject())}));
+        test::writeBytes(path, actions({oldMovement(version, nullObjectBytes())}));
         const std::string error = firstEntryError(path);
         EXPECT_NE(error.find(path), std::string::npos) << error;
         EXPECT_NE(error.find("pose PDF is missing"), std::string::npos) << error;
@@ -101,7 +78,7 @@ TEST(MalformedMrptObjects, APdfOfTheWrongClassIsAReadError) {
     test::TempDir dir;
     const auto path = dir.file("wrong_pdf.rawlog");
     mrpt::obs::CObservationOdometry notAPdf;
-    test::writeBytes(path, actions({oldMovement(1, serialized(notAPdf))}));
+    test::writeBytes(path, actions({oldMovement(1, serializedBytes(notAPdf))}));
     EXPECT_NE(firstEntryError(path).find("not a CPosePDF"), std::string::npos);
 }
 
@@ -110,12 +87,12 @@ TEST(MalformedMrptObjects, ANonOdometryActionWithoutAPdfIsAReadError) {
     registerAllClasses();
     test::TempDir dir;
     const int version = 7;  // MRPT 2.5's
-    for (const auto& pdf : {nullObject(), serialized(mrpt::poses::CPose2D(1, 2, 0))}) {
+    for (const auto& pdf : {nullObjectBytes(), serializedBytes(mrpt::poses::CPose2D(1, 2, 0))}) {
         const auto path = dir.file("no_pdf.rawlog");
-        const std::string body = raw<std::int32_t>(1 /* emScan2DMatching */) + pdf + raw<std::uint8_t>(0) +
-                                 raw(0.0) + raw(0.0) + raw<std::uint8_t>(0) + raw<std::int32_t>(0) +
-                                 raw<std::int32_t>(0) + raw<std::uint64_t>(0);
-        test::writeBytes(path, actions({framed("CActionRobotMovement2D", version, body)}));
+        const std::string body = rawBytes<std::int32_t>(1 /* emScan2DMatching */) + pdf + rawBytes<std::uint8_t>(0) +
+                                 rawBytes(0.0) + rawBytes(0.0) + rawBytes<std::uint8_t>(0) + rawBytes<std::int32_t>(0) +
+                                 rawBytes<std::int32_t>(0) + rawBytes<std::uint64_t>(0);
+        test::writeBytes(path, actions({framedObject("CActionRobotMovement2D", version, body)}));
         EXPECT_NE(firstEntryError(path).find("pose PDF is missing"), std::string::npos);
     }
 }
@@ -139,11 +116,11 @@ TEST(MalformedMrptObjects, CurrentActionsReadBackUnchanged) {
         mrpt::obs::CActionCollection written;
         written.insert(*move);
         const auto path = dir.file("current.rawlog");
-        test::writeBytes(path, serialized(written));
+        test::writeBytes(path, serializedBytes(written));
         io::RawlogReader reader(path);
         const auto entry = reader.next();
         ASSERT_TRUE(entry);
-        EXPECT_EQ(serialized(*entry->object), serialized(written));
+        EXPECT_EQ(serializedBytes(*entry->object), serializedBytes(written));
     }
 }
 
@@ -179,7 +156,7 @@ TEST(MalformedMrptObjects, WellFormedOldVersionsReadAsMrptDefinesThem) {
             EXPECT_FALSE(move.hasEncodersInfo);
         }
         // Written again, it is a stock object of the current version.
-        const std::string again = serialized(move);
+        const std::string again = serializedBytes(move);
         EXPECT_NE(again.find("CActionRobotMovement2D"), std::string::npos);
         EXPECT_FALSE(reader.next());
     }
@@ -199,11 +176,11 @@ TEST(MalformedMrptObjects, NullElementsOfContainersAreReadErrors) {
     registerAllClasses();
     test::TempDir dir;
     const auto actionsPath = dir.file("null_action.rawlog");
-    test::writeBytes(actionsPath, actions({nullObject()}));
+    test::writeBytes(actionsPath, actions({nullObjectBytes()}));
     EXPECT_NE(firstEntryError(actionsPath).find("action 0 is null"), std::string::npos);
 
     const auto framePath = dir.file("null_observation.rawlog");
-    test::writeBytes(framePath, framed("CSensoryFrame", 2, raw<std::uint32_t>(1) + nullObject()));
+    test::writeBytes(framePath, framedObject("CSensoryFrame", 2, rawBytes<std::uint32_t>(1) + nullObjectBytes()));
     const std::string error = firstEntryError(framePath);
     EXPECT_NE(error.find("observation 0 of the sensory frame is null"), std::string::npos) << error;
 }
@@ -219,13 +196,13 @@ TEST(MalformedMrptObjects, ADamagedJpegImageIsAReadErrorNotAnExit) {
     mrpt::obs::CObservationImage photo;
     photo.image = mrpt::img::CImage(64, 48, mrpt::img::CH_RGB);
     photo.image.filledRectangle(0, 0, 63, 47, mrpt::img::TColor(200, 40, 10));
-    std::string image = serialized(photo);
+    std::string image = serializedBytes(photo);
     mrpt::img::CImage::DISABLE_JPEG_COMPRESSION(wasDisabled);
     const auto soi = image.find("\xFF\xD8\xFF");
     ASSERT_NE(soi, std::string::npos) << "MRPT did not store the image as JPEG";
     image.replace(soi, 3, std::string(3, '\0'));
     const auto path = dir.file("damaged_jpeg.rawlog");
-    test::writeBytes(path, serialized(*test::makeMagnetometer(1.0, "MAG", 1)) + image);
+    test::writeBytes(path, serializedBytes(*test::makeMagnetometer(1.0, "MAG", 1)) + image);
     io::RawlogReader reader(path);
     EXPECT_TRUE(reader.next());
     try {
@@ -245,14 +222,14 @@ TEST(MalformedMrptObjects, FieldsMrptCopiesWithoutCheckingAreValidated) {
     auto scan = test::makeRangeScan(1.0, 8, 6, 1.0);
     scan->intensityImageChannel = static_cast<mrpt::obs::CObservation3DRangeScan::TIntensityChannelID>(7);
     const auto scanPath = dir.file("channel.rawlog");
-    test::writeBytes(scanPath, serialized(*scan));
+    test::writeBytes(scanPath, serializedBytes(*scan));
     EXPECT_NE(firstEntryError(scanPath).find("intensity channel id 7"), std::string::npos);
 
     // The flag byte is where two objects that differ only in it differ.
     mrpt::obs::CObservationOdometry odometry;
-    const std::string without = serialized(odometry);
+    const std::string without = serializedBytes(odometry);
     odometry.hasEncodersInfo = true;
-    std::string bytes = serialized(odometry);
+    std::string bytes = serializedBytes(odometry);
     const auto odoPath = dir.file("flag.rawlog");
     std::size_t at = 0;
     while (at < without.size() && without[at] == bytes[at]) ++at;
