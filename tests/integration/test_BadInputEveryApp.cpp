@@ -82,7 +82,8 @@ TEST(BadInputEveryApp, EveryRawlogReaderNamesEveryDamagedRawlog) {
             {"inspect summary: " + shape, kInspect + " summary " + path, 1, path, ""},
             {"inspect list: " + shape, kInspect + " list " + path, 1, path, ""},
             {"inspect export: " + shape,
-             kInspect + " export " + path + " --sensor MAG_LEFT --out " + dir.file("export" + n), 1, path, ""},
+             kInspect + " export " + path + " --sensor MAG_LEFT --out " + dir.file("export" + n), 1, path,
+             dir.file("export" + n) + "/MAG_LEFT.csv"},  // only MAG_LEFT.csv.partial
             {"inspect to-imu: " + shape, kInspect + " to-imu " + path + " " + dir.file("imu" + n + ".rawlog"), 1,
              path, dir.file("imu" + n + ".rawlog")},
             {"magfit: " + shape, kMagfit + " " + path, 1, path, ""},

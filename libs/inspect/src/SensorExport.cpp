@@ -1,6 +1,7 @@
 #include <lodestone/inspect/SensorExport.h>
 #include <lodestone/inspect/TimeText.h>
 #include <lodestone/io/RawlogReadError.h>
+#include <lodestone/io/RawlogPaths.h>
 #include <lodestone/io/RawlogSource.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 
@@ -49,17 +50,26 @@ class Exporter {
         }
     }
 
-    SensorExportResult finish() {
-        series_.flush();
-        frames_.flush();
+    /** Closes the CSV files; `complete` (the rawlog was read to its end): renamed from
+     * .partial to their names, else left .partial beside the frames written so far. */
+    SensorExportResult finish(bool complete) {
+        close(series_, result_.seriesFile, complete);
+        close(frames_, result_.framesIndex, complete);
         return result_;
     }
 
   private:
+    static void close(std::ofstream& file, const std::string& path, bool complete) {
+        if (!file.is_open()) return;
+        file.close();
+        if (!file) throw std::runtime_error(io::partialPath(path) + ": write error");
+        if (complete) io::commitPartial(path);
+    }
+
     void addRow(const mrpt::obs::CObservation& obs) {
         if (!series_.is_open()) {
             result_.seriesFile = (dir_ / (label_ + ".csv")).string();
-            series_.open(result_.seriesFile);
+            series_.open(io::partialPath(result_.seriesFile));
             series_ << "timestamp," << toCsv(obs.exportTxtHeader()) << "\n";
         }
         series_ << secondsText(obs.timestamp) << "," << toCsv(obs.exportTxtDataRow()) << "\n";
@@ -71,7 +81,7 @@ class Exporter {
             fs::create_directories(dir_ / "rgb");
             fs::create_directories(dir_ / "depth");
             result_.framesIndex = (dir_ / (label_ + "_frames.csv")).string();
-            frames_.open(result_.framesIndex);
+            frames_.open(io::partialPath(result_.framesIndex));
             frames_ << "timestamp,rgb,depth,depth_units_m\n";
         }
         scan.load();  // delay-loaded images live in the external images folder
@@ -121,10 +131,10 @@ SensorExportResult exportSensor(const std::string& rawlogPath, const std::string
             exporter.add(*obs);
         }
     } catch (const io::RawlogReadError&) {
-        exporter.finish();  // keep what was exported before the fault
+        exporter.finish(false);  // keep what was exported before the fault, as .partial
         throw;
     }
-    auto result = exporter.finish();
+    auto result = exporter.finish(true);
     if (matched == 0) {
         std::string labels;
         for (const auto& l : otherLabels) labels += (labels.empty() ? "" : ", ") + ("'" + l + "'");
