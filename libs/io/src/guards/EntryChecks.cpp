@@ -47,6 +47,9 @@ std::string damagedObservation(const mrpt::obs::CObservation& obs) {
     return {};
 }
 
+// CActionRobotMovement2D's flag bytes are not checked: MRPT's own localization_demo.rawlog
+// holds 8 in hasEncodersInfo (left unset by an old writer), so RawlogSource reads those bytes
+// itself and takes anything but 0 / 1 as "unknown".
 std::string damagedAction(const mrpt::obs::CAction& action) {
     if (const auto* move = dynamic_cast<const CActionRobotMovement2D*>(&action)) {
         const long long method = rawEnum(move->estimationMethod);
