@@ -83,6 +83,23 @@ TEST(RawlogSizeFields, AHugeRangeImageIsRefusedNotAllocated) {
     expectRefusedSize(readAll(path), 1, path);
 }
 
+TEST(RawlogSizeFields, AHugeImageSizeIsRefusedNotAllocated) {
+    // MRPT's CImage keeps its pixels in a cv::Mat, which OpenCV takes from malloc (not through
+    // operator new): the reader's cv::Mat allocator charges the budget too. The colour image of
+    // an RGB-D frame stored raw: its width and height precede the pixels (as int32, negated:
+    // MRPT's mark for an uncompressed image).
+    registerAllClasses();
+    test::TempDir dir;
+    const auto path = dir.file("image.rawlog");
+    test::writeRawlog(path, {test::makeMagnetometer(1.0, "MAG", 1), test::makeRangeScan(2.0, 64, 48, 1.0)});
+    std::string bytes = test::readBytes(path);
+    const auto at = patch(bytes, le32(static_cast<std::uint32_t>(-64)) + le32(static_cast<std::uint32_t>(-48)),
+                          le32(static_cast<std::uint32_t>(-(1 << 20))) + le32(static_cast<std::uint32_t>(-(1 << 20))));
+    ASSERT_NE(at, std::string::npos);
+    test::writeBytes(path, bytes);
+    expectRefusedSize(readAll(path), 1, path);
+}
+
 TEST(RawlogSizeFields, AnActionCountOfFourBillionIsRefusedNotLooped) {
     registerAllClasses();
     test::TempDir dir;

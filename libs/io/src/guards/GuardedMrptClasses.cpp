@@ -16,6 +16,8 @@
 // class: IS_CLASS, class names and re-serialization see the stock classes.
 #include "GuardedMrptClasses.h"
 
+#include "BudgetedMatAllocator.h"
+
 #include <mrpt/io/CMemoryStream.h>
 #include <mrpt/maps/registerAllClasses.h>
 #include <mrpt/obs/CActionCollection.h>
@@ -159,6 +161,7 @@ void installGuardedMrptClasses() {
         mrpt::rtti::registerClass(&kGuardedRobotMovement2D);
         mrpt::rtti::registerClass(&kGuardedActionCollection);
         std::cerr.rdbuf(previous);
+        installBudgetedMatAllocator();
     });
 }
 
