@@ -9,8 +9,8 @@
 // calls libjpeg's own and then installs an error_exit that throws the message as a
 // std::runtime_error. The exception unwinds through libjpeg's frames (Debian builds it with
 // unwind tables) into MRPT's deserializer, which reports it as a failed object: a read error
-// naming the entry. The decoder's memory pool is not released on that path (a few kB per
-// damaged image). Code that installs its own error_exit after jpeg_std_error (OpenCV) keeps it.
+// naming the entry; the decoder's memory is released before the throw. Code that installs its
+// own error_exit after jpeg_std_error (OpenCV) keeps it.
 #include <dlfcn.h>
 
 #include <cstddef>
@@ -22,10 +22,16 @@
 
 namespace {
 using StdError = jpeg_error_mgr* (*)(jpeg_error_mgr*);
+using Destroy = void (*)(j_common_ptr);
 
 [[noreturn]] void throwingErrorExit(j_common_ptr cinfo) {
     char text[JMSG_LENGTH_MAX] = {0};
     (*cinfo->err->format_message)(cinfo, text);
+    // The caller never gets to destroy the decoder once error_exit has run: free its memory
+    // pools now (jpeg_destroy leaves the struct safe to destroy again).
+    // (Looked up, not linked: the executable does not depend on libjpeg; MRPT brought it in.)
+    static const auto destroy = reinterpret_cast<Destroy>(dlsym(RTLD_DEFAULT, "jpeg_destroy"));
+    if (destroy) destroy(cinfo);
     throw std::runtime_error(std::string("JPEG image: ") + text);
 }
 }  // namespace
