@@ -93,8 +93,9 @@ class GuardedRobotMovement2D : public CActionRobotMovement2D {
         }
         const auto pdf = in.ReadObject<mrpt::poses::CPosePDF>();
         if (!pdf) {
-            throw std::runtime_error("CActionRobotMovement2D (version " + std::to_string(version) +
-                                     "): the pose PDF is missing or not a CPosePDF");
+            // (The reader's message names the class already: "... > CActionRobotMovement2D: ".)
+            throw std::runtime_error("version " + std::to_string(version) +
+                                     ": the pose PDF is missing or not a CPosePDF");
         }
         checked += serializedBytes(*pdf);
         PrefixedArchive again(checked, in);
@@ -120,8 +121,7 @@ class GuardedActionCollection : public mrpt::obs::CActionCollection {
         for (std::uint32_t k = 0; k < count; ++k) {
             const auto action = in.ReadObject<mrpt::obs::CAction>();
             if (!action) {
-                throw std::runtime_error("CActionCollection: action " + std::to_string(k) +
-                                         " is null or not a CAction");
+                throw std::runtime_error("action " + std::to_string(k) + " is null or not a CAction");
             }
             insert(*action);  // a copy of the stock class (clone), as MRPT stores it
         }
