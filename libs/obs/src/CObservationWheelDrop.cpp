@@ -29,8 +29,15 @@ void CObservationWheelDrop::serializeFrom(mrpt::serialization::CArchive& in, uin
 
 void CObservationWheelDrop::getDescriptionAsText(std::ostream& o) const {
     CObservation::getDescriptionAsText(o);
+    o << "Lodestone wheel-drop switches of a mobile base (class lodestone::obs::CObservationWheelDrop)\n";
+    o << "Emitted when a switch changes; a dropped wheel hangs free, i.e. the robot is being lifted\n";
     o << "Left wheel dropped: " << (leftDropped ? "yes" : "no") << "\n";
     o << "Right wheel dropped: " << (rightDropped ? "yes" : "no") << "\n";
+    o << "Robot state: "
+      << (lifted() ? "lifted (Lodestone's kidnap detector starts a kidnap here: odometry no longer "
+                     "describes the motion)"
+                   : "on the floor (both wheels down)")
+      << "\n";
 }
 
 std::string CObservationWheelDrop::exportTxtHeader() const {

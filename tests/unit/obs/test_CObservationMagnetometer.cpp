@@ -124,6 +124,23 @@ TEST_F(MagnetometerTest, DescriptionAndTextExport) {
     EXPECT_EQ(values.at(6), "23.75");
 }
 
+TEST_F(MagnetometerTest, DescriptionGivesUnitsRobotFrameAndNoiseOfTheMagnitude) {
+    // A sensor yawed +90 deg on the robot: its x axis is the robot's y axis.
+    CObservationMagnetometer m;
+    m.sensorPose = mrpt::poses::CPose3D(0, 0, 0, M_PI / 2, 0, 0);
+    m.field = {30.0, 0.0, 0.0};
+    m.noiseStd = {0.4, 5.0, 5.0};  // only the x noise moves |B| of a field along x
+    std::ostringstream text;
+    m.getDescriptionAsText(text);
+    const std::string t = text.str();
+    EXPECT_NE(t.find("microtesla"), std::string::npos) << t;
+    EXPECT_NE(t.find("Field in the robot frame [uT]: (0.000, 30.000, 0.000)"), std::string::npos)
+        << t;
+    EXPECT_NE(t.find("std of |B| about 0.400 uT"), std::string::npos) << t;
+    EXPECT_NE(t.find("Calibrated: no (raw reading"), std::string::npos) << t;
+    EXPECT_NE(t.find("Temperature [degC]: (not reported)"), std::string::npos) << t;
+}
+
 TEST_F(MagnetometerTest, SensorPoseAccessors) {
     CObservationMagnetometer m;
     const mrpt::poses::CPose3D pose(1, 2, 3, 0.1, 0.2, 0.3);

@@ -6,6 +6,8 @@
 #include <mrpt/io/CMemoryStream.h>
 #include <mrpt/serialization/CArchive.h>
 
+#include <sstream>
+
 #include "TestPaths.h"
 
 using lodestone::obs::CObservationWheelDrop;
@@ -78,4 +80,15 @@ TEST(WheelDrop, ABoolFieldHoldingAnotherByteIsARefusedRead) {
             EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
         }
     }
+}
+
+TEST(WheelDrop, DescriptionSaysWhichWheelAndWhatItMeans) {
+    CObservationWheelDrop d;
+    d.rightDropped = true;
+    std::ostringstream text;
+    d.getDescriptionAsText(text);
+    const std::string t = text.str();
+    EXPECT_NE(t.find("Left wheel dropped: no"), std::string::npos) << t;
+    EXPECT_NE(t.find("Right wheel dropped: yes"), std::string::npos) << t;
+    EXPECT_NE(t.find("Robot state: lifted"), std::string::npos) << t;
 }

@@ -15,8 +15,9 @@ namespace lodestone::obs {
  * Serialization is versioned (see serializeGetVersion): every version ever written stays
  * readable, and tests/data holds a golden file for each.
  *
- * Stock MRPT tools cannot read a rawlog holding this class (MRPT archives have no per-object
- * length to skip it); `lodestone-inspect to-imu` rewrites such a rawlog with
+ * Stock MRPT tools read a rawlog holding this class once they load Lodestone's MRPT plugin
+ * (`RawLogViewer -l`, `rawlog-edit -p`: plugins/mrpt); without it they abort (MRPT archives
+ * have no per-object length to skip it). `lodestone-inspect to-imu` rewrites such a rawlog with
  * CObservationIMU magnetometer channels instead (see ImuMagnetometerConversion.h).
  */
 class CObservationMagnetometer : public mrpt::obs::CObservation {

@@ -33,9 +33,11 @@ struct RawlogEditInfo {
     std::map<std::string, long> occurrences;
 };
 
-inline RawlogEditInfo rawlogEditInfo(const std::string& path) {
+/** `plugin`: a module rawlog-edit loads first (`-p`), e.g. Lodestone's MRPT plugin. */
+inline RawlogEditInfo rawlogEditInfo(const std::string& path, const std::string& plugin = "") {
     RawlogEditInfo info;
-    const auto r = runCommand("rawlog-edit --info -i '" + path + "'");
+    const std::string load = plugin.empty() ? "" : "-p '" + plugin + "' ";
+    const auto r = runCommand("rawlog-edit " + load + "--info -i '" + path + "'");
     const auto trim = [](std::string s) {
         s.erase(0, s.find_first_not_of(' '));
         s.erase(s.find_last_not_of(' ') + 1);

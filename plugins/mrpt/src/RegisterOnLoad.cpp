@@ -1,0 +1,7 @@
+// Runs when a stock MRPT tool dlopen()s the plugin: MRPT_INITIALIZER is a constructor function
+// of this module. Registering is idempotent in MRPT, so loading the plugin into a process that
+// already registered Lodestone's classes (one of our apps) is harmless.
+#include <lodestone/obs/registerAllClasses.h>
+#include <mrpt/core/initializer.h>
+
+MRPT_INITIALIZER(lodestone_mrpt_plugin_register) { lodestone::registerAllClasses(); }
