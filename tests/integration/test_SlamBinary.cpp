@@ -3,6 +3,7 @@
 // was processed is still written).
 #include <lodestone/io/TumTrajectory.h>
 #include <mrpt/graphs/CNetworkOfPoses.h>
+#include <opencv2/imgcodecs.hpp>
 
 #include <gtest/gtest.h>
 
@@ -83,6 +84,13 @@ TEST(SlamBinary, BundledRawlogWithGroundTruth) {
     // Not a terminal: plain progress lines, no carriage returns.
     EXPECT_EQ(r.output.find('\r'), std::string::npos);
     EXPECT_NE(r.output.find("done "), std::string::npos) << r.output;
+    // The sample has two magnetometers: |B| over the floor, colour only where readings were
+    // placed (the rest of the map is grey).
+    const cv::Mat3b field = cv::imread(dir.file("field_map.png"), cv::IMREAD_COLOR);
+    ASSERT_FALSE(field.empty()) << "no field_map.png";
+    int coloured = 0;
+    for (const auto& p : field) coloured += !(p[0] == p[1] && p[1] == p[2]);
+    EXPECT_GT(coloured, 20000);  // about 190 cells of 0.1 m, ~20 px across each
 }
 
 TEST(SlamBinary, ConfigurationMistakesStopBeforeAnyWork) {

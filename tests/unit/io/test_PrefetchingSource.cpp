@@ -164,8 +164,12 @@ TEST_P(PrefetchingSource, AMissingImageIsMetAsWithoutPrefetching) {
         ASSERT_TRUE(a && b);
         const std::string got = whatLoadingGives(b), expected = whatLoadingGives(a);
         EXPECT_EQ(got, expected) << "entry " << k;
-        if (k == 6) EXPECT_EQ(got.find("pixels 64x48"), std::string::npos) << got;  // frame 3
-        if (k == 8) EXPECT_NE(got.find("pixels 64x48"), std::string::npos) << got;  // frame 4
+        if (k == 6) {
+            EXPECT_EQ(got.find("pixels 64x48"), std::string::npos) << got;  // frame 3
+        }
+        if (k == 8) {
+            EXPECT_NE(got.find("pixels 64x48"), std::string::npos) << got;  // frame 4
+        }
     }
 }
 
