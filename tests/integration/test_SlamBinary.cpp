@@ -33,10 +33,23 @@ double ateOf(const std::string& output) {
 
 /** Every output is there and says the same number of nodes. */
 void expectOutputsParse(const lodestone::test::TempDir& dir) {
-    for (const char* f : {"trajectory.tum", "graph.graph", "map.ply", "report.json", "graph.png"}) {
+    for (const char* f : {"trajectory.tum", "graph.graph", "map.ply", "report.json", "graph.png",
+                          "nodes.csv"}) {
         EXPECT_TRUE(fs::exists(dir.file(f))) << f;
     }
     const auto traj = lodestone::io::readTumTrajectory(dir.file("trajectory.tum"));
+    // nodes.csv: a header and a row per node, the engine time of each a number.
+    std::ifstream nodes(dir.file("nodes.csv"));
+    std::string row;
+    std::getline(nodes, row);
+    EXPECT_EQ(row, "node,timestamp,segment,keyframe,engine_ms");
+    std::size_t rows = 0;
+    while (std::getline(nodes, row)) {
+        ++rows;
+        const double ms = std::stod(row.substr(row.rfind(',') + 1));
+        EXPECT_TRUE(ms >= 0) << row;
+    }
+    EXPECT_EQ(rows, traj.size());
     mrpt::graphs::CNetworkOfPoses3DInf graph;
     graph.loadFromTextFile(dir.file("graph.graph"));
     EXPECT_GT(traj.size(), 5u);

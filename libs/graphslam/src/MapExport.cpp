@@ -1,6 +1,8 @@
 #include <lodestone/graphslam/MapExport.h>
 #include <lodestone/io/TumTrajectory.h>
 
+#include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <stdexcept>
 
@@ -42,6 +44,23 @@ void writeNodeTrajectory(const std::string& path, const Graph& graph, const Node
         if (graph.nodes.count(id)) w.write(nodes.at(id).timestamp, graph.nodes.at(id));
     }
     w.close();
+}
+
+void writeNodeTable(const std::string& path, const NodeStore& nodes,
+                    const std::vector<float>& engineMs) {
+    std::ofstream out(path);
+    if (!out) throw std::runtime_error(path + ": cannot write the node table");
+    out << "node,timestamp,segment,keyframe,engine_ms\n";
+    char line[160];
+    for (TNodeID id = 0; id < nodes.size(); ++id) {
+        const auto& r = nodes.at(id);
+        const double ms = id < engineMs.size() ? engineMs[id] : std::nan("");
+        std::snprintf(line, sizeof line, "%llu,%.6f,%d,%d,%.4f\n",
+                      static_cast<unsigned long long>(id), r.timestamp, r.segment,
+                      r.keyframe ? 1 : 0, ms);
+        out << line;
+    }
+    if (!out) throw std::runtime_error(path + ": write failed");
 }
 
 }  // namespace lodestone::graphslam

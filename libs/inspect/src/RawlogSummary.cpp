@@ -40,49 +40,57 @@ double SensorStats::meanRate() const {
     return static_cast<double>(timestamped - 1) / s;
 }
 
-RawlogSummary summarizeRawlog(const std::string& path) {
-    RawlogSummary summary;
-    summary.path = path;
-    io::RawlogReader reader(path);
-    summary.fileBytes = reader.fileSize();
-    summary.compressed = reader.isCompressed();
-    bool previousWasActions = false;
-    try {
-        while (auto entry = reader.next()) {
-            const bool isActions = IS_CLASS(*entry->object, mrpt::obs::CActionCollection);
-            const bool unpaired =
-                IS_CLASS(*entry->object, mrpt::obs::CSensoryFrame) && !previousWasActions;
-            summary.unpairedActions += previousWasActions && isActions;
-            previousWasActions = isActions;
-            summary.unpairedFrames += unpaired;
-            ++summary.entries;
-            ++summary.entryClasses[entry->object->GetRuntimeClass()->className];
-            summary.format = io::updateFormat(summary.format, *entry->object);
-            if (const auto t = io::entryTimestamp(*entry->object)) {
-                if (!summary.first || *t < *summary.first) summary.first = *t;
-                if (!summary.last || *t > *summary.last) summary.last = *t;
-            }
-            for (const auto& obs : io::observationsOf(entry->object)) {
-                ++summary.observationClasses[obs->GetRuntimeClass()->className];
-                auto& sensor = summary.sensors[obs->sensorLabel];
-                addObservation(sensor, *obs);
-                sensor.inUnpairedFrames += unpaired;
-                if (obs->timestamp != INVALID_TIMESTAMP) {
-                    if (!summary.first || obs->timestamp < *summary.first) {
-                        summary.first = obs->timestamp;
-                    }
-                    if (!summary.last || obs->timestamp > *summary.last) {
-                        summary.last = obs->timestamp;
-                    }
-                }
-            }
-        }
-    } catch (const io::RawlogReadError& e) {
-        summary.error = e.what();
+RawlogSummaryBuilder::RawlogSummaryBuilder(std::string path, std::uint64_t fileBytes,
+                                           bool compressed) {
+    summary_.path = std::move(path);
+    summary_.fileBytes = fileBytes;
+    summary_.compressed = compressed;
+}
+
+void RawlogSummaryBuilder::add(const io::RawlogEntry& entry) {
+    auto& summary = summary_;
+    const bool isActions = IS_CLASS(*entry.object, mrpt::obs::CActionCollection);
+    const bool unpaired = IS_CLASS(*entry.object, mrpt::obs::CSensoryFrame) && !previousWasActions_;
+    summary.unpairedActions += previousWasActions_ && isActions;
+    previousWasActions_ = isActions;
+    summary.unpairedFrames += unpaired;
+    ++summary.entries;
+    ++summary.entryClasses[entry.object->GetRuntimeClass()->className];
+    summary.format = io::updateFormat(summary.format, *entry.object);
+    if (const auto t = io::entryTimestamp(*entry.object)) {
+        if (!summary.first || *t < *summary.first) summary.first = *t;
+        if (!summary.last || *t > *summary.last) summary.last = *t;
     }
-    summary.unpairedActions += previousWasActions && !summary.error;
-    summary.uncompressedBytes = reader.bytesRead();
-    return summary;
+    for (const auto& obs : io::observationsOf(entry.object)) {
+        ++summary.observationClasses[obs->GetRuntimeClass()->className];
+        auto& sensor = summary.sensors[obs->sensorLabel];
+        addObservation(sensor, *obs);
+        sensor.inUnpairedFrames += unpaired;
+        if (obs->timestamp != INVALID_TIMESTAMP) {
+            if (!summary.first || obs->timestamp < *summary.first) summary.first = obs->timestamp;
+            if (!summary.last || obs->timestamp > *summary.last) summary.last = obs->timestamp;
+        }
+    }
+}
+
+RawlogSummary RawlogSummaryBuilder::finish(std::optional<std::string> error,
+                                           std::uint64_t uncompressedBytes) {
+    summary_.error = std::move(error);
+    summary_.unpairedActions += previousWasActions_ && !summary_.error;
+    summary_.uncompressedBytes = uncompressedBytes;
+    return summary_;
+}
+
+RawlogSummary summarizeRawlog(const std::string& path) {
+    io::RawlogReader reader(path);
+    RawlogSummaryBuilder builder(path, reader.fileSize(), reader.isCompressed());
+    std::optional<std::string> error;
+    try {
+        while (auto entry = reader.next()) builder.add(*entry);
+    } catch (const io::RawlogReadError& e) {
+        error = e.what();
+    }
+    return builder.finish(error, reader.bytesRead());
 }
 
 void printSummary(const RawlogSummary& s, std::ostream& out) {

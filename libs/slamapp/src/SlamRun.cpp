@@ -16,7 +16,7 @@
 #include <lodestone/obs/registerAllClasses.h>
 #include <lodestone/sim/SimulatorSource.h>
 #include <lodestone/slamapp/GraphPlot.h>
-#include <lodestone/slamapp/ProgressBar.h>
+#include <lodestone/config/ProgressBar.h>
 #include <lodestone/slamapp/SlamRun.h>
 #include <mrpt/config/CConfigFile.h>
 
@@ -42,7 +42,8 @@ using graphslam::JsonObject;
 constexpr const char* kOutputs[] = {"trajectory.tum", "graph.graph",  "closures.csv",
                                     "map.ply",        "graph.png",    "trajectory.png",
                                     "report.json",    "ground_truth.tum", "events.txt",
-                                    "map_at_first_kidnap.tum", "field_map.png"};
+                                    "map_at_first_kidnap.tum", "field_map.png",
+                                    "nodes.csv"};
 
 // The field map's cell [m]: the magnetic matcher's resample step is 0.05 m and a map read by
 // eye needs a few readings per cell at walking speed and 100 Hz.
@@ -262,7 +263,7 @@ SlamRunResult runSlam(const SlamRunOptions& options, std::ostream& out, std::ost
     }
 
     // --- The run ---------------------------------------------------------------------------------
-    ProgressBar progress(err, options.terminal, options.quiet);
+    config::ProgressBar progress(err, options.terminal, options.quiet);
     const auto wall0 = std::chrono::steady_clock::now();
     double t0 = NAN, dataSeconds = 0, sourceSeconds = 0;
     const auto timedNext = [&] {
@@ -334,6 +335,8 @@ SlamRunResult runSlam(const SlamRunOptions& options, std::ostream& out, std::ost
         graphslam::writeNodeTrajectory(trajectory, graph, engine->nodes());
         graph.saveToTextFile((dir / "graph.graph").string());
         graphslam::writeClosureLog((dir / "closures.csv").string(), *engine);
+        graphslam::writeNodeTable((dir / "nodes.csv").string(), engine->nodes(),
+                                  engine->stats().nodeMs);
         const auto& beforeKidnap = engine->relocalizer().mapAtFirstKidnap();
         if (!beforeKidnap.empty()) {
             // What the map was when the first kidnap began: lodestone-eval relocation compares
@@ -422,7 +425,7 @@ SlamRunResult runSlam(const SlamRunOptions& options, std::ostream& out, std::ost
             out << line;
         }
         out << "outputs in " << dir.string()
-            << ": trajectory.tum graph.graph closures.csv map.ply report.json graph.png"
+            << ": trajectory.tum graph.graph closures.csv nodes.csv map.ply report.json graph.png"
             << (result.ateRmse ? " trajectory.png" : "") << (simulator ? " ground_truth.tum events.txt" : "")
             << (beforeKidnap.empty() ? "" : " map_at_first_kidnap.tum")
             << (magnetic.empty() ? "" : " field_map.png")

@@ -88,7 +88,7 @@ TEST_F(InspectApp, ShowDescribesOneEntry) {
     const auto r = inspectCmd({"show", path_, "1"});
     ASSERT_EQ(r.code, kExitOk) << r.err;
     EXPECT_NE(r.out.find("CObservationMagnetometer"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("Field (sensor frame) [uT]"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("Field in the sensor frame [uT]"), std::string::npos) << r.out;
 
     const auto past = inspectCmd({"show", path_, "999999"});
     EXPECT_EQ(past.code, kExitBadInput);

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <lodestone/io/RawlogFormat.h>
+#include <lodestone/io/RawlogReader.h>
 #include <mrpt/core/Clock.h>
 
 #include <cstdint>
@@ -42,6 +43,20 @@ struct RawlogSummary {
     std::size_t unpairedActions{0};  ///< CActionCollection entries not followed by a frame
     std::map<std::string, SensorStats> sensors;  ///< by sensor label
     std::optional<std::string> error;            ///< why reading stopped early, if it did
+};
+
+/** Gathers a summary entry by entry, for a pass over the rawlog that does more than summarize
+ * (the report). */
+class RawlogSummaryBuilder {
+  public:
+    RawlogSummaryBuilder(std::string path, std::uint64_t fileBytes, bool compressed);
+    void add(const io::RawlogEntry& entry);
+    /** The summary; `error`: why reading stopped early, if it did. */
+    RawlogSummary finish(std::optional<std::string> error, std::uint64_t uncompressedBytes);
+
+  private:
+    RawlogSummary summary_;
+    bool previousWasActions_{false};
 };
 
 /** Reads `path` once (flat memory) and gathers its summary. A corrupt file yields the

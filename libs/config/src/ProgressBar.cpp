@@ -1,11 +1,11 @@
-#include <lodestone/slamapp/ProgressBar.h>
+#include <lodestone/config/ProgressBar.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
 
-namespace lodestone::slamapp {
+namespace lodestone::config {
 
 namespace {
 std::string clock(double seconds) {
@@ -63,4 +63,4 @@ void ProgressBar::finish(double dataSeconds) {
     out_ << "done     " << line(1.0, dataSeconds, elapsed) << "\n" << std::flush;
 }
 
-}  // namespace lodestone::slamapp
+}  // namespace lodestone::config

@@ -3,7 +3,7 @@
 #include <chrono>
 #include <ostream>
 
-namespace lodestone::slamapp {
+namespace lodestone::config {
 
 /** Progress of a long run with rate and ETA. On a terminal one line redrawn in place (at most
  * five times a second); otherwise a plain line every tenth of the way, so logs stay readable;
@@ -26,4 +26,4 @@ class ProgressBar {
     bool drawn_{false};
 };
 
-}  // namespace lodestone::slamapp
+}  // namespace lodestone::config
