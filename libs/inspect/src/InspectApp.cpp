@@ -4,6 +4,7 @@
 #include <lodestone/inspect/MagnetometerToImu.h>
 #include <lodestone/inspect/RawlogSummary.h>
 #include <lodestone/inspect/SensorExport.h>
+#include <lodestone/inspect/report/RawlogReport.h>
 #include <lodestone/io/EntryContents.h>
 #include <lodestone/io/ImagesDirectory.h>
 #include <lodestone/io/RawlogReadError.h>
@@ -13,9 +14,12 @@
 #include <mrpt/obs/CActionCollection.h>
 
 #include <functional>
+#include <iostream>
 #include <limits>
 #include <map>
 #include <vector>
+
+#include <unistd.h>
 
 namespace lodestone::inspect {
 
@@ -184,6 +188,52 @@ int toImu(const Args& args, std::ostream& out) {
     return kExitOk;
 }
 
+int reportCmd(const Args& args, std::ostream& out) {
+    TCLAP::CmdLine cmd(
+        "A visual report of a rawlog (and of a lodestone-slam run on it): DIR/index.html with "
+        "PNG charts and camera thumbnails beside it, self-contained",
+        ' ', "");
+    TCLAP::UnlabeledValueArg<std::string> file("FILE", "rawlog (plain or .gz)", true, "", "FILE",
+                                               cmd);
+    TCLAP::ValueArg<std::string> dir("", "out", "report folder (created)", true, "", "DIR", cmd);
+    TCLAP::ValueArg<std::string> slam("", "slam", "a lodestone-slam --out folder of a run on FILE",
+                                      false, "", "SLAM_OUT", cmd);
+    TCLAP::ValueArg<std::string> gt("", "ground-truth",
+                                    "TUM trajectory to compare the SLAM run with (default: "
+                                    "SLAM_OUT/ground_truth.tum if there)",
+                                    false, "", "GT.tum", cmd);
+    TCLAP::ValueArg<double> every("", "thumbnail-every", "seconds between camera thumbnails",
+                                  false, 10.0, "S", cmd);
+    TCLAP::ValueArg<double> gapFactor("", "gap-factor",
+                                      "a gap is a step longer than this times the sensor's "
+                                      "median step",
+                                      false, 5.0, "K", cmd);
+    TCLAP::ValueArg<double> cell("", "field-cell", "field map cell size [m]", false, 0.1, "M", cmd);
+    TCLAP::SwitchArg quiet("q", "quiet", "no progress bar", cmd);
+    if (!parse(cmd, "report", args)) return kExitOk;
+    if (!(every.getValue() > 0)) throw UsageError("--thumbnail-every: must be > 0");
+    if (!(gapFactor.getValue() > 1)) throw UsageError("--gap-factor: must be > 1");
+    if (!(cell.getValue() > 0)) throw UsageError("--field-cell: must be > 0");
+    if (gt.isSet() && !slam.isSet()) throw UsageError("--ground-truth needs --slam");
+    report::ReportOptions o;
+    o.rawlog = file.getValue();
+    o.outDir = dir.getValue();
+    o.slamDir = slam.getValue();
+    o.groundTruth = gt.getValue();
+    o.thumbnailEvery = every.getValue();
+    o.gapFactor = gapFactor.getValue();
+    o.fieldCell = cell.getValue();
+    o.quiet = quiet.getValue();
+    o.terminal = ::isatty(STDERR_FILENO) != 0;
+    const auto r = report::writeRawlogReport(o, std::cerr);
+    out << r.entries << " entries, " << r.figures << " charts, " << r.thumbnails
+        << " thumbnails -> " << r.index << "\n";
+    if (r.readError) {
+        throw BadInput(*r.readError + " (the report shows what was read before it)");
+    }
+    return kExitOk;
+}
+
 void printUsage(std::ostream& out) {
     out << "lodestone-inspect: look inside MRPT rawlogs (stock and Lodestone's)\n\n"
            "usage: lodestone-inspect <command> [options]   (<command> --help for its options)\n"
@@ -192,6 +242,7 @@ void printUsage(std::ostream& out) {
            "  show FILE N                         full description of entry N\n"
            "  export FILE --sensor LABEL --out DIR   CSV series / PNG frames of one sensor\n"
            "  to-imu FILE OUT [--unit gauss]      magnetometers as CObservationIMU\n"
+           "  report FILE --out DIR [--slam SLAM_OUT] [--ground-truth GT.tum]   HTML report\n"
            "exit codes: 0 ok, 1 bad input, 2 usage\n";
 }
 
@@ -204,7 +255,8 @@ int runInspectApp(int argc, const char* const* argv, std::ostream& out, std::ost
         {"list", list},
         {"show", show},
         {"export", exportCmd},
-        {"to-imu", toImu}};
+        {"to-imu", toImu},
+        {"report", reportCmd}};
     if (argc < 2) {
         printUsage(err);
         return kExitUsage;

@@ -10,8 +10,34 @@ namespace lodestone::plot {
 
 namespace {
 // Room around the plot area for tick labels, axis labels and the title [px].
-constexpr int kLeft = 62, kRight = 14, kTop = 26, kBottom = 40;
+constexpr int kRight = 14, kTop = 26, kBottom = 40;
 const cv::Scalar kInk(40, 40, 40), kGrid(228, 228, 228);
+// Liang-Barsky: the part of segment ab inside the box, in place; false when none is.
+bool clipToBox(cv::Point2d& a, cv::Point2d& b, double x0, double y0, double x1, double y1) {
+    if (!std::isfinite(a.x) || !std::isfinite(a.y) || !std::isfinite(b.x) || !std::isfinite(b.y)) {
+        return false;
+    }
+    const double dx = b.x - a.x, dy = b.y - a.y;
+    double t0 = 0, t1 = 1;
+    const double p[4] = {-dx, dx, -dy, dy};
+    const double q[4] = {a.x - x0, x1 - a.x, a.y - y0, y1 - a.y};
+    for (int k = 0; k < 4; ++k) {
+        if (p[k] == 0) {
+            if (q[k] < 0) return false;
+            continue;
+        }
+        const double r = q[k] / p[k];
+        if (p[k] < 0) {
+            t0 = std::max(t0, r);
+        } else {
+            t1 = std::min(t1, r);
+        }
+        if (t0 > t1) return false;
+    }
+    b = a + cv::Point2d(dx, dy) * t1;
+    a = a + cv::Point2d(dx, dy) * t0;
+    return true;
+}
 }  // namespace
 
 void Bounds::add(double x, double y) {
@@ -47,10 +73,10 @@ void putLabel(cv::Mat3b& canvas, const std::string& s, const cv::Point& at, doub
     cv::putText(canvas, s, at, cv::FONT_HERSHEY_SIMPLEX, scale, colour, 1, cv::LINE_AA);
 }
 
-Axes::Axes(cv::Mat3b& canvas, const cv::Rect& panel)
+Axes::Axes(cv::Mat3b& canvas, const cv::Rect& panel, int leftMargin)
     : canvas_(canvas),
       panel_(panel),
-      area_(panel.x + kLeft, panel.y + kTop, std::max(panel.width - kLeft - kRight, 10),
+      area_(panel.x + leftMargin, panel.y + kTop, std::max(panel.width - leftMargin - kRight, 10),
             std::max(panel.height - kTop - kBottom, 10)),
       limits_{0, 1, 0, 1} {}
 
@@ -72,12 +98,20 @@ void Axes::setLimitsEqualAspect(const Bounds& limits) {
     limits_.y1 = cy + 0.5 * m * area_.height;
 }
 
-cv::Point Axes::toPixel(double x, double y) const {
+cv::Point2d Axes::toPixelExact(double x, double y) const {
     const double u = (x - limits_.x0) / (limits_.x1 - limits_.x0);
     const double v = (y - limits_.y0) / (limits_.y1 - limits_.y0);
-    // Far-away points are clamped well outside the area: OpenCV clips the line, not overflow.
-    const auto px = [](double p) { return static_cast<int>(std::lround(std::clamp(p, -1e5, 1e5))); };
-    return {px(area_.x + u * (area_.width - 1)), px(area_.y + (1 - v) * (area_.height - 1))};
+    return {area_.x + u * (area_.width - 1), area_.y + (1 - v) * (area_.height - 1)};
+}
+
+cv::Point Axes::toPixel(double x, double y) const {
+    const cv::Point2d p = toPixelExact(x, y);
+    // Far-away points are clamped well outside the area (markers and cells are clipped by
+    // OpenCV; lines are clipped exactly in line()).
+    const auto px = [](double q) {
+        return static_cast<int>(std::lround(std::isfinite(q) ? std::clamp(q, -2e4, 2e4) : -2e4));
+    };
+    return {px(p.x), px(p.y)};
 }
 
 cv::Point2d Axes::toData(const cv::Point& p) const {
@@ -98,12 +132,20 @@ void Axes::drawFrame(const std::string& title, const std::string& xLabel,
         const std::string s = tickLabel(t, xs);
         putLabel(canvas_, s, {x - 4 * static_cast<int>(s.size()), area_.y + area_.height + 17}, 0.38);
     }
-    for (const double t : yt) {
-        const int y = toPixel(0, t).y;
-        if (grid) cv::line(canvas_, {area_.x, y}, {area_.x + area_.width - 1, y}, kGrid);
-        cv::line(canvas_, {area_.x - 4, y}, {area_.x, y}, kInk);
-        const std::string s = tickLabel(t, ys);
-        putLabel(canvas_, s, {area_.x - 8 - 8 * static_cast<int>(s.size()), y + 4}, 0.38);
+    if (categories_.empty()) {
+        for (const double t : yt) {
+            const int y = toPixel(0, t).y;
+            if (grid) cv::line(canvas_, {area_.x, y}, {area_.x + area_.width - 1, y}, kGrid);
+            cv::line(canvas_, {area_.x - 4, y}, {area_.x, y}, kInk);
+            const std::string s = tickLabel(t, ys);
+            putLabel(canvas_, s, {area_.x - 8 - 8 * static_cast<int>(s.size()), y + 4}, 0.38);
+        }
+    } else {
+        for (std::size_t i = 0; i < categories_.size(); ++i) {
+            const int y = toPixel(0, static_cast<double>(i)).y;
+            if (grid) cv::line(canvas_, {area_.x, y}, {area_.x + area_.width - 1, y}, kGrid);
+            putLabel(canvas_, categories_[i], {panel_.x + 4, toPixel(0, i + 0.5).y + 4}, 0.4);
+        }
     }
     cv::rectangle(canvas_, area_, kInk);
     putLabel(canvas_, title, {area_.x, panel_.y + 17}, 0.48);
@@ -114,12 +156,17 @@ void Axes::drawFrame(const std::string& title, const std::string& xLabel,
 
 void Axes::line(const std::vector<cv::Point2d>& points, const cv::Scalar& colour, int thickness) {
     cv::Mat3b roi = canvas_(area_);
-    const cv::Point offset(area_.x, area_.y);
+    const cv::Point2d offset(area_.x, area_.y);
     for (std::size_t i = 1; i < points.size(); ++i) {
-        const cv::Point a = toPixel(points[i - 1].x, points[i - 1].y) - offset;
-        const cv::Point b = toPixel(points[i].x, points[i].y) - offset;
-        if (a == b && i + 1 < points.size()) continue;
-        cv::line(roi, a, b, colour, thickness, cv::LINE_AA);
+        cv::Point2d a = toPixelExact(points[i - 1].x, points[i - 1].y) - offset;
+        cv::Point2d b = toPixelExact(points[i].x, points[i].y) - offset;
+        // Clipped in floating point first: OpenCV's anti-aliased lines work in 16.16 fixed
+        // point, so an endpoint far off the canvas would overflow rather than clip.
+        if (!clipToBox(a, b, -8.0, -8.0, area_.width + 8.0, area_.height + 8.0)) continue;
+        const cv::Point pa(static_cast<int>(std::lround(a.x)), static_cast<int>(std::lround(a.y)));
+        const cv::Point pb(static_cast<int>(std::lround(b.x)), static_cast<int>(std::lround(b.y)));
+        if (pa == pb && i + 1 < points.size()) continue;
+        cv::line(roi, pa, pb, colour, thickness, cv::LINE_AA);
     }
 }
 

@@ -3,11 +3,17 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 namespace lodestone::plot {
 
-Colormap::Colormap(double lo, double hi) : lo_(lo), hi_(hi > lo ? hi : lo + 1e-9) {
+Colormap::Colormap(double lo, double hi) : lo_(lo), hi_(hi) {
+    // One value (a flat field): shown mid-scale on a scale one unit wide.
+    if (!(hi_ - lo_ > 1e-9 * std::max({1.0, std::abs(lo_), std::abs(hi_)}))) {
+        lo_ -= 0.5;
+        hi_ = lo_ + 1.0;
+    }
     cv::Mat1b ramp(256, 1);
     for (int i = 0; i < 256; ++i) ramp(i) = static_cast<unsigned char>(i);
     cv::applyColorMap(ramp, lut_, cv::COLORMAP_VIRIDIS);

@@ -20,12 +20,16 @@ double niceStepAtLeast(double x) {
 std::vector<double> niceTicks(double lo, double hi, int maxTicks) {
     if (!std::isfinite(lo) || !std::isfinite(hi)) return {};
     if (lo > hi) std::swap(lo, hi);
-    if (hi - lo <= 0) return {lo};
+    // A range below the values' own precision has one tick (a step of a few ulps would make
+    // k * step stand still).
+    if (hi - lo <= 1e-12 * std::max({1.0, std::abs(lo), std::abs(hi)})) return {lo};
     maxTicks = std::max(maxTicks, 2);
     const double step = niceStepAtLeast((hi - lo) / (maxTicks - 1));
     std::vector<double> ticks;
-    for (double k = std::ceil(lo / step - 1e-9); k * step <= hi + step * 1e-9; k += 1) {
-        const double t = k * step;
+    const double first = std::ceil(lo / step - 1e-9);
+    for (int i = 0; i <= maxTicks; ++i) {
+        const double t = (first + i) * step;
+        if (t > hi + step * 1e-9) break;
         ticks.push_back(std::abs(t) < step * 1e-9 ? 0.0 : t);
     }
     return ticks;

@@ -66,6 +66,14 @@ void TimelineBuilder::add(const mrpt::obs::CObservation& obs, double time) {
     s.newest = std::max(s.newest, time);
 }
 
+bool TimelineBuilder::wouldBeGap(const std::string& label, double time) const {
+    const auto it = sensors_.find(label);
+    if (it == sensors_.end() || !it->second.any || !std::isfinite(time)) return false;
+    const auto& s = it->second;
+    if (s.timeline.eventDriven || s.steps.total < kStepsForMedian) return false;
+    return time - s.newest > gapFactor_ * s.steps.median();
+}
+
 std::vector<SensorTimeline> TimelineBuilder::finish() {
     std::vector<SensorTimeline> out;
     for (auto& [label, s] : sensors_) {

@@ -25,7 +25,8 @@ struct Bounds {
  * a.line(points, colour); a.legend({...}); */
 class Axes {
   public:
-    Axes(cv::Mat3b& canvas, const cv::Rect& panel);
+    /** `leftMargin`: room for the y tick labels (wider for named rows) [px]. */
+    Axes(cv::Mat3b& canvas, const cv::Rect& panel, int leftMargin = 62);
 
     void setLimits(const Bounds& limits);
     /** As setLimits, then widens one axis so a metre is as long in x as in y (maps). */
@@ -38,7 +39,12 @@ class Axes {
     void drawFrame(const std::string& title, const std::string& xLabel, const std::string& yLabel,
                    bool grid = true);
 
+    /** Rows with names instead of a numeric y axis: row i spans y in [i, i+1], named at its
+     * middle (a timeline of sensors). Call before drawFrame; set y limits to [0, rows]. */
+    void setYCategories(std::vector<std::string> names) { categories_ = std::move(names); }
+
     cv::Point toPixel(double x, double y) const;
+    cv::Point2d toPixelExact(double x, double y) const;  ///< unrounded, unclamped
     cv::Point2d toData(const cv::Point& pixel) const;
 
     void line(const std::vector<cv::Point2d>& points, const cv::Scalar& colour, int thickness = 1);
@@ -64,6 +70,7 @@ class Axes {
     cv::Mat3b& canvas_;
     cv::Rect panel_, area_;
     Bounds limits_;
+    std::vector<std::string> categories_;
 };
 
 /** Text as every plot writes it (Hershey simplex, anti-aliased). */

@@ -7,7 +7,8 @@
 namespace lodestone::plot {
 
 /** A perceptually uniform colour scale (OpenCV's viridis) over [lo, hi]: what depth images and
- * the field map are drawn with. Values outside clamp to the ends; NaN is grey. */
+ * the field map are drawn with. Values outside clamp to the ends; NaN is grey. A range of one
+ * value becomes [value - 0.5, value + 0.5]. */
 class Colormap {
   public:
     Colormap(double lo, double hi);

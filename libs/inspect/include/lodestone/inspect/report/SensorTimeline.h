@@ -42,6 +42,9 @@ class TimelineBuilder {
     /** `time`: seconds since the rawlog's first timestamp. */
     void add(const mrpt::obs::CObservation& obs, double time);
     std::vector<SensorTimeline> finish();  ///< by label
+    /** Whether an observation of `label` at `time` would follow a gap, judged by the median
+     * step so far (false until the sensor has a few steps): for acting while streaming. */
+    bool wouldBeGap(const std::string& label, double time) const;
 
     static constexpr std::size_t kMaxListed = 2000;  ///< gaps / backwards kept per sensor
 

@@ -1,0 +1,45 @@
+#pragma once
+
+#include <lodestone/inspect/RawlogSummary.h>
+#include <lodestone/inspect/report/SensorTimeline.h>
+#include <lodestone/inspect/report/Thumbnails.h>
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace lodestone::inspect::report {
+
+/** A picture on the page: file relative to the report folder, and what it shows. */
+struct Figure {
+    std::string file;
+    std::string caption;
+};
+
+/** Everything index.html shows, gathered by the report's pass (RawlogReport). */
+struct ReportPage {
+    RawlogSummary summary;
+    double gapFactor{5};
+    std::vector<SensorTimeline> timelines;
+    std::vector<Figure> rawlogFigures;  ///< timeline, magnetometers, odometry
+    std::vector<Thumbnail> thumbnails;
+    double thumbnailEvery{10};
+    std::size_t unreadableFrames{0};
+    /** The SLAM section, when --slam was given. */
+    bool hasSlam{false};
+    std::string slamDir;
+    std::vector<std::pair<std::string, std::string>> slamFacts;
+    std::vector<Figure> slamFigures;
+    std::vector<std::string> slamNotes;  ///< files missing, readings not placed, ...
+    std::vector<std::vector<std::string>> relocations;  ///< rows of the relocation table
+};
+
+/** Writes the page: self-contained HTML (inline style, no script, no address outside the
+ * folder), to `path`.partial then renamed. Throws std::runtime_error naming the file. */
+void writeReportHtml(const std::string& path, const ReportPage& page);
+
+/** `s` with &, <, >, " escaped. */
+std::string htmlEscape(const std::string& s);
+
+}  // namespace lodestone::inspect::report

@@ -1,0 +1,113 @@
+#include <lodestone/inspect/report/SlamOutputs.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace lodestone::inspect::report {
+
+namespace fs = std::filesystem;
+
+std::vector<NodeRow> readNodeTable(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw std::runtime_error(path + ": cannot open");
+    std::string line;
+    if (!std::getline(in, line) || line.rfind("node,timestamp,segment,keyframe,engine_ms", 0) != 0) {
+        throw std::runtime_error(path + ": line 1: not a nodes.csv header");
+    }
+    std::vector<NodeRow> rows;
+    for (std::size_t n = 2; std::getline(in, line); ++n) {
+        if (line.empty()) continue;
+        NodeRow r;
+        int keyframe = 0;
+        char ms[32] = {0};
+        if (std::sscanf(line.c_str(), "%lld,%lf,%d,%d,%31s", &r.node, &r.timestamp, &r.segment,
+                        &keyframe, ms) != 5) {
+            throw std::runtime_error(path + ": line " + std::to_string(n) + ": expected 5 fields");
+        }
+        r.keyframe = keyframe != 0;
+        r.engineMs = std::strtod(ms, nullptr);  // "nan" where the run did not time it
+        rows.push_back(r);
+    }
+    return rows;
+}
+
+namespace {
+std::string number(double v, int decimals) {
+    char s[64];
+    std::snprintf(s, sizeof s, "%.*f", decimals, v);
+    return s;
+}
+
+// The handful of report.json figures a reader of the report wants first.
+void readFacts(const std::string& path, SlamOutputs& out) {
+    std::ifstream in(path);
+    nlohmann::json j = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+    if (j.is_discarded() || !j.is_object()) {
+        out.missing.push_back(path + ": not JSON");
+        return;
+    }
+    const auto get = [&](std::initializer_list<const char*> keys) -> const nlohmann::json* {
+        const nlohmann::json* at = &j;
+        for (const char* k : keys) {
+            if (!at->is_object() || !at->contains(k)) return nullptr;
+            at = &(*at)[k];
+        }
+        return at;
+    };
+    if (const auto* c = get({"engine", "counts"})) {
+        for (const char* k : {"nodes", "keyframes", "loop_closures", "loop_closures_rejected",
+                              "rgbd_frames", "relocations"}) {
+            if (c->contains(k) && (*c)[k].is_number()) out.facts.push_back({k, (*c)[k].dump()});
+        }
+    }
+    if (const auto* r = get({"timing", "real_time_factor"}); r && r->is_number()) {
+        out.facts.push_back({"real-time factor", number(r->get<double>(), 2) + "x"});
+    }
+    if (const auto* a = get({"ate", "rmse_m"}); a && a->is_number()) {
+        out.facts.push_back({"ATE RMSE (lodestone-slam)", number(a->get<double>(), 4) + " m"});
+    }
+    if (const auto* e = get({"error"}); e && e->is_string()) {
+        out.facts.push_back({"run stopped by", e->get<std::string>()});
+    }
+}
+}  // namespace
+
+SlamOutputs readSlamOutputs(const std::string& dir, const std::string& groundTruth) {
+    SlamOutputs out;
+    out.dir = dir;
+    const fs::path d(dir);
+    if (!fs::is_directory(d)) throw std::runtime_error(dir + ": not a lodestone-slam output folder");
+    out.trajectory = io::readTumTrajectory((d / "trajectory.tum").string());
+    const auto optional = [&](const char* name, const auto& read) {
+        const fs::path p = d / name;
+        if (!fs::exists(p)) {
+            out.missing.push_back(p.string() + ": absent");
+            return;
+        }
+        try {
+            read(p.string());
+        } catch (const std::exception& e) {
+            out.missing.push_back(e.what());
+        }
+    };
+    optional("closures.csv", [&](const std::string& p) { out.closures = eval::readClosureLog(p); });
+    optional("nodes.csv", [&](const std::string& p) { out.nodes = readNodeTable(p); });
+    optional("report.json", [&](const std::string& p) {
+        readFacts(p, out);
+        out.kidnaps = eval::readReportedKidnaps(p);
+    });
+    if (!groundTruth.empty()) {
+        out.groundTruth = io::readTumTrajectory(groundTruth);
+        out.groundTruthPath = groundTruth;
+    } else if (fs::exists(d / "ground_truth.tum")) {
+        out.groundTruthPath = (d / "ground_truth.tum").string();
+        out.groundTruth = io::readTumTrajectory(out.groundTruthPath);
+    }
+    return out;
+}
+
+}  // namespace lodestone::inspect::report
