@@ -20,11 +20,6 @@ const std::string kInspect = LODESTONE_INSPECT_BINARY;
 const std::string kSlam = LODESTONE_SLAM_BINARY;
 const std::string kOffice = LODESTONE_OFFICE_RAWLOG;
 
-std::string readText(const std::string& path) {
-    std::ifstream in(path);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 bool haveChromium() { return runCommand("command -v chromium").exitCode == 0; }
 
 // Checks run inside the page: every image decoded, no error event, no console.error. Written
@@ -56,7 +51,7 @@ struct PageCheck {
 };
 
 PageCheck checkInChromium(const fs::path& reportDir) {
-    std::string html = readText((reportDir / "index.html").string());
+    std::string html = lodestone::test::readTextFile((reportDir / "index.html").string());
     html.insert(html.find("<head>") + 6, std::string("\n") + kPageCheck);
     const fs::path check = reportDir / "page_check.html";
     std::ofstream(check) << html;
@@ -105,7 +100,7 @@ TEST(InspectReport, TheBundledSampleWithItsSlamRunOpensInChromium) {
                    dir.file("slam") + " --ground-truth " + gt + " -q");
     ASSERT_EQ(r.exitCode, 0) << r.output;
     const fs::path report = dir.path() / "report";
-    const std::string html = readText((report / "index.html").string());
+    const std::string html = lodestone::test::readTextFile((report / "index.html").string());
     // Self-contained: nothing fetched from elsewhere, every picture a file in the folder.
     EXPECT_EQ(html.find("http://"), std::string::npos);
     EXPECT_EQ(html.find("https://"), std::string::npos);
@@ -150,7 +145,7 @@ TEST(InspectReport, AGapAndABackwardsTimestampShowInTheTable) {
     writeGapAndBackwardsRawlog(rawlog);
     const auto r = runCommand(kInspect + " report " + rawlog + " --out " + dir.file("report") + " -q");
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    const std::string html = readText(dir.file("report/index.html"));
+    const std::string html = lodestone::test::readTextFile(dir.file("report/index.html"));
     // The sensor's row: ... gaps 1, largest gap ~1.0 s, backwards 1, largest backwards 0.3 s,
     // the nonzero cells marked.
     std::smatch m;
@@ -177,7 +172,7 @@ TEST(InspectReport, ADamagedRawlogGetsThePageOfWhatWasReadAndExitsOne) {
     const auto r = runCommand(kInspect + " report " + rawlog + " --out " + dir.file("report") + " -q");
     EXPECT_EQ(r.exitCode, 1) << r.output;
     EXPECT_NE(r.output.find(rawlog), std::string::npos) << r.output;
-    const std::string html = readText(dir.file("report/index.html"));
+    const std::string html = lodestone::test::readTextFile(dir.file("report/index.html"));
     EXPECT_NE(html.find("class=\"error\""), std::string::npos);
     EXPECT_NE(html.find("<h2>Sensors</h2>"), std::string::npos);
 }

@@ -17,14 +17,9 @@ const std::string kEval = LODESTONE_EVAL_BINARY;
 const std::string kConfigDir = LODESTONE_CONFIG_INI_DIR;
 const std::string kScenario = LODESTONE_TEST_DATA_DIR "/kidnap_short.ini";
 
-std::string readText(const std::string& path) {
-    std::ifstream in(path);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 /** slam.ini with the kidnap switches set. */
 std::string configWith(const lodestone::test::TempDir& dir, bool wheelDrop, bool detector) {
-    std::string ini = readText(kConfigDir + "/slam.ini");
+    std::string ini = lodestone::test::readTextFile(kConfigDir + "/slam.ini");
     const auto set = [&](const std::string& key, bool on) {
         const std::regex re("(\n" + key + "\\s*=\\s*)(true|false)");
         EXPECT_TRUE(std::regex_search(ini, re)) << key << " not in slam.ini";

@@ -64,7 +64,7 @@ TEST(MrptPlugin, RawLogViewerOpensTheBundledSampleUnderXvfb) {
     ASSERT_EQ(r.exitCode, 0) << "3: no window, 4: RawLogViewer exited, 5: no screenshot\n"
                              << r.output;
     const cv::Mat3b screen = lodestone::test::readXwd(xwd);
-    cv::imwrite((shots / "rawlogviewer.png").string(), screen);
+    cv::imwrite((shots / "rawlogviewer.png").string(), screen, {cv::IMWRITE_PNG_COMPRESSION, 9});
     // A blank Xvfb screen is one colour; RawLogViewer's tree, text and plots give hundreds.
     EXPECT_GT(lodestone::test::distinctColours(screen), 50u);
 }

@@ -20,11 +20,6 @@ const std::string kSlam = LODESTONE_SLAM_BINARY;
 const std::string kConfigDir = LODESTONE_CONFIG_INI_DIR;
 const std::string kOfficeRawlog = LODESTONE_OFFICE_RAWLOG;
 
-std::string readText(const std::string& path) {
-    std::ifstream in(path);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 double ateOf(const std::string& output) {
     std::smatch m;
     const std::regex re("ATE RMSE ([0-9.]+) m");
@@ -55,11 +50,11 @@ void expectOutputsParse(const lodestone::test::TempDir& dir) {
     EXPECT_GT(traj.size(), 5u);
     EXPECT_EQ(graph.nodes.size(), traj.size());
     EXPECT_GE(graph.edges.size(), traj.size() - 1);  // the odometry chain, and closures
-    const std::string report = readText(dir.file("report.json"));
+    const std::string report = lodestone::test::readTextFile(dir.file("report.json"));
     EXPECT_NE(report.find("\"nodes\": " + std::to_string(traj.size())), std::string::npos) << report;
     EXPECT_NE(report.find("\"node_ms_by_decile\""), std::string::npos);
     // PLY: the header's vertex count matches the binary body (15 bytes a point).
-    const std::string ply = readText(dir.file("map.ply"));
+    const std::string ply = lodestone::test::readTextFile(dir.file("map.ply"));
     std::smatch m;
     ASSERT_TRUE(std::regex_search(ply, m, std::regex("element vertex ([0-9]+)\n")));
     const std::size_t body = ply.size() - (ply.find("end_header\n") + 11);
@@ -80,7 +75,7 @@ TEST(SlamBinary, SimulatedOfficeOdometryOnly) {
     const double ate = ateOf(r.output);
     EXPECT_GT(ate, 0) << r.output;
     EXPECT_LT(ate, 0.02) << r.output;  // measured 0.004 m over the whole office run
-    EXPECT_NE(readText(dir.file("report.json")).find("\"rmse_m\""), std::string::npos);
+    EXPECT_NE(lodestone::test::readTextFile(dir.file("report.json")).find("\"rmse_m\""), std::string::npos);
 }
 
 TEST(SlamBinary, BundledRawlogWithGroundTruth) {
@@ -146,7 +141,7 @@ TEST(SlamBinary, ARawlogWithoutTheNeededObservationsIsRefused) {
 TEST(SlamBinary, ACorruptRawlogStopsAtTheFaultAndKeepsWhatWasProcessed) {
     lodestone::test::TempDir dir;
     {
-        const std::string bytes = readText(kOfficeRawlog);
+        const std::string bytes = lodestone::test::readTextFile(kOfficeRawlog);
         std::ofstream(dir.file("cut.rawlog.gz"), std::ios::binary)
             .write(bytes.data(), static_cast<std::streamsize>(bytes.size() / 2));
     }
@@ -158,7 +153,7 @@ TEST(SlamBinary, ACorruptRawlogStopsAtTheFaultAndKeepsWhatWasProcessed) {
     EXPECT_NE(r.output.find("writing what was processed"), std::string::npos) << r.output;
     const auto traj = lodestone::io::readTumTrajectory(dir.file("out/trajectory.tum"));
     EXPECT_GT(traj.size(), 5u);
-    EXPECT_NE(readText(dir.file("out/report.json")).find("\"error\""), std::string::npos);
+    EXPECT_NE(lodestone::test::readTextFile(dir.file("out/report.json")).find("\"error\""), std::string::npos);
 }
 
 TEST(SlamBinary, UsageErrors) {
@@ -206,11 +201,11 @@ TEST(SlamBinary, DecodingAheadChangesNothingButTheTime) {
         ASSERT_EQ(r.exitCode, 0) << r.output;
     }
     for (const char* f : {"trajectory.tum", "graph.graph", "closures.csv"}) {
-        const std::string inLoop = readText(dir.file(std::string("ahead0/") + f));
+        const std::string inLoop = lodestone::test::readTextFile(dir.file(std::string("ahead0/") + f));
         EXPECT_GT(inLoop.size(), 100u) << f;
-        EXPECT_EQ(inLoop, readText(dir.file(std::string("ahead8/") + f))) << f;
+        EXPECT_EQ(inLoop, lodestone::test::readTextFile(dir.file(std::string("ahead8/") + f))) << f;
     }
-    EXPECT_NE(readText(dir.file("ahead8/report.json")).find("\"decode_ahead\": 8"), std::string::npos);
+    EXPECT_NE(lodestone::test::readTextFile(dir.file("ahead8/report.json")).find("\"decode_ahead\": 8"), std::string::npos);
 }
 
 TEST(SlamBinary, ABadGroundTruthIsNamedBeforeAnyWorkAndNoStaleReportStays) {
@@ -235,7 +230,7 @@ TEST(SlamBinary, ABadGroundTruthIsNamedBeforeAnyWorkAndNoStaleReportStays) {
                                                 kConfigDir + "/slam.ini --max-seconds 2 --quiet --out " + out);
     ASSERT_EQ(ok.exitCode, 0) << ok.output;
     EXPECT_FALSE(fs::exists(dir.file("out/trajectory.png"))) << "no ground truth: no plot of it";
-    EXPECT_EQ(readText(dir.file("out/report.json")).find("an earlier run"), std::string::npos);
+    EXPECT_EQ(lodestone::test::readTextFile(dir.file("out/report.json")).find("an earlier run"), std::string::npos);
     EXPECT_FALSE(fs::exists(dir.file("out/report.json.partial")));
 }
 

@@ -42,3 +42,12 @@ std::size_t residentSetBytes() {
 }
 
 }  // namespace lodestone::test
+
+namespace lodestone::test {
+
+std::string readTextFile(const std::string& path) {
+    std::ifstream in(path);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+}  // namespace lodestone::test

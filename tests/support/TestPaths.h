@@ -25,6 +25,9 @@ class TempDir {
     std::filesystem::path path_;
 };
 
+/** The whole file as text; empty if it cannot be read. */
+std::string readTextFile(const std::string& path);
+
 /** Resident set size of this process [bytes], from /proc/self/status. */
 std::size_t residentSetBytes();
 

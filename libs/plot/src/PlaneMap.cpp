@@ -57,12 +57,20 @@ double ScalarGrid::quantile(double q) const {
 
 cv::Mat3b renderPlaneMap(const ScalarGrid& grid, const std::vector<cv::Point2d>& path,
                          const PlaneMapStyle& style) {
-    cv::Mat3b canvas(style.height, style.width, cv::Vec3b(255, 255, 255));
     constexpr int kBarRoom = 110;  // colour bar and its tick labels on the right
-    Axes axes(canvas, cv::Rect(0, 0, style.width - kBarRoom, style.height));
     Bounds limits = grid.bounds();
     for (const auto& p : path) limits.add(p.x, p.y);
-    axes.setLimitsEqualAspect(limits.padded(0.04, 1.0));
+    limits = limits.padded(0.04, 1.0);
+    // A map taller than wide gets a narrower picture rather than empty sides (equal aspect),
+    // but not narrower than its title.
+    constexpr int kMargins = 62 + 14, kTitleAndAxis = 26 + 40;
+    const double aspect = (limits.x1 - limits.x0) / (limits.y1 - limits.y0);
+    const int width = std::clamp(
+        static_cast<int>(aspect * (style.height - kTitleAndAxis)) + kMargins + kBarRoom, 780,
+        style.width);
+    cv::Mat3b canvas(style.height, width, cv::Vec3b(255, 255, 255));
+    Axes axes(canvas, cv::Rect(0, 0, width - kBarRoom, style.height));
+    axes.setLimitsEqualAspect(limits);
     const double lo = grid.quantile(0.02), hi = grid.quantile(0.98);
     const Colormap colours(std::isfinite(lo) ? lo : 0.0, std::isfinite(hi) ? hi : 1.0);
     // The plot area in light grey: where no reading was placed.
@@ -76,7 +84,7 @@ cv::Mat3b renderPlaneMap(const ScalarGrid& grid, const std::vector<cv::Point2d>&
     axes.drawFrame(info, "x [m]", "y [m]", /*grid=*/false);
     axes.line(path, cv::Scalar(90, 90, 90), 1);
     const cv::Rect area = axes.plotArea();
-    colours.drawBar(canvas, cv::Rect(style.width - kBarRoom + 20, area.y + 20, 18, area.height - 40),
+    colours.drawBar(canvas, cv::Rect(width - kBarRoom + 20, area.y + 20, 18, area.height - 40),
                     style.unit);
     return canvas;
 }

@@ -30,13 +30,6 @@ namespace lodestone::inspect::report {
 namespace fs = std::filesystem;
 
 namespace {
-std::string fixed(double v, int decimals) {
-    if (!std::isfinite(v)) return "-";
-    char s[64];
-    std::snprintf(s, sizeof s, "%.*f", decimals, v);
-    return s;
-}
-
 void writePng(const fs::path& dir, const std::string& name, const cv::Mat& image,
               std::vector<Figure>& figures, const std::string& caption) {
     const fs::path path = dir / name;
@@ -61,7 +54,7 @@ void slamFigures(const SlamOutputs& slam, const std::optional<eval::FieldMapBuil
         const auto ate = eval::absoluteTrajectoryError(slam.trajectory, slam.groundTruth);
         if (ate.pairs >= 3) {
             page.slamFacts.push_back({"ATE RMSE against " + slam.groundTruthPath,
-                                      fixed(ate.rmse, 4) + " m over " + std::to_string(ate.pairs) + " nodes"});
+                                      fixedText(ate.rmse, 4) + " m over " + std::to_string(ate.pairs) + " nodes"});
             writePng(dir, "slam_trajectory.png", eval::plotTrajectories(slam.trajectory, slam.groundTruth, ate),
                      page.slamFigures,
                      "Optimized trajectory (red) against the ground truth (black), aligned (Horn); absolute error over time.");
@@ -91,11 +84,11 @@ void slamFigures(const SlamOutputs& slam, const std::optional<eval::FieldMapBuil
     }
     for (const auto& k : slam.kidnaps) {
         page.relocations.push_back(
-            {std::to_string(k.segment), fixed(k.liftTime, 2), fixed(k.putDownTime, 2),
+            {std::to_string(k.segment), fixedText(k.liftTime, 2), fixedText(k.putDownTime, 2),
              k.relocated ? "yes" : (k.mergedLate ? "after the segment ended" : "no"),
-             k.relocated ? fixed(k.relocationTime - k.putDownTime, 2) : "-",
-             k.relocated ? fixed(k.travel, 2) : "-",
-             k.relocated ? fixed(k.x, 2) + ", " + fixed(k.y, 2) + ", " + fixed(k.yaw * 180 / M_PI, 1) : "-"});
+             k.relocated ? fixedText(k.relocationTime - k.putDownTime, 2) : "-",
+             k.relocated ? fixedText(k.travel, 2) : "-",
+             k.relocated ? fixedText(k.x, 2) + ", " + fixedText(k.y, 2) + ", " + fixedText(k.yaw * 180 / M_PI, 1) : "-"});
     }
 }
 }  // namespace

@@ -12,13 +12,6 @@ namespace lodestone::inspect::report {
 namespace {
 constexpr std::size_t kMaxEventRows = 200;  // gaps and backwards timestamps listed
 
-std::string fixed(double v, int decimals) {
-    if (!std::isfinite(v)) return "-";
-    char s[64];
-    std::snprintf(s, sizeof s, "%.*f", decimals, v);
-    return s;
-}
-
 const char* kStyle = R"(
 body { font-family: "DejaVu Sans", sans-serif; margin: 24px; color: #222; max-width: 1200px; }
 h1 { font-size: 22px; } h2 { font-size: 18px; margin-top: 32px; border-bottom: 1px solid #ccc; }
@@ -70,7 +63,7 @@ void summarySection(Page& p, const ReportPage& r) {
     if (s.first && s.last) {
         p.row({"first timestamp", timeText(*s.first)});
         p.row({"last timestamp", timeText(*s.last)});
-        p.row({"time span", fixed(mrpt::Clock::toDouble(*s.last) - mrpt::Clock::toDouble(*s.first), 3) + " s"});
+        p.row({"time span", fixedText(mrpt::Clock::toDouble(*s.last) - mrpt::Clock::toDouble(*s.first), 3) + " s"});
     }
     for (const auto& [cls, n] : s.observationClasses) p.row({"observations: " + cls, std::to_string(n)});
     for (const auto& [cls, n] : s.entryClasses) p.row({"entries: " + cls, std::to_string(n)});
@@ -79,7 +72,7 @@ void summarySection(Page& p, const ReportPage& r) {
 
 void sensorSection(Page& p, const ReportPage& r) {
     p.html << "<h2>Sensors</h2>\n<p class=\"note\">A gap is a step longer than "
-           << fixed(r.gapFactor, 1)
+           << fixedText(r.gapFactor, 1)
            << " times the sensor's median step; backwards: a timestamp older than the newest "
               "before it (the size is how much older). Event sensors (wheel drops) have no "
               "gaps.</p>\n<table>\n";
@@ -93,10 +86,10 @@ void sensorSection(Page& p, const ReportPage& r) {
         std::size_t lifts = 0;
         for (const auto& d : tl.wheelDrops) lifts += d.second;
         p.row({tl.label.empty() ? "(no label)" : tl.label, tl.className, std::to_string(tl.count),
-               fixed(rate, 3), fixed(span, 3), tl.eventDriven ? "-" : fixed(tl.medianStep, 4),
+               fixedText(rate, 3), fixedText(span, 3), tl.eventDriven ? "-" : fixedText(tl.medianStep, 4),
                tl.eventDriven ? "-" : std::to_string(tl.gapCount),
-               tl.gapCount ? fixed(tl.largestGap, 3) : "-", std::to_string(tl.backwardCount),
-               tl.backwardCount ? fixed(tl.largestBackwards, 3) : "-",
+               tl.gapCount ? fixedText(tl.largestGap, 3) : "-", std::to_string(tl.backwardCount),
+               tl.backwardCount ? fixedText(tl.largestBackwards, 3) : "-",
                tl.wheelDrops.empty() ? "-" : std::to_string(lifts) + " lifted / " +
                                                  std::to_string(tl.wheelDrops.size() - lifts) + " down"},
               false,
@@ -111,12 +104,12 @@ void sensorSection(Page& p, const ReportPage& r) {
         all += tl.gapCount + tl.backwardCount;
         for (const auto& g : tl.gaps) {
             if (listed++ < kMaxEventRows) {
-                events.row({tl.label, "gap", fixed(g.time, 3), fixed(g.size, 3)});
+                events.row({tl.label, "gap", fixedText(g.time, 3), fixedText(g.size, 3)});
             }
         }
         for (const auto& b : tl.backwards) {
             if (listed++ < kMaxEventRows) {
-                events.row({tl.label, "backwards", fixed(b.time, 3), fixed(b.size, 3)});
+                events.row({tl.label, "backwards", fixedText(b.time, 3), fixedText(b.size, 3)});
             }
         }
     }
@@ -132,7 +125,7 @@ void sensorSection(Page& p, const ReportPage& r) {
 
 void thumbnailSection(Page& p, const ReportPage& r) {
     if (r.thumbnails.empty() && r.unreadableFrames == 0) return;
-    p.html << "<h2>Camera frames</h2>\n<p class=\"note\">Every " << fixed(r.thumbnailEvery, 0)
+    p.html << "<h2>Camera frames</h2>\n<p class=\"note\">Every " << fixedText(r.thumbnailEvery, 0)
            << " s and on both sides of each gap. Depth: 0 m dark blue to the scale's top yellow, "
               "black where the sensor gave no depth.";
     if (r.unreadableFrames) {
@@ -143,7 +136,7 @@ void thumbnailSection(Page& p, const ReportPage& r) {
         p.html << "<figure>";
         if (!t.rgb.empty()) p.html << "<img src=\"" << htmlEscape(t.rgb) << "\" alt=\"colour\">";
         if (!t.depth.empty()) p.html << "<img src=\"" << htmlEscape(t.depth) << "\" alt=\"depth\">";
-        p.html << "<figcaption>" << htmlEscape(t.label) << " at " << fixed(t.time, 2) << " s ("
+        p.html << "<figcaption>" << htmlEscape(t.label) << " at " << fixedText(t.time, 2) << " s ("
                << htmlEscape(t.why) << ")</figcaption></figure>\n";
     }
     p.html << "</div>\n";
@@ -166,6 +159,13 @@ void slamSection(Page& p, const ReportPage& r) {
     }
 }
 }  // namespace
+
+std::string fixedText(double v, int decimals) {
+    if (!std::isfinite(v)) return "-";
+    char s[64];
+    std::snprintf(s, sizeof s, "%.*f", decimals, v);
+    return s;
+}
 
 std::string htmlEscape(const std::string& s) {
     std::string out;

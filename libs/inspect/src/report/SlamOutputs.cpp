@@ -1,3 +1,4 @@
+#include <lodestone/inspect/report/ReportHtml.h>
 #include <lodestone/inspect/report/SlamOutputs.h>
 
 #include <nlohmann/json.hpp>
@@ -36,12 +37,6 @@ std::vector<NodeRow> readNodeTable(const std::string& path) {
 }
 
 namespace {
-std::string number(double v, int decimals) {
-    char s[64];
-    std::snprintf(s, sizeof s, "%.*f", decimals, v);
-    return s;
-}
-
 // The handful of report.json figures a reader of the report wants first.
 void readFacts(const std::string& path, SlamOutputs& out) {
     std::ifstream in(path);
@@ -65,10 +60,10 @@ void readFacts(const std::string& path, SlamOutputs& out) {
         }
     }
     if (const auto* r = get({"timing", "real_time_factor"}); r && r->is_number()) {
-        out.facts.push_back({"real-time factor", number(r->get<double>(), 2) + "x"});
+        out.facts.push_back({"real-time factor", fixedText(r->get<double>(), 2) + "x"});
     }
     if (const auto* a = get({"ate", "rmse_m"}); a && a->is_number()) {
-        out.facts.push_back({"ATE RMSE (lodestone-slam)", number(a->get<double>(), 4) + " m"});
+        out.facts.push_back({"ATE RMSE (lodestone-slam)", fixedText(a->get<double>(), 4) + " m"});
     }
     if (const auto* e = get({"error"}); e && e->is_string()) {
         out.facts.push_back({"run stopped by", e->get<std::string>()});

@@ -39,6 +39,9 @@ struct ReportPage {
  * folder), to `path`.partial then renamed. Throws std::runtime_error naming the file. */
 void writeReportHtml(const std::string& path, const ReportPage& page);
 
+/** `v` with `decimals` decimals; "-" when not finite (a table cell with nothing to say). */
+std::string fixedText(double v, int decimals);
+
 /** `s` with &, <, >, " escaped. */
 std::string htmlEscape(const std::string& s);
 
