@@ -12,6 +12,19 @@ TrajectoryInterpolator::TrajectoryInterpolator(std::vector<io::TumPose> trajecto
                      [](const io::TumPose& a, const io::TumPose& b) { return a.timestamp < b.timestamp; });
 }
 
+bool TrajectoryInterpolator::bridges(const io::TumPose& a, const io::TumPose& b) const {
+    return b.timestamp - a.timestamp <= maxGap_ || a.pose.distanceTo(b.pose) <= stillRadius_;
+}
+
+std::vector<std::vector<cv::Point2d>> TrajectoryInterpolator::pieces() const {
+    std::vector<std::vector<cv::Point2d>> out;
+    for (std::size_t i = 0; i < poses_.size(); ++i) {
+        if (i == 0 || !bridges(poses_[i - 1], poses_[i])) out.emplace_back();
+        out.back().emplace_back(poses_[i].pose.x(), poses_[i].pose.y());
+    }
+    return out;
+}
+
 std::optional<mrpt::poses::CPose3D> TrajectoryInterpolator::at(double time) const {
     if (poses_.empty() || !std::isfinite(time)) return std::nullopt;
     const auto after = std::lower_bound(
@@ -23,7 +36,7 @@ std::optional<mrpt::poses::CPose3D> TrajectoryInterpolator::at(double time) cons
     const auto& b = *after;
     const auto& a = *(after - 1);
     const double span = b.timestamp - a.timestamp;
-    if (span > maxGap_ && a.pose.distanceTo(b.pose) > stillRadius_) return std::nullopt;
+    if (!bridges(a, b)) return std::nullopt;
     const double u = span > 0 ? (time - a.timestamp) / span : 0.0;
     // The motion from a to b, scaled by u on the manifold: a (+) exp(u log(a^-1 b)) would be
     // exact; between nodes centimetres apart a linear blend of translation and yaw/pitch/roll
@@ -54,15 +67,12 @@ bool FieldMapBuilder::add(double time, const mrpt::math::TPoint3D& sensorOffset,
 }
 
 cv::Mat3b FieldMapBuilder::render(const std::string& title) const {
-    std::vector<cv::Point2d> path;
-    path.reserve(trajectory_.poses().size());
-    for (const auto& p : trajectory_.poses()) path.emplace_back(p.pose.x(), p.pose.y());
     std::string sensors;
     for (const auto& l : labels_) sensors += (sensors.empty() ? "" : ", ") + l;
     plot::PlaneMapStyle style;
     style.title = title + (sensors.empty() ? "" : " - " + sensors);
     style.unit = "|B| [uT]";
-    return plot::renderPlaneMap(grid_, path, style);
+    return plot::renderPlaneMap(grid_, trajectory_.pieces(), style);
 }
 
 }  // namespace lodestone::eval

@@ -55,11 +55,14 @@ double ScalarGrid::quantile(double q) const {
     return means[at];
 }
 
-cv::Mat3b renderPlaneMap(const ScalarGrid& grid, const std::vector<cv::Point2d>& path,
+cv::Mat3b renderPlaneMap(const ScalarGrid& grid,
+                         const std::vector<std::vector<cv::Point2d>>& pathPieces,
                          const PlaneMapStyle& style) {
     constexpr int kBarRoom = 110;  // colour bar and its tick labels on the right
     Bounds limits = grid.bounds();
-    for (const auto& p : path) limits.add(p.x, p.y);
+    for (const auto& piece : pathPieces) {
+        for (const auto& p : piece) limits.add(p.x, p.y);
+    }
     limits = limits.padded(0.04, 1.0);
     // A map taller than wide gets a narrower picture rather than empty sides (equal aspect),
     // but not narrower than its title.
@@ -79,10 +82,10 @@ cv::Mat3b renderPlaneMap(const ScalarGrid& grid, const std::vector<cv::Point2d>&
         axes.cell(x0, y0, x1, y1, colours(mean));
     });
     char info[160];
-    std::snprintf(info, sizeof info, "%s  (%zu values in %zu cells of %.2f m)", style.title.c_str(),
-                  grid.values(), grid.cells(), grid.cellSize());
+    std::snprintf(info, sizeof info, "%s (%zu values, %.2f m cells)", style.title.c_str(),
+                  grid.values(), grid.cellSize());
     axes.drawFrame(info, "x [m]", "y [m]", /*grid=*/false);
-    axes.line(path, cv::Scalar(90, 90, 90), 1);
+    for (const auto& piece : pathPieces) axes.line(piece, cv::Scalar(90, 90, 90), 1);
     const cv::Rect area = axes.plotArea();
     colours.drawBar(canvas, cv::Rect(width - kBarRoom + 20, area.y + 20, 18, area.height - 40),
                     style.unit);

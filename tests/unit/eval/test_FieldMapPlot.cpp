@@ -69,3 +69,13 @@ TEST(FieldMapBuilder, ReadingsLandWhereTheSensorWasAndAverage) {
     const cv::Mat3b image = map.render("test");
     EXPECT_GT(image.rows, 100);
 }
+
+TEST(TrajectoryInterpolator, PiecesAreCutAtKidnapsOnly) {
+    auto traj = straightRun();
+    traj.push_back({114.0, CPose3D(2.0, 5.0, 0, 0, 0, 0)});   // after a kidnap
+    traj.push_back({144.0, CPose3D(2.005, 5.0, 0, 0, 0, 0)});  // a long stop, not a kidnap
+    const auto pieces = TrajectoryInterpolator(traj, 2.0).pieces();
+    ASSERT_EQ(pieces.size(), 2u);
+    EXPECT_EQ(pieces[0].size(), 21u);
+    EXPECT_EQ(pieces[1].size(), 2u);
+}

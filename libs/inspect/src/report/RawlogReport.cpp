@@ -43,8 +43,9 @@ std::string fileSafe(const std::string& label) {
     return s.empty() ? "unlabelled" : s;
 }
 
+// `t0`: the rawlog's first timestamp [s]; the page gives times since it.
 void slamFigures(const SlamOutputs& slam, const std::optional<eval::FieldMapBuilder>& fieldMap,
-                 const fs::path& dir, ReportPage& page) {
+                 double t0, const fs::path& dir, ReportPage& page) {
     page.hasSlam = true;
     page.slamDir = slam.dir;
     page.slamFacts = slam.facts;
@@ -84,7 +85,7 @@ void slamFigures(const SlamOutputs& slam, const std::optional<eval::FieldMapBuil
     }
     for (const auto& k : slam.kidnaps) {
         page.relocations.push_back(
-            {std::to_string(k.segment), fixedText(k.liftTime, 2), fixedText(k.putDownTime, 2),
+            {std::to_string(k.segment), fixedText(k.liftTime - t0, 2), fixedText(k.putDownTime - t0, 2),
              k.relocated ? "yes" : (k.mergedLate ? "after the segment ended" : "no"),
              k.relocated ? fixedText(k.relocationTime - k.putDownTime, 2) : "-",
              k.relocated ? fixedText(k.travel, 2) : "-",
@@ -163,7 +164,7 @@ ReportResult writeRawlogReport(const ReportOptions& options, std::ostream& progr
         writePng(dir, "odometry.png", odometryChart(paths), page.rawlogFigures,
                  "Odometry from above, as each source reported or integrated it (no SLAM).");
     }
-    if (slam) slamFigures(*slam, fieldMap, dir, page);
+    if (slam) slamFigures(*slam, fieldMap, t0, dir, page);
 
     ReportResult result;
     result.index = (dir / "index.html").string();

@@ -61,13 +61,16 @@ cv::Mat3b timelineChart(const std::vector<SensorTimeline>& sensors, double span)
     for (std::size_t k = 0; k < sensors.size(); ++k) {
         const auto& s = sensors[k];
         const double row = static_cast<double>(sensors.size() - 1 - k);
+        if (s.eventDriven) {  // its samples are the events: markers on a line, no density
+            axes.segment({0, row + 0.5}, {std::max(span, 1e-3), row + 0.5}, cv::Scalar(200, 200, 200), 1);
+        }
         // Display bins at least 3 px and 10 median steps wide, so a steady sensor draws a
         // flat bar; the bar's height is the bin's count against the median full bin.
         const double pxSeconds = std::max(span, 1e-3) / axes.plotArea().width;
         const std::size_t merge = static_cast<std::size_t>(std::max(
             1.0, std::ceil(std::max(3 * pxSeconds, 10 * s.medianStep) / s.density.width())));
         std::vector<std::pair<double, std::size_t>> bars;  // start, count
-        for (std::size_t i = 0; i < s.density.used(); i += merge) {
+        for (std::size_t i = 0; !s.eventDriven && i < s.density.used(); i += merge) {
             std::size_t n = 0;
             for (std::size_t j = i; j < std::min(i + merge, s.density.used()); ++j) n += s.density[j].count;
             bars.emplace_back(s.density.start(i), n);

@@ -151,7 +151,8 @@ void slamSection(Page& p, const ReportPage& r) {
     for (const auto& f : r.slamFigures) p.figure(f);
     if (!r.relocations.empty()) {
         p.html << "<h3>Kidnaps and relocations</h3>\n<table>\n";
-        p.row({"segment", "lifted [s]", "put down [s]", "relocated", "after [s]", "travel [m]",
+        p.row({"segment", "lifted [s since start]", "put down [s]", "relocated",
+               "after put-down [s]", "travel [m]",
                "pose x, y [m], yaw [deg]"},
               true);
         for (const auto& row : r.relocations) p.row(row);

@@ -24,8 +24,11 @@ class TrajectoryInterpolator {
     std::optional<mrpt::poses::CPose3D> at(double time) const;
     bool empty() const { return poses_.empty(); }
     const std::vector<io::TumPose>& poses() const { return poses_; }
+    /** The trajectory from above in pieces, cut where at() does not bridge (kidnaps). */
+    std::vector<std::vector<cv::Point2d>> pieces() const;
 
   private:
+    bool bridges(const io::TumPose& a, const io::TumPose& b) const;
     std::vector<io::TumPose> poses_;  // sorted by time
     double maxGap_, stillRadius_;
 };

@@ -44,9 +44,10 @@ struct PlaneMapStyle {
     int width{900}, height{700};
 };
 
-/** The grid's cell means colour-mapped (viridis, 2 %-98 % of the cells), `path` drawn over it
- * (thin grey), a colour bar, metres on both axes, equal aspect. */
-cv::Mat3b renderPlaneMap(const ScalarGrid& grid, const std::vector<cv::Point2d>& path,
+/** The grid's cell means colour-mapped (viridis, 2 %-98 % of the cells), the path's pieces
+ * drawn over it (thin grey), a colour bar, metres on both axes, equal aspect. */
+cv::Mat3b renderPlaneMap(const ScalarGrid& grid,
+                         const std::vector<std::vector<cv::Point2d>>& pathPieces,
                          const PlaneMapStyle& style);
 
 }  // namespace lodestone::plot
