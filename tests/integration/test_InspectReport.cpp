@@ -189,3 +189,22 @@ TEST(InspectReport, BadArgumentsAreRefusedBeforeAnyWork) {
     r = runCommand(kInspect + " report /nonexistent.rawlog --out " + dir.file("r"));
     EXPECT_EQ(r.exitCode, 1) << r.output;
 }
+
+TEST(InspectReport, ASecondReportInTheSameFolderLeavesNothingStaleAndNothingElseRemoved) {
+    lodestone::test::TempDir dir;
+    const std::string out = dir.file("report");
+    auto r = runCommand(kInspect + " report " + kOffice + " --out " + out + " --thumbnail-every 2 -q");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const auto count = [&](const fs::path& folder) {
+        std::size_t n = 0;
+        for (const auto& e : fs::directory_iterator(folder)) n += e.is_regular_file();
+        return n;
+    };
+    const std::size_t many = count(fs::path(out) / "thumbs");
+    std::ofstream(out + "/notes.txt") << "the user's own file\n";
+    r = runCommand(kInspect + " report " + kOffice + " --out " + out + " --thumbnail-every 10 -q");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_LT(count(fs::path(out) / "thumbs"), many);
+    EXPECT_EQ(count(fs::path(out) / "thumbs"), 6u);  // 3 frames x (colour, depth)
+    EXPECT_TRUE(fs::exists(out + "/notes.txt"));
+}

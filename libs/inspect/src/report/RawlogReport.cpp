@@ -92,6 +92,27 @@ void slamFigures(const SlamOutputs& slam, const std::optional<eval::FieldMapBuil
              k.relocated ? fixedText(k.x, 2) + ", " + fixedText(k.y, 2) + ", " + fixedText(k.yaw * 180 / M_PI, 1) : "-"});
     }
 }
+// What an earlier report in the same folder wrote (and only that: the folder may hold other
+// files), so no stale chart or thumbnail sits beside the new page.
+void removePreviousReport(const fs::path& dir) {
+    const auto ours = [](const std::string& name) {
+        const auto ends = [&](const char* e) {
+            const std::string s(e);
+            return name.size() >= s.size() && name.compare(name.size() - s.size(), s.size(), s) == 0;
+        };
+        return name == "index.html" || name == "index.html.partial" || name == "timeline.png" ||
+               name == "odometry.png" || (name.rfind("magnetometer_", 0) == 0 && ends(".png")) ||
+               (name.rfind("slam_", 0) == 0 && ends(".png")) || ends("_rgb.jpg") ||
+               ends("_depth.png");
+    };
+    std::error_code ec;
+    for (const fs::path& folder : {dir, dir / "thumbs"}) {
+        if (!fs::is_directory(folder, ec)) continue;
+        for (const auto& e : fs::directory_iterator(folder, ec)) {
+            if (e.is_regular_file(ec) && ours(e.path().filename().string())) fs::remove(e.path(), ec);
+        }
+    }
+}
 }  // namespace
 
 ReportResult writeRawlogReport(const ReportOptions& options, std::ostream& progressOut) {
@@ -103,6 +124,7 @@ ReportResult writeRawlogReport(const ReportOptions& options, std::ostream& progr
     if (!options.slamDir.empty()) slam = readSlamOutputs(options.slamDir, options.groundTruth);
     std::optional<eval::FieldMapBuilder> fieldMap;
     if (slam) fieldMap.emplace(slam->trajectory, options.fieldCell);
+    removePreviousReport(dir);
 
     mrpt::img::CImage::setImagesPathBase(io::findImagesDirectory(options.rawlog));
     RawlogSummaryBuilder summary(options.rawlog, reader.fileSize(), reader.isCompressed());
@@ -150,6 +172,7 @@ ReportResult writeRawlogReport(const ReportOptions& options, std::ostream& progr
     page.timelines = timelines.finish();
     page.thumbnails = thumbnails.thumbnails();
     page.thumbnailEvery = options.thumbnailEvery;
+    page.depthMax = options.depthMax;
     page.unreadableFrames = thumbnails.unreadable();
     writePng(dir, "timeline.png", timelineChart(page.timelines, dataSeconds), page.rawlogFigures,
              "Every sensor over time: sample density, gaps (red), backwards timestamps (orange "

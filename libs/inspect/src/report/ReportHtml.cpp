@@ -126,8 +126,8 @@ void sensorSection(Page& p, const ReportPage& r) {
 void thumbnailSection(Page& p, const ReportPage& r) {
     if (r.thumbnails.empty() && r.unreadableFrames == 0) return;
     p.html << "<h2>Camera frames</h2>\n<p class=\"note\">Every " << fixedText(r.thumbnailEvery, 0)
-           << " s and on both sides of each gap. Depth: 0 m dark blue to the scale's top yellow, "
-              "black where the sensor gave no depth.";
+           << " s and on both sides of each gap. Depth: viridis from 0 m (dark blue) to "
+           << fixedText(r.depthMax, 1) << " m and beyond (yellow), black where the sensor gave no depth.";
     if (r.unreadableFrames) {
         p.html << " " << r.unreadableFrames << " picked frame(s) could not be loaded (missing external image files).";
     }

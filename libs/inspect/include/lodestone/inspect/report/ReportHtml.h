@@ -25,6 +25,7 @@ struct ReportPage {
     std::vector<Figure> rawlogFigures;  ///< timeline, magnetometers, odometry
     std::vector<Thumbnail> thumbnails;
     double thumbnailEvery{10};
+    double depthMax{6};  ///< [m] top of the thumbnails' depth colour scale
     std::size_t unreadableFrames{0};
     /** The SLAM section, when --slam was given. */
     bool hasSlam{false};
