@@ -79,6 +79,10 @@ void slamFigures(const SlamOutputs& slam, const std::optional<eval::FieldMapBuil
                                      "time or inside a kidnap.");
         }
     }
+    if (fieldMap && fieldMap->placed() == 0 && fieldMap->unplaced() > 0) {
+        page.slamNotes.push_back("no magnetometer reading of the rawlog falls within the SLAM "
+                                 "trajectory's time: is the run one of this rawlog?");
+    }
     if (!slam.nodes.empty()) {
         writePng(dir, "slam_node_time.png", nodeTimeChart(slam.nodes), page.slamFigures,
                  "Engine time per node: what the deciders and the optimizer spent from one node to the next.");
