@@ -1,4 +1,5 @@
 #include <lodestone/drivers/CSimulatedRobot.h>
+#include <lodestone/io/TumTrajectory.h>
 #include <lodestone/sim/Scenario.h>
 #include <lodestone/sim/SimulatorSource.h>
 #include <mrpt/config/CConfigFileBase.h>
@@ -43,6 +44,7 @@ void CSimulatedRobot::loadConfig_sensorSpecific(const mrpt::config::CConfigFileB
     if (seed < 0) throw std::runtime_error(where("seed") + ": must be >= 0");
     seed_ = static_cast<std::uint64_t>(seed);
     camera_ = config.read_string(section, "camera", "");
+    truth_path_ = config.read_string(section, "ground_truth", "");
 }
 
 void CSimulatedRobot::initialize() {
@@ -57,6 +59,13 @@ void CSimulatedRobot::initialize() {
         throw std::runtime_error(where("camera") + ": expected WIDTHxHEIGHT@RATE, got '" + camera_ + "'");
     }
     sim_ = std::make_unique<sim::SimulatorSource>(scenario, seed_);
+    if (!truth_path_.empty()) {
+        try {
+            truth_ = std::make_unique<io::TumTrajectoryWriter>(truth_path_);
+        } catch (const std::exception& e) {
+            throw std::runtime_error(where("ground_truth") + ": " + e.what());
+        }
+    }
     sim_start_ = sim_->startTime();
     m_state = ssWorking;
 }
@@ -67,8 +76,10 @@ void CSimulatedRobot::setPathForExternalImages(const std::string& directory) {
 
 void CSimulatedRobot::emit(const mrpt::obs::CObservation::Ptr& obs) {
     // The scenario's time moved onto the grab's clock.
-    const double t = mrpt::Clock::toDouble(obs->timestamp) - sim_start_ + grab_start_;
+    const double scenarioTime = mrpt::Clock::toDouble(obs->timestamp) - sim_start_;
+    const double t = scenarioTime + grab_start_;
     obs->timestamp = mrpt::Clock::fromDouble(t);
+    if (truth_) truth_->write(t, sim_->truePose3D(scenarioTime));
     if (!images_dir_.empty()) {
         if (auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(obs);
             scan && scan->hasIntensityImage && !scan->intensityImage.isExternallyStored()) {
@@ -85,6 +96,12 @@ void CSimulatedRobot::emit(const mrpt::obs::CObservation::Ptr& obs) {
     appendObservation(obs);
 }
 
+void CSimulatedRobot::finish() {
+    finished_ = true;
+    if (truth_) truth_->close();  // the whole truth of what was emitted
+    truth_.reset();
+}
+
 void CSimulatedRobot::doProcess() {
     if (!sim_ || finished_) return;
     const auto now = std::chrono::steady_clock::now();
@@ -97,12 +114,12 @@ void CSimulatedRobot::doProcess() {
     while (true) {
         if (!pending_) pending_ = sim_->next();
         if (!pending_) {
-            finished_ = true;
+            finish();
             return;
         }
         const double t = mrpt::Clock::toDouble(pending_->timestamp) - sim_start_;
         if (t > max_seconds_) {
-            finished_ = true;
+            finish();
             pending_.reset();
             return;
         }

@@ -9,6 +9,9 @@
 namespace lodestone::sim {
 class SimulatorSource;
 }
+namespace lodestone::io {
+class TumTrajectoryWriter;
+}
 
 namespace lodestone::drivers {
 
@@ -26,6 +29,8 @@ namespace lodestone::drivers {
  *   camera      = WxH@HZ override the scenario's camera (optional)
  *   seed        = 0      the simulator's seed
  *   max_seconds = inf    stop after this much scenario time
+ *   ground_truth = FILE  write the true pose at every observation there (TUM, the grab's
+ *                        clock): what lodestone-slam --ground-truth compares a grabbed run with
  * Colour images go to the folder given by setPathForExternalImages() (as MRPT's camera drivers
  * do, PNG) when one is set, else stay inside the observation. */
 class CSimulatedRobot : public mrpt::hwdrivers::CGenericSensor {
@@ -52,8 +57,10 @@ class CSimulatedRobot : public mrpt::hwdrivers::CGenericSensor {
 
   private:
     void emit(const mrpt::obs::CObservation::Ptr& obs);
+    void finish();
 
-    std::string section_, scenario_path_, camera_, images_dir_;
+    std::string section_, scenario_path_, camera_, images_dir_, truth_path_;
+    std::unique_ptr<io::TumTrajectoryWriter> truth_;
     double time_scale_{1.0}, max_seconds_{0};
     std::uint64_t seed_{0};
     std::unique_ptr<sim::SimulatorSource> sim_;

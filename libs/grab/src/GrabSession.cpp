@@ -1,0 +1,153 @@
+#include <lodestone/drivers/registerDrivers.h>
+#include <lodestone/grab/GrabConfig.h>
+#include <lodestone/grab/GrabSession.h>
+#include <lodestone/grab/ReorderingWriter.h>
+#include <lodestone/grab/SensorRunner.h>
+#include <lodestone/io/RawlogPaths.h>
+#include <lodestone/obs/registerAllClasses.h>
+
+#include <chrono>
+#include <cstdio>
+#include <memory>
+
+namespace lodestone::grab {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+
+double since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// "grab 12.0 s | SIM 280.0/s 3360 | 5.2 MB written": per sensor section the rate over the last
+// period and the count, then the file.
+class StatusLine {
+  public:
+    StatusLine(std::ostream& err, bool terminal, bool quiet) : err_(err), terminal_(terminal), quiet_(quiet) {}
+    void print(double elapsed, const std::vector<std::unique_ptr<SensorRunner>>& runners,
+               const ReorderingWriter& writer) {
+        if (quiet_) return;
+        std::string line;
+        char buf[160];
+        std::snprintf(buf, sizeof buf, "grab %7.1f s", elapsed);
+        line += buf;
+        counts_.resize(runners.size(), 0);
+        for (std::size_t i = 0; i < runners.size(); ++i) {
+            const auto& r = *runners[i];
+            const std::size_t n = r.produced();
+            const double rate = elapsed > last_ ? (n - counts_[i]) / (elapsed - last_) : 0.0;
+            counts_[i] = n;
+            std::snprintf(buf, sizeof buf, " | %s %.1f/s %zu%s", r.section().c_str(), rate, n,
+                          r.state() == SensorRunner::State::Running ? "" : (std::string(" ") + toString(r.state())).c_str());
+            line += buf;
+        }
+        std::snprintf(buf, sizeof buf, " | %.1f MB written, %zu waiting", writer.bytesOnDisk() / 1e6,
+                      writer.waiting());
+        line += buf;
+        last_ = elapsed;
+        err_ << (terminal_ ? "\r" : "") << line << (terminal_ ? "" : "\n") << std::flush;
+        drawn_ = true;
+    }
+    void end() {
+        if (drawn_ && terminal_ && !quiet_) err_ << "\n";
+    }
+
+  private:
+    std::ostream& err_;
+    bool terminal_, quiet_, drawn_{false};
+    double last_{0};
+    std::vector<std::size_t> counts_;
+};
+}  // namespace
+
+GrabResult runGrab(const GrabOptions& options, const std::atomic<bool>& stop, std::ostream& out,
+                   std::ostream& err) {
+    lodestone::registerAllClasses();
+    drivers::registerDrivers();
+    const GrabConfig config = readGrabConfig(options.config);
+    GrabResult result;
+    const std::string prefix = !options.out.empty() ? options.out
+                               : !config.rawlogPrefix.empty() ? config.rawlogPrefix
+                                                              : std::string("grab");
+    result.rawlog = prefix + ".rawlog.gz";
+    io::prepareOutputFile(result.rawlog);
+    const std::string imagesDir = prefix + "_Images";
+
+    // Every sensor starts, or none: an error names the section before anything is written.
+    ObservationQueue queue;
+    std::vector<std::unique_ptr<SensorRunner>> runners;
+    for (const auto& s : config.sensors) {
+        try {
+            runners.push_back(std::make_unique<SensorRunner>(s, *config.ini, imagesDir, queue));
+        } catch (const std::exception& e) {
+            err << "lodestone-grab: error: " << config.path << ": " << e.what() << "\n";
+            result.exitCode = 1;
+            return result;
+        }
+    }
+    ReorderingWriter writer(result.rawlog, config.gzipLevel, config.reorderWindow);
+    StatusLine status(err, options.terminal, options.quiet);
+    const auto t0 = Clock::now();
+    for (auto& r : runners) r->start();
+    double nextStatus = config.statusPeriod;
+    std::vector<bool> reported(runners.size(), false);
+    while (true) {
+        for (auto& o : queue.takeAll(std::chrono::milliseconds(50))) writer.add(std::move(o));
+        writer.writeDue();
+        const double elapsed = since(t0);
+        bool anyRunning = false;
+        for (std::size_t i = 0; i < runners.size(); ++i) {
+            const auto state = runners[i]->state();
+            anyRunning |= state == SensorRunner::State::Running;
+            if (state == SensorRunner::State::Died && !reported[i]) {
+                reported[i] = true;
+                status.end();
+                err << "lodestone-grab: sensor section '" << runners[i]->section()
+                    << "' died while grabbing: " << runners[i]->error() << " (the others go on)\n";
+            }
+        }
+        if (elapsed >= nextStatus) {
+            status.print(elapsed, runners, writer);
+            nextStatus += config.statusPeriod;
+        }
+        if (stop.load()) {
+            result.stoppedBy = "signal";
+            break;
+        }
+        if (elapsed >= options.duration) {
+            result.stoppedBy = "duration";
+            break;
+        }
+        if (!anyRunning) {
+            result.stoppedBy = "sensors finished";
+            break;
+        }
+    }
+    for (auto& r : runners) r->stop();  // joined: each queued what it had
+    for (auto& o : queue.takeAll(std::chrono::milliseconds(0))) writer.add(std::move(o));
+    writer.close();
+    result.seconds = since(t0);
+    status.print(result.seconds, runners, writer);
+    status.end();
+
+    result.written = writer.written();
+    result.late = writer.late();
+    for (std::size_t i = 0; i < runners.size(); ++i) {
+        const auto& r = *runners[i];
+        result.sensors.push_back({r.section(), config.sensors[i].driver, toString(r.state()), r.error(), r.produced()});
+        if (r.state() == SensorRunner::State::Died) result.exitCode = 1;
+    }
+    out << "lodestone-grab: " << result.written << " observations in " << result.seconds
+        << " s -> " << result.rawlog << " (stopped by " << result.stoppedBy << ")\n";
+    for (const auto& s : result.sensors) {
+        out << "  " << s.section << " (" << s.driver << "): " << s.produced << " observations, "
+            << s.state << (s.error.empty() ? "" : ": " + s.error) << "\n";
+    }
+    if (result.late) {
+        out << "  " << result.late << " observation(s) arrived later than reorder_window and were "
+            << "written out of time order\n";
+    }
+    return result;
+}
+
+}  // namespace lodestone::grab

@@ -1,0 +1,64 @@
+#include <lodestone/grab/ReorderingWriter.h>
+#include <lodestone/io/EntryContents.h>
+#include <lodestone/io/RawlogPaths.h>
+#include <mrpt/obs/CObservation.h>
+
+#include <filesystem>
+
+namespace lodestone::grab {
+
+ReorderingWriter::ReorderingWriter(const std::string& path, int gzipLevel, double window)
+    : writer_(path, io::RawlogWriter::Options{gzipLevel}), window_(window) {}
+
+void ReorderingWriter::add(mrpt::serialization::CSerializable::Ptr object) {
+    if (!object) return;
+    const auto t = io::entryTimestamp(*object);
+    if (!t) {  // nothing to order it by: now
+        write({lastWritten_, arrivals_++, std::move(object)});
+        return;
+    }
+    const double time = mrpt::Clock::toDouble(*t);
+    newest_ = std::max(newest_, time);
+    heap_.push({time, arrivals_++, std::move(object)});
+}
+
+void ReorderingWriter::write(const Item& item) {
+    if (item.time < lastWritten_) ++late_;
+    lastWritten_ = std::max(lastWritten_, item.time);
+    writer_.write(*item.object);
+    if (const auto* obs = dynamic_cast<const mrpt::obs::CObservation*>(item.object.get())) {
+        ++byLabel_[obs->sensorLabel];
+    } else {
+        ++byLabel_[item.object->GetRuntimeClass()->className];
+    }
+}
+
+void ReorderingWriter::writeDue() {
+    while (!heap_.empty() && heap_.top().time <= newest_ - window_) {
+        write(heap_.top());
+        heap_.pop();
+    }
+}
+
+void ReorderingWriter::drain() {
+    while (!heap_.empty()) {
+        write(heap_.top());
+        heap_.pop();
+    }
+}
+
+void ReorderingWriter::close() {
+    drain();
+    writer_.close();
+}
+
+std::uint64_t ReorderingWriter::bytesOnDisk() const {
+    std::error_code ec;
+    for (const auto& p : {io::partialPath(writer_.path()), writer_.path()}) {
+        const auto size = std::filesystem::file_size(p, ec);
+        if (!ec) return size;
+    }
+    return 0;
+}
+
+}  // namespace lodestone::grab

@@ -1,0 +1,150 @@
+// lodestone-grab as a user runs it: the simulated robot grabbed and run through lodestone-slam;
+// SIGINT and SIGKILL mid-grab; a sensor that cannot start, one that dies while grabbing.
+#include <gtest/gtest.h>
+#include <lodestone/inspect/RawlogSummary.h>
+#include <lodestone/io/RawlogReader.h>
+#include <lodestone/io/TumTrajectory.h>
+#include <lodestone/obs/registerAllClasses.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+#include "StockTools.h"
+#include "TestPaths.h"
+
+namespace fs = std::filesystem;
+using lodestone::test::runCommand;
+
+namespace {
+const std::string kGrab = LODESTONE_GRAB_BINARY;
+const std::string kSlam = LODESTONE_SLAM_BINARY;
+const std::string kOffice = std::string(LODESTONE_CONFIG_INI_DIR) + "/office.ini";
+
+// A grab INI of the simulated office robot; `extra` lines go into its section.
+std::string writeGrabIni(const lodestone::test::TempDir& dir, const std::string& extra,
+                         const std::string& more = "") {
+    const std::string path = dir.file("grab.ini");
+    std::ofstream(path) << "[global]\nrawlog_prefix = " << dir.file("run") << "\n\n"
+                        << "[SIM]\ndriver = CSimulatedRobot\nprocess_rate = 100\nscenario = "
+                        << kOffice << "\ncamera = 160x120@5\nground_truth = " << dir.file("run.gt.tum")
+                        << "\n" << extra << "\n" << more;
+    return path;
+}
+
+long numberIn(const std::string& text, const std::string& pattern) {
+    std::smatch m;
+    return std::regex_search(text, m, std::regex(pattern)) ? std::stol(m[1]) : -1;
+}
+
+struct ReadBack {
+    std::size_t entries{0};
+    double lastTime{0};
+    bool error{false};
+};
+ReadBack readBack(const std::string& path) {
+    lodestone::registerAllClasses();
+    ReadBack r;
+    const auto s = lodestone::inspect::summarizeRawlog(path);
+    r.entries = s.entries;
+    r.error = s.error.has_value();
+    if (s.last) r.lastTime = mrpt::Clock::toDouble(*s.last);
+    return r;
+}
+}  // namespace
+
+TEST(GrabBinary, TheSimulatedRobotGrabbedAtTimeScale4RunsThroughSlam) {
+    lodestone::test::TempDir dir;
+    const auto ini = writeGrabIni(dir, "time_scale = 4\nmax_seconds = 10");
+    const auto r = runCommand("timeout 120 " + kGrab + " " + ini + " -q");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("stopped by sensors finished"), std::string::npos) << r.output;
+    const long written = numberIn(r.output, "lodestone-grab: ([0-9]+) observations");
+    const auto back = readBack(dir.file("run.rawlog.gz"));
+    EXPECT_FALSE(back.error);
+    EXPECT_EQ(static_cast<long>(back.entries), written);
+    ASSERT_TRUE(fs::exists(dir.file("run_Images")));
+    const auto s = runCommand(kSlam + " --rawlog " + dir.file("run.rawlog.gz") + " --ground-truth " +
+                              dir.file("run.gt.tum") + " --config " + LODESTONE_CONFIG_INI_DIR +
+                              "/slam.ini --quiet --out " + dir.file("slam"));
+    ASSERT_EQ(s.exitCode, 0) << s.output;
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(s.output, m, std::regex("ATE RMSE ([0-9.]+) m"))) << s.output;
+    EXPECT_LT(std::stod(m[1]), 0.02) << s.output;  // measured 0.0056 m
+}
+
+TEST(GrabBinary, SigintWritesEveryObservationProducedAndExitsZero) {
+    lodestone::test::TempDir dir;
+    const auto ini = writeGrabIni(dir, "time_scale = 1");
+    const auto r = runCommand(kGrab + " " + ini + " -q & pid=$!; sleep 3; kill -INT $pid; wait $pid");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("stopped by signal"), std::string::npos) << r.output;
+    const long produced = numberIn(r.output, "SIM \\(CSimulatedRobot\\): ([0-9]+) observations");
+    ASSERT_GT(produced, 500) << r.output;  // ~3 s of 100 + 100 + 50 + 5 Hz
+    const auto back = readBack(dir.file("run.rawlog.gz"));
+    EXPECT_FALSE(back.error);
+    EXPECT_EQ(static_cast<long>(back.entries), produced);
+    EXPECT_FALSE(fs::exists(dir.file("run.rawlog.gz.partial")));
+}
+
+TEST(GrabBinary, SigkillLeavesAReadableRawlogMissingAtMostOneSecond) {
+    lodestone::test::TempDir dir;
+    const auto ini = writeGrabIni(dir, "time_scale = 1");
+    runCommand(kGrab + " " + ini + " -q & pid=$!; sleep 3; kill -KILL $pid; wait $pid");
+    // Killed: no rename, the .partial files hold what was flushed.
+    const std::string rawlog = dir.file("run.rawlog.gz.partial");
+    ASSERT_TRUE(fs::exists(rawlog));
+    const auto back = readBack(rawlog);
+    EXPECT_GT(back.entries, 300u);
+    // The truth file is written line by line as observations are emitted: its last line is
+    // the newest observation the sensor produced.
+    const auto truth = lodestone::io::readTumTrajectory(dir.file("run.gt.tum.partial"));
+    ASSERT_FALSE(truth.empty());
+    EXPECT_LE(truth.back().timestamp - back.lastTime, 1.0)
+        << "lost " << truth.back().timestamp - back.lastTime << " s";
+}
+
+TEST(GrabBinary, AnUnknownDriverIsRefusedNamingItsSection) {
+    lodestone::test::TempDir dir;
+    const auto ini = writeGrabIni(dir, "", "[LASER]\ndriver = CNoSuchLaser\n");
+    const auto r = runCommand(kGrab + " " + ini + " -q");
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("sensor section 'LASER': unknown driver 'CNoSuchLaser'"), std::string::npos)
+        << r.output;
+    EXPECT_FALSE(fs::exists(dir.file("run.rawlog.gz")));
+    EXPECT_FALSE(fs::exists(dir.file("run.rawlog.gz.partial")));
+}
+
+TEST(GrabBinary, ASensorThatDiesIsReportedAndTheOthersGoOn) {
+    lodestone::test::TempDir dir;
+    const auto ini = writeGrabIni(dir, "time_scale = 4\nmax_seconds = 8",
+                                  "[FLAKY]\ndriver = CFailingSensor\nprocess_rate = 20\nfail_after = 10\n");
+    const auto r = runCommand("timeout 60 " + kGrab + " " + ini + " -q --plugin " +
+                              LODESTONE_FAILING_SENSOR_PLUGIN);
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("sensor section 'FLAKY' died while grabbing"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("the test sensor's cable came out"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("SIM (CSimulatedRobot): "), std::string::npos);
+    EXPECT_NE(r.output.find(", finished"), std::string::npos) << r.output;  // SIM ran to its end
+    const long flaky = numberIn(r.output, "FLAKY \\(CFailingSensor\\): ([0-9]+) observations");
+    EXPECT_EQ(flaky, 9);
+    const auto back = readBack(dir.file("run.rawlog.gz"));
+    EXPECT_FALSE(back.error);
+    EXPECT_GT(back.entries, 1500u);
+}
+
+TEST(GrabBinary, ConfigurationMistakes) {
+    lodestone::test::TempDir dir;
+    std::ofstream(dir.file("typo.ini")) << "[global]\nreorder_windw = 0.5\n[SIM]\ndriver = CSimulatedRobot\n";
+    auto r = runCommand(kGrab + " " + dir.file("typo.ini") + " -q");
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("reorder_windw"), std::string::npos) << r.output;
+    std::ofstream(dir.file("empty.ini")) << "[global]\n";
+    r = runCommand(kGrab + " " + dir.file("empty.ini") + " -q");
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("no sensor section"), std::string::npos) << r.output;
+    r = runCommand(kGrab + " " + dir.file("nonexistent.ini"));
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    r = runCommand(kGrab + " " + writeGrabIni(dir, "") + " --duration -1");
+    EXPECT_EQ(r.exitCode, 2) << r.output;
+}
