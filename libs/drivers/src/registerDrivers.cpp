@@ -1,8 +1,12 @@
 #include <lodestone/drivers/CSimulatedRobot.h>
+#include <lodestone/drivers/kobuki/CKobukiBase.h>
 #include <lodestone/drivers/registerDrivers.h>
 
 namespace lodestone::drivers {
 
-void registerDrivers() { CSimulatedRobot::doRegister(); }
+void registerDrivers() {
+    CSimulatedRobot::doRegister();
+    CKobukiBase::doRegister();
+}
 
 }  // namespace lodestone::drivers
