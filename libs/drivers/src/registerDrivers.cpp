@@ -1,3 +1,4 @@
+#include <lodestone/drivers/CMagnetometerFromImu.h>
 #include <lodestone/drivers/CSimulatedRobot.h>
 #include <lodestone/drivers/kobuki/CKobukiBase.h>
 #include <lodestone/drivers/registerDrivers.h>
@@ -7,6 +8,7 @@ namespace lodestone::drivers {
 void registerDrivers() {
     CSimulatedRobot::doRegister();
     CKobukiBase::doRegister();
+    CMagnetometerFromImu::doRegister();
 }
 
 }  // namespace lodestone::drivers

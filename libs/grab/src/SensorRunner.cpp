@@ -52,7 +52,10 @@ SensorRunner::SensorRunner(const SensorSection& sensor, const mrpt::config::CCon
         driver_->setPathForExternalImages(imagesDir);
         driver_->initialize();
     } catch (const std::exception& e) {
-        throw std::runtime_error(who + ": " + io::condensedMrptError(e.what()));
+        const std::string why = io::condensedMrptError(e.what());
+        // Our drivers name their section already.
+        const bool named = why.rfind("sensor section '" + sensor.section + "'", 0) == 0;
+        throw std::runtime_error(named ? why : who + ": " + why);
     }
 }
 
