@@ -168,3 +168,16 @@ TEST(GrabBinary, AnXsensImuOnAMissingPortIsGivenUpOnInBoundedTime) {
     EXPECT_LT(wall, 10.0);
     EXPECT_FALSE(fs::exists(dir.file("run.rawlog.gz.partial")));
 }
+
+TEST(GrabBinary, AnOpenNI2CameraThatIsNotThereIsAnErrorNotAnAbort) {
+    // Stock COpenNI2Sensor without a camera: doProcess() asserts and the destructor throws -
+    // the process would end with SIGABRT. lodestone-grab runs it through its guard.
+    lodestone::test::TempDir dir;
+    std::ofstream(dir.file("oni.ini")) << "[global]\nrawlog_prefix = " << dir.file("run")
+                                       << "\n\n[CAM]\ndriver = COpenNI2Sensor\nsensorLabel = RGBD\n";
+    const auto r = runCommand("timeout 60 " + kGrab + " " + dir.file("oni.ini") + " -q");
+    if (r.exitCode == 0) GTEST_SKIP() << "an OpenNI2 camera is attached to this machine";
+    EXPECT_EQ(r.exitCode, 1) << r.output;  // not 134 (abort)
+    EXPECT_NE(r.output.find("sensor section 'CAM': no OpenNI2 device found"), std::string::npos)
+        << r.output;
+}

@@ -11,6 +11,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include "Abandoned.h"
+
 IMPLEMENTS_GENERIC_SENSOR(CMagnetometerFromImu, lodestone::drivers)
 
 namespace lodestone::drivers {
@@ -92,7 +94,8 @@ void CMagnetometerFromImu::initialize() {
     }).detach();
     const auto timeout = std::chrono::duration<double>(init_timeout_s_);
     if (result.wait_for(timeout) != std::future_status::ready) {
-        inner_ = nullptr;  // abandoned: its thread may still be inside it
+        detail::abandon(inner_);  // its thread may still be inside it
+        inner_ = nullptr;
         throw std::runtime_error("sensor section '" + section_ + "': the IMU (" + imu_driver_ +
                                  ", section '" + imu_section_ + "') did not start within " +
                                  seconds(init_timeout_s_) + " s on port " + port_ +

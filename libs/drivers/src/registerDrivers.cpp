@@ -1,3 +1,4 @@
+#include <lodestone/drivers/CGuardedOpenNI2Sensor.h>
 #include <lodestone/drivers/CMagnetometerFromImu.h>
 #include <lodestone/drivers/CSimulatedRobot.h>
 #include <lodestone/drivers/kobuki/CKobukiBase.h>
@@ -9,6 +10,7 @@ void registerDrivers() {
     CSimulatedRobot::doRegister();
     CKobukiBase::doRegister();
     CMagnetometerFromImu::doRegister();
+    CGuardedOpenNI2Sensor::doRegister();
 }
 
 }  // namespace lodestone::drivers

@@ -40,7 +40,11 @@ SensorRunner::SensorRunner(const SensorSection& sensor, const mrpt::config::CCon
                            const std::string& imagesDir, ObservationQueue& queue)
     : sensor_(sensor), queue_(queue) {
     const std::string who = "sensor section '" + sensor.section + "' (driver " + sensor.driver + ")";
-    driver_ = mrpt::hwdrivers::CGenericSensor::createSensorPtr(sensor.driver);
+    // MRPT's COpenNI2Sensor ends the process when no camera is attached (an assert in
+    // doProcess, a throwing destructor): run it through its guard, with the same INI keys.
+    const std::string driver =
+        sensor.driver == "COpenNI2Sensor" ? "CGuardedOpenNI2Sensor" : sensor.driver;
+    driver_ = mrpt::hwdrivers::CGenericSensor::createSensorPtr(driver);
     if (!driver_) {
         throw std::runtime_error("sensor section '" + sensor.section + "': unknown driver '" +
                                  sensor.driver +
