@@ -1,6 +1,7 @@
 // lodestone-grab as a user runs it: the simulated robot grabbed and run through lodestone-slam;
 // SIGINT and SIGKILL mid-grab; a sensor that cannot start, one that dies while grabbing.
 #include <gtest/gtest.h>
+#include <lodestone/eval/TrajectoryError.h>
 #include <lodestone/inspect/RawlogSummary.h>
 #include <lodestone/io/RawlogReader.h>
 #include <lodestone/io/TumTrajectory.h>
@@ -180,4 +181,28 @@ TEST(GrabBinary, AnOpenNI2CameraThatIsNotThereIsAnErrorNotAnAbort) {
     EXPECT_EQ(r.exitCode, 1) << r.output;  // not 134 (abort)
     EXPECT_NE(r.output.find("sensor section 'CAM': no OpenNI2 device found"), std::string::npos)
         << r.output;
+}
+
+TEST(GrabBinary, LiveSlamMatchesTheOfflineRunOnTheGrabbedRawlog) {
+    lodestone::test::TempDir dir;
+    const auto ini = writeGrabIni(dir, "time_scale = 4\nmax_seconds = 12");
+    const auto r = runCommand("timeout 120 " + kGrab + " " + ini + " -q --slam " +
+                              LODESTONE_CONFIG_INI_DIR + "/slam.ini");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const long nodes = numberIn(r.output, "live SLAM: ([0-9]+) nodes");
+    EXPECT_GT(nodes, 10) << r.output;
+    ASSERT_NE(r.output.find("RGB-D frames skipped"), std::string::npos) << r.output;
+    for (const char* f : {"trajectory.tum", "graph.graph", "report.json", "nodes.csv", "field_map.png"}) {
+        EXPECT_TRUE(fs::exists(dir.file(std::string("run_slam/") + f))) << f;
+    }
+    const auto truth = lodestone::io::readTumTrajectory(dir.file("run.gt.tum"));
+    const auto live = lodestone::io::readTumTrajectory(dir.file("run_slam/trajectory.tum"));
+    const auto s = runCommand(kSlam + " --rawlog " + dir.file("run.rawlog.gz") + " --config " +
+                              LODESTONE_CONFIG_INI_DIR + "/slam.ini --quiet --out " + dir.file("offline"));
+    ASSERT_EQ(s.exitCode, 0) << s.output;
+    const auto offline = lodestone::io::readTumTrajectory(dir.file("offline/trajectory.tum"));
+    const double liveAte = lodestone::eval::absoluteTrajectoryError(live, truth).rmse;
+    const double offlineAte = lodestone::eval::absoluteTrajectoryError(offline, truth).rmse;
+    EXPECT_LT(liveAte, 0.02);
+    EXPECT_NEAR(liveAte, offlineAte, 0.01) << "live " << liveAte << " m, offline " << offlineAte << " m";
 }

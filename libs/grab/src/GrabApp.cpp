@@ -40,6 +40,13 @@ int runGrabApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
     TCLAP::MultiArg<std::string> plugins("p", "plugin", "load a module that registers more "
                                          "drivers or classes (as rawlog-grabber -p)",
                                          false, "LIB", cmd);
+    TCLAP::ValueArg<std::string> slam("", "slam", "run SLAM live on the stream with this "
+                                      "lodestone-slam INI", false, "", "SLAM.ini", cmd);
+    TCLAP::ValueArg<std::string> slamOut("", "slam-out", "live SLAM's outputs (default "
+                                         "PREFIX_slam)", false, "", "DIR", cmd);
+    TCLAP::ValueArg<double> maxLag("", "max-lag", "live SLAM skips RGB-D frames while this many "
+                                   "seconds behind the newest observation (default 0.3)",
+                                   false, 0.3, "S", cmd);
     TCLAP::SwitchArg quiet("q", "quiet", "no status line", cmd);
     std::vector<std::string> words(argv, argv + argc);
     const auto outcome = config::parseCommandLine(cmd, words);
@@ -63,6 +70,17 @@ int runGrabApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
     options.config = ini.getValue();
     options.out = prefix.getValue();
     if (duration.isSet()) options.duration = duration.getValue();
+    if (!(maxLag.getValue() > 0)) {
+        err << "lodestone-grab: --max-lag: must be > 0 s\n";
+        return 2;
+    }
+    if (slamOut.isSet() && !slam.isSet()) {
+        err << "lodestone-grab: --slam-out needs --slam\n";
+        return 2;
+    }
+    options.slamConfig = slam.getValue();
+    options.slamOut = slamOut.getValue();
+    options.maxLag = maxLag.getValue();
     options.quiet = quiet.getValue();
     options.terminal = terminal;
     g_stop = false;

@@ -32,8 +32,8 @@ GrabConfig readGrabConfig(const std::string& path) {
     c.rawlogPrefix = g.getString("rawlog_prefix", "");
     c.gzipLevel = g.getInt("rawlog_GZ_compress_level", 1);
     if (c.gzipLevel < 1 || c.gzipLevel > 9) g.fail("rawlog_GZ_compress_level", "must be 1..9");
-    c.reorderWindow = g.getDouble("reorder_window", 0.5);
-    if (!(c.reorderWindow >= 0 && c.reorderWindow <= 0.9)) {
+    c.reorderWindow = g.getDouble("reorder_window", -1.0);  // unset: from the sensors' rates
+    if (g.has("reorder_window") && !(c.reorderWindow >= 0 && c.reorderWindow <= 0.9)) {
         // The window is what a killed grab loses at most, and the bound is 1 s.
         g.fail("reorder_window", "must be in [0, 0.9] s");
     }

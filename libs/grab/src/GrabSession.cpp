@@ -1,14 +1,20 @@
 #include <lodestone/drivers/registerDrivers.h>
 #include <lodestone/grab/GrabConfig.h>
 #include <lodestone/grab/GrabSession.h>
+#include <lodestone/grab/LiveSlamFeed.h>
 #include <lodestone/grab/ReorderingWriter.h>
 #include <lodestone/grab/SensorRunner.h>
 #include <lodestone/io/RawlogPaths.h>
 #include <lodestone/obs/registerAllClasses.h>
+#include <lodestone/slamapp/SlamRun.h>
+#include <mrpt/img/CImage.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <sstream>
+#include <thread>
 
 namespace lodestone::grab {
 
@@ -25,7 +31,7 @@ class StatusLine {
   public:
     StatusLine(std::ostream& err, bool terminal, bool quiet) : err_(err), terminal_(terminal), quiet_(quiet) {}
     void print(double elapsed, const std::vector<std::unique_ptr<SensorRunner>>& runners,
-               const ReorderingWriter& writer) {
+               const ReorderingWriter& writer, const LiveSlamFeed* feed) {
         if (quiet_) return;
         std::string line;
         char buf[160];
@@ -44,6 +50,12 @@ class StatusLine {
         std::snprintf(buf, sizeof buf, " | %.1f MB written, %zu waiting", writer.bytesOnDisk() / 1e6,
                       writer.waiting());
         line += buf;
+        if (feed) {
+            const auto f = feed->stats();
+            std::snprintf(buf, sizeof buf, " | slam lag %.2f s, %zu frames skipped", f.lagNow,
+                          f.skippedFrames);
+            line += buf;
+        }
         last_ = elapsed;
         err_ << (terminal_ ? "\r" : "") << line << (terminal_ ? "" : "\n") << std::flush;
         drawn_ = true;
@@ -85,8 +97,39 @@ GrabResult runGrab(const GrabOptions& options, const std::atomic<bool>& stop, st
             return result;
         }
     }
-    ReorderingWriter writer(result.rawlog, config.gzipLevel, config.reorderWindow);
+    // The reorder window: as set, or twice the slowest sensor's period (a sensor delivers what
+    // it grabbed at its next doProcess), at least 50 ms.
+    double window = config.reorderWindow;
+    if (window < 0) {
+        window = 0.05;
+        for (const auto& s : config.sensors) window = std::max(window, 2.0 / s.processRate);
+        window = std::min(window, 0.9);
+    }
+    ReorderingWriter writer(result.rawlog, config.gzipLevel, window);
     StatusLine status(err, options.terminal, options.quiet);
+
+    // Live SLAM: lodestone-slam's run on a thread, reading what the writer writes.
+    std::shared_ptr<LiveSlamFeed> feed;
+    std::thread slamThread;
+    slamapp::SlamRunResult slamResult;
+    std::ostringstream slamOut, slamErr;
+    if (!options.slamConfig.empty()) {
+        // Colour images go to the images folder as they are grabbed; SLAM reads them there.
+        mrpt::img::CImage::setImagesPathBase(imagesDir);
+        feed = std::make_shared<LiveSlamFeed>(options.maxLag);
+        writer.onWritten([feed](const mrpt::serialization::CSerializable::Ptr& o, double newest) {
+            if (auto obs = std::dynamic_pointer_cast<mrpt::obs::CObservation>(o)) feed->push(obs, newest);
+        });
+        slamapp::SlamRunOptions so;
+        so.live = feed;
+        so.config = options.slamConfig;
+        so.outDir = options.slamOut.empty() ? prefix + "_slam" : options.slamOut;
+        so.decodeAhead = 0;  // the observations arrive decoded
+        so.quiet = true;
+        slamThread = std::thread([so, &slamResult, &slamOut, &slamErr] {
+            slamResult = slamapp::runSlam(so, slamOut, slamErr);
+        });
+    }
     const auto t0 = Clock::now();
     for (auto& r : runners) r->start();
     double nextStatus = config.statusPeriod;
@@ -107,7 +150,7 @@ GrabResult runGrab(const GrabOptions& options, const std::atomic<bool>& stop, st
             }
         }
         if (elapsed >= nextStatus) {
-            status.print(elapsed, runners, writer);
+            status.print(elapsed, runners, writer, feed.get());
             nextStatus += config.statusPeriod;
         }
         if (stop.load()) {
@@ -127,8 +170,22 @@ GrabResult runGrab(const GrabOptions& options, const std::atomic<bool>& stop, st
     for (auto& o : queue.takeAll(std::chrono::milliseconds(0))) writer.add(std::move(o));
     writer.close();
     result.seconds = since(t0);
-    status.print(result.seconds, runners, writer);
+    status.print(result.seconds, runners, writer, feed.get());
     status.end();
+    if (feed) {
+        feed->close();
+        slamThread.join();  // it drains the feed, optimizes and writes its outputs
+        const auto f = feed->stats();
+        result.slam = true;
+        result.slamExitCode = slamResult.exitCode;
+        result.slamNodes = slamResult.nodes;
+        result.slamClosures = slamResult.loopClosures;
+        result.skippedFrames = f.skippedFrames;
+        result.frames = f.frames;
+        result.lagP50 = f.lagP50;
+        result.lagP99 = f.lagP99;
+        result.lagMax = f.lagMax;
+    }
 
     result.written = writer.written();
     result.late = writer.late();
@@ -142,6 +199,18 @@ GrabResult runGrab(const GrabOptions& options, const std::atomic<bool>& stop, st
     for (const auto& s : result.sensors) {
         out << "  " << s.section << " (" << s.driver << "): " << s.produced << " observations, "
             << s.state << (s.error.empty() ? "" : ": " + s.error) << "\n";
+    }
+    if (result.slam) {
+        char line[256];
+        std::snprintf(line, sizeof line,
+                      "  live SLAM: %zu nodes, %zu loop closures; lag behind the newest "
+                      "observation p50 %.3f s, p99 %.3f s, max %.3f s; %zu of %zu RGB-D frames "
+                      "skipped\n",
+                      result.slamNodes, result.slamClosures, result.lagP50, result.lagP99,
+                      result.lagMax, result.skippedFrames, result.frames);
+        out << line << slamOut.str();
+        err << slamErr.str();
+        if (result.slamExitCode != 0) result.exitCode = 1;
     }
     if (result.late) {
         out << "  " << result.late << " observation(s) arrived later than reorder_window and were "

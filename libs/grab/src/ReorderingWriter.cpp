@@ -31,6 +31,7 @@ void ReorderingWriter::write(const Item& item) {
     } else {
         ++byLabel_[item.object->GetRuntimeClass()->className];
     }
+    if (on_written_) on_written_(item.object, newest_);
 }
 
 void ReorderingWriter::writeDue() {

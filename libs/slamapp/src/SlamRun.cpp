@@ -173,6 +173,17 @@ JsonObject timingJson(const graphslam::SlamEngine::Stats& s, double wall, double
         .set("node_ms_by_decile", decileMeans(s.nodeMs));
 }
 
+// A source the caller keeps too (lodestone-grab feeds it while the run reads it).
+class SharedSource : public io::DataSource {
+  public:
+    explicit SharedSource(std::shared_ptr<io::DataSource> s) : s_(std::move(s)) {}
+    mrpt::obs::CObservation::Ptr next() override { return s_->next(); }
+    std::string name() const override { return s_->name(); }
+
+  private:
+    std::shared_ptr<io::DataSource> s_;
+};
+
 std::vector<io::TumPose> nodeTrajectory(const graphslam::SlamEngine& engine) {
     std::vector<io::TumPose> out;
     const auto& nodes = engine.nodes();
@@ -203,7 +214,9 @@ SlamRunResult runSlam(const SlamRunOptions& options, std::ostream& out, std::ost
         const mrpt::config::CConfigFile ini(options.config);
         config::checkSections(ini, allowedSections(), options.config);
         engine = graphslam::SlamEngine::fromConfig(ini);
-        if (!options.scenario.empty()) {
+        if (options.live) {
+            source = std::make_unique<SharedSource>(options.live);
+        } else if (!options.scenario.empty()) {
             const auto scenario = sim::Scenario::load(options.scenario);
             auto sim = std::make_unique<sim::SimulatorSource>(scenario, scenario.seed);
             if (auto* nrd = dynamic_cast<graphslam::FusedOdometryNRD*>(&engine->nodeDecider())) {
@@ -293,7 +306,8 @@ SlamRunResult runSlam(const SlamRunOptions& options, std::ostream& out, std::ost
             engine->process(obs);
             const double fraction =
                 fractionRead ? fractionRead()
-                             : dataSeconds / std::min(simulator->duration(), options.maxSeconds);
+                : simulator  ? dataSeconds / std::min(simulator->duration(), options.maxSeconds)
+                             : 0.0;  // live: no end known
             progress.update(fraction, dataSeconds);
         }
     } catch (const std::exception& e) {
@@ -360,8 +374,9 @@ SlamRunResult runSlam(const SlamRunOptions& options, std::ostream& out, std::ost
         JsonObject report;
         report.set("tool", "lodestone-slam");
         JsonObject input;
-        input.set(options.scenario.empty() ? "rawlog" : "scenario",
-                  options.scenario.empty() ? options.rawlog : options.scenario)
+        input.set(options.live ? "live" : options.scenario.empty() ? "rawlog" : "scenario",
+                  options.live ? options.live->name()
+                  : options.scenario.empty() ? options.rawlog : options.scenario)
             .set("config", options.config)
             .set("max_seconds", options.maxSeconds)
             .set("decode_ahead", options.decodeAhead)

@@ -24,7 +24,9 @@ struct GrabConfig {
     // [global]
     std::string rawlogPrefix;     ///< rawlog_prefix: the output, without .rawlog.gz
     int gzipLevel{1};             ///< rawlog_GZ_compress_level (1..9)
-    double reorderWindow{0.5};    ///< reorder_window [s]: how late an observation may arrive
+    /** reorder_window [s]: how late an observation may arrive; negative (unset): twice the
+     * slowest sensor's period, at least 0.05 s. */
+    double reorderWindow{-1.0};
     double statusPeriod{1.0};     ///< status_period [s] between status lines
 };
 

@@ -4,6 +4,7 @@
 #include <mrpt/serialization/CSerializable.h>
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <queue>
 #include <string>
@@ -19,6 +20,11 @@ namespace lodestone::grab {
 class ReorderingWriter {
   public:
     ReorderingWriter(const std::string& path, int gzipLevel, double window);
+
+    /** Called with every object just written, and the newest time added so far [s]. */
+    void onWritten(std::function<void(const mrpt::serialization::CSerializable::Ptr&, double)> f) {
+        on_written_ = std::move(f);
+    }
 
     void add(mrpt::serialization::CSerializable::Ptr object);
     void writeDue();  ///< everything older than the newest time minus the window
@@ -51,6 +57,7 @@ class ReorderingWriter {
     double newest_{-1e300}, lastWritten_{-1e300};
     std::size_t late_{0};
     std::map<std::string, std::size_t> byLabel_;
+    std::function<void(const mrpt::serialization::CSerializable::Ptr&, double)> on_written_;
 };
 
 }  // namespace lodestone::grab

@@ -1,6 +1,9 @@
 #pragma once
 
+#include <lodestone/io/DataSource.h>
+
 #include <limits>
+#include <memory>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -10,7 +13,10 @@ namespace lodestone::slamapp {
 /** What one `lodestone-slam` run is asked to do. */
 struct SlamRunOptions {
     std::string rawlog;       ///< input rawlog, or
-    std::string scenario;     ///< a simulator scenario INI run directly
+    std::string scenario;     ///< a simulator scenario INI run directly, or
+    /** observations as they come (lodestone-grab --slam): next() waits for them, nullptr ends
+     * the run. No pre-scan of the input; the rest as for a rawlog. */
+    std::shared_ptr<io::DataSource> live;
     std::string config;       ///< the SLAM INI ([graphslam] and the deciders' sections)
     std::string outDir;
     std::string groundTruth;  ///< TUM file for the ATE (with --sim: the simulator's own)
