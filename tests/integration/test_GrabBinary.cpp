@@ -206,3 +206,14 @@ TEST(GrabBinary, LiveSlamMatchesTheOfflineRunOnTheGrabbedRawlog) {
     EXPECT_LT(liveAte, 0.02);
     EXPECT_NEAR(liveAte, offlineAte, 0.01) << "live " << liveAte << " m, offline " << offlineAte << " m";
 }
+
+TEST(GrabBinary, ABadSlamIniIsRefusedBeforeGrabbing) {
+    lodestone::test::TempDir dir;
+    std::ofstream(dir.file("slam.ini")) << "[graphslam]\nnode_decider = FusedOdometryNDR\n";
+    const auto r = runCommand(kGrab + " " + writeGrabIni(dir, "time_scale = 4") + " -q --slam " +
+                              dir.file("slam.ini"));
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("FusedOdometryNDR"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir.file("run.rawlog.gz")));
+    EXPECT_FALSE(fs::exists(dir.file("run.rawlog.gz.partial")));
+}

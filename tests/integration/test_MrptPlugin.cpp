@@ -59,7 +59,8 @@ TEST(MrptPlugin, RawLogViewerOpensTheBundledSampleUnderXvfb) {
     // getDescriptionAsText() in RawLogViewer's text panel (the README's screenshot).
     const auto r = lodestone::test::runCommand(
         std::string(LODESTONE_X_SCREENSHOT) + " --dismiss 'Tip of the Day' --click 120,140 '" + xwd +
-        "' 'RawlogViewer - Part of the MRPT project' 3 RawLogViewer -l '" + kPlugin + "' '" +
+        "' 'RawlogViewer - Part of the MRPT project' 3 " + lodestone::test::stockToolEnv() +
+        "RawLogViewer -l '" + kPlugin + "' '" +
         kOffice + "'");
     ASSERT_EQ(r.exitCode, 0) << "3: no window, 4: RawLogViewer exited, 5: no screenshot\n"
                              << r.output;

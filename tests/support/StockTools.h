@@ -25,6 +25,10 @@ inline CommandResult runCommand(const std::string& command) {
     return r;
 }
 
+/** What to put before a stock MRPT tool's command line when it loads our plugin: empty, or in
+ * a sanitizer build the sanitizer runtimes preloaded (the tool itself is not instrumented). */
+inline std::string stockToolEnv() { return LODESTONE_STOCK_TOOL_ENV; }
+
 inline bool haveRawlogEdit() { return runCommand("command -v rawlog-edit").exitCode == 0; }
 
 /** What `rawlog-edit --info` says: the object count and occurrences per sensor label. */
@@ -37,7 +41,8 @@ struct RawlogEditInfo {
 inline RawlogEditInfo rawlogEditInfo(const std::string& path, const std::string& plugin = "") {
     RawlogEditInfo info;
     const std::string load = plugin.empty() ? "" : "-p '" + plugin + "' ";
-    const auto r = runCommand("rawlog-edit " + load + "--info -i '" + path + "'");
+    const auto r = runCommand((plugin.empty() ? std::string() : stockToolEnv()) + "rawlog-edit " +
+                              load + "--info -i '" + path + "'");
     const auto trim = [](std::string s) {
         s.erase(0, s.find_first_not_of(' '));
         s.erase(s.find_last_not_of(' ') + 1);

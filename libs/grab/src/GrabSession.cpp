@@ -77,6 +77,7 @@ GrabResult runGrab(const GrabOptions& options, const std::atomic<bool>& stop, st
     lodestone::registerAllClasses();
     drivers::registerDrivers();
     const GrabConfig config = readGrabConfig(options.config);
+    if (!options.slamConfig.empty()) slamapp::checkSlamConfig(options.slamConfig);  // before any work
     GrabResult result;
     const std::string prefix = !options.out.empty() ? options.out
                                : !config.rawlogPrefix.empty() ? config.rawlogPrefix
@@ -126,10 +127,20 @@ GrabResult runGrab(const GrabOptions& options, const std::atomic<bool>& stop, st
         so.outDir = options.slamOut.empty() ? prefix + "_slam" : options.slamOut;
         so.decodeAhead = 0;  // the observations arrive decoded
         so.quiet = true;
-        slamThread = std::thread([so, &slamResult, &slamOut, &slamErr] {
+        slamThread = std::thread([so, &slamResult, &slamOut, &slamErr, feed] {
             slamResult = slamapp::runSlam(so, slamOut, slamErr);
+            feed->abandon();  // if the run ended early, the grab must not queue for it
         });
     }
+    // Whatever happens below (a write error throws), the SLAM thread is ended and joined.
+    struct JoinSlam {
+        std::shared_ptr<LiveSlamFeed>& feed;
+        std::thread& thread;
+        ~JoinSlam() {
+            if (feed) feed->close();
+            if (thread.joinable()) thread.join();
+        }
+    } joinSlam{feed, slamThread};
     const auto t0 = Clock::now();
     for (auto& r : runners) r->start();
     double nextStatus = config.statusPeriod;

@@ -11,6 +11,7 @@ void LiveSlamFeed::push(mrpt::obs::CObservation::Ptr obs, double newest) {
     {
         std::lock_guard<std::mutex> lock(mutex_);
         newest_ = std::max(newest_, newest);
+        if (abandoned_) return;
         queue_.push_back(std::move(obs));
     }
     arrived_.notify_one();
@@ -42,6 +43,12 @@ mrpt::obs::CObservation::Ptr LiveSlamFeed::next() {
         lags_.push_back(static_cast<float>(lag));
         return obs;
     }
+}
+
+void LiveSlamFeed::abandon() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    abandoned_ = true;
+    queue_.clear();
 }
 
 LiveSlamFeed::Stats LiveSlamFeed::stats() const {

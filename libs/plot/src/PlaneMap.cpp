@@ -13,7 +13,10 @@ namespace lodestone::plot {
 ScalarGrid::ScalarGrid(double cellSize) : cell_(cellSize > 0 ? cellSize : 0.1) {}
 
 std::int64_t ScalarGrid::key(std::int32_t i, std::int32_t j) {
-    return (static_cast<std::int64_t>(i) << 32) | static_cast<std::uint32_t>(j);
+    // Through unsigned: shifting a negative value is undefined.
+    const std::uint64_t k = (static_cast<std::uint64_t>(static_cast<std::uint32_t>(i)) << 32) |
+                            static_cast<std::uint32_t>(j);
+    return static_cast<std::int64_t>(k);
 }
 
 void ScalarGrid::add(double x, double y, double value) {
@@ -30,8 +33,9 @@ void ScalarGrid::add(double x, double y, double value) {
 void ScalarGrid::forEach(
     const std::function<void(double, double, double, double, double, std::size_t)>& f) const {
     for (const auto& [k, c] : cells_) {
-        const auto i = static_cast<std::int32_t>(k >> 32);
-        const auto j = static_cast<std::int32_t>(static_cast<std::uint32_t>(k & 0xffffffffu));
+        const auto u = static_cast<std::uint64_t>(k);
+        const auto i = static_cast<std::int32_t>(static_cast<std::uint32_t>(u >> 32));
+        const auto j = static_cast<std::int32_t>(static_cast<std::uint32_t>(u & 0xffffffffu));
         f(i * cell_, j * cell_, (i + 1) * cell_, (j + 1) * cell_, c.sum / c.count, c.count);
     }
 }

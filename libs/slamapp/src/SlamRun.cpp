@@ -197,6 +197,13 @@ std::vector<io::TumPose> nodeTrajectory(const graphslam::SlamEngine& engine) {
 
 }  // namespace
 
+void checkSlamConfig(const std::string& configPath) {
+    if (!fs::exists(configPath)) throw InputError("cannot open configuration file '" + configPath + "'");
+    const mrpt::config::CConfigFile ini(configPath);
+    config::checkSections(ini, allowedSections(), configPath);
+    graphslam::SlamEngine::fromConfig(ini);
+}
+
 SlamRunResult runSlam(const SlamRunOptions& options, std::ostream& out, std::ostream& err) {
     SlamRunResult result;
     lodestone::registerAllClasses();

@@ -121,7 +121,8 @@ TEST(CSimulatedRobot, StockRawlogGrabberGrabsItThroughThePlugin) {
         << "\ntime_scale = 8\ncamera = 64x48@2\nmax_seconds = 8\n";
     // Stock rawlog-grabber stops on a key press; it gets one after the scenario's second of
     // wall time (8 s at time_scale 8) and some slack.
-    const auto r = lodestone::test::runCommand("(sleep 4; echo q) | timeout 60 rawlog-grabber -p '" +
+    const auto r = lodestone::test::runCommand("(sleep 4; echo q) | timeout 60 " +
+                                               lodestone::test::stockToolEnv() + "rawlog-grabber -p '" +
                                                std::string(LODESTONE_MRPT_PLUGIN) + "' '" +
                                                dir.file("grab.ini") + "'");
     ASSERT_EQ(r.exitCode, 0) << r.output.substr(0, 3000);

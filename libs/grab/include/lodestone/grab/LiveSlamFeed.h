@@ -22,6 +22,8 @@ class LiveSlamFeed : public io::DataSource {
     void push(mrpt::obs::CObservation::Ptr obs, double newest);
     /** No more: next() returns nullptr once the queue is empty. */
     void close();
+    /** The reader is gone (its run ended): push() drops from now on, so nothing piles up. */
+    void abandon();
 
     mrpt::obs::CObservation::Ptr next() override;
     std::string name() const override { return "lodestone-grab live stream"; }
@@ -38,7 +40,7 @@ class LiveSlamFeed : public io::DataSource {
     std::condition_variable arrived_;
     std::deque<mrpt::obs::CObservation::Ptr> queue_;
     double newest_{-1e300};
-    bool closed_{false};
+    bool closed_{false}, abandoned_{false};
     double maxLag_;
     std::vector<float> lags_;
     std::size_t skipped_{0}, frames_{0};

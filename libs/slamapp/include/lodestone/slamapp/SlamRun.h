@@ -31,6 +31,11 @@ struct SlamRunOptions {
     bool terminal{false};  ///< draw the progress bar in place
 };
 
+/** The checks runSlam makes of a SLAM INI before any work (the file, its sections, every
+ * decider's keys): throws naming the file, section and key. For callers that must refuse a
+ * bad INI before doing anything else (lodestone-grab --slam). */
+void checkSlamConfig(const std::string& configPath);
+
 /** What came out, for callers and tests (report.json holds it all). */
 struct SlamRunResult {
     int exitCode{0};                ///< 0 ok; 1 bad input or a fault in the data
