@@ -66,6 +66,11 @@ TEST(GrabBinary, TheSimulatedRobotGrabbedAtTimeScale4RunsThroughSlam) {
     EXPECT_FALSE(back.error);
     EXPECT_EQ(static_cast<long>(back.entries), written);
     ASSERT_TRUE(fs::exists(dir.file("run_Images")));
+    if (lodestone::test::haveRawlogEdit()) {  // stock MRPT reads it through our plugin
+        auto info = lodestone::test::rawlogEditInfo(dir.file("run.rawlog.gz"), LODESTONE_MRPT_PLUGIN);
+        EXPECT_EQ(info.objects, written);
+        EXPECT_GE(info.occurrences["MAG_LEFT"], 990);
+    }
     const auto s = runCommand(kSlam + " --rawlog " + dir.file("run.rawlog.gz") + " --ground-truth " +
                               dir.file("run.gt.tum") + " --config " + LODESTONE_CONFIG_INI_DIR +
                               "/slam.ini --quiet --out " + dir.file("slam"));

@@ -10,6 +10,7 @@
 #include <mrpt/img/CImage.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <memory>
@@ -30,6 +31,8 @@ double since(Clock::time_point t0) {
 class StatusLine {
   public:
     StatusLine(std::ostream& err, bool terminal, bool quiet) : err_(err), terminal_(terminal), quiet_(quiet) {}
+    std::atomic<std::size_t> slamNodes{0}, slamClosures{0};  // set from the SLAM thread
+
     void print(double elapsed, const std::vector<std::unique_ptr<SensorRunner>>& runners,
                const ReorderingWriter& writer, const LiveSlamFeed* feed) {
         if (quiet_) return;
@@ -52,8 +55,8 @@ class StatusLine {
         line += buf;
         if (feed) {
             const auto f = feed->stats();
-            std::snprintf(buf, sizeof buf, " | slam lag %.2f s, %zu frames skipped", f.lagNow,
-                          f.skippedFrames);
+            std::snprintf(buf, sizeof buf, " | slam %zu nodes, %zu closures, lag %.2f s, %zu frames skipped",
+                          slamNodes.load(), slamClosures.load(), f.lagNow, f.skippedFrames);
             line += buf;
         }
         last_ = elapsed;
@@ -127,6 +130,10 @@ GrabResult runGrab(const GrabOptions& options, const std::atomic<bool>& stop, st
         so.outDir = options.slamOut.empty() ? prefix + "_slam" : options.slamOut;
         so.decodeAhead = 0;  // the observations arrive decoded
         so.quiet = true;
+        so.onProgress = [&status](std::size_t nodes, std::size_t closures) {
+            status.slamNodes = nodes;
+            status.slamClosures = closures;
+        };
         slamThread = std::thread([so, &slamResult, &slamOut, &slamErr, feed] {
             slamResult = slamapp::runSlam(so, slamOut, slamErr);
             feed->abandon();  // if the run ended early, the grab must not queue for it

@@ -311,6 +311,10 @@ SlamRunResult runSlam(const SlamRunOptions& options, std::ostream& out, std::ost
                 magnetic.push_back({t, m->sensorPose.translation(), m->magnitude(), label});
             }
             engine->process(obs);
+            if (options.onProgress) {
+                options.onProgress(engine->graph().nodes.size(),
+                                   engine->optimizer().loopClosures().size());
+            }
             const double fraction =
                 fractionRead ? fractionRead()
                 : simulator  ? dataSeconds / std::min(simulator->duration(), options.maxSeconds)

@@ -2,6 +2,7 @@
 
 #include <lodestone/io/DataSource.h>
 
+#include <functional>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -17,6 +18,9 @@ struct SlamRunOptions {
     /** observations as they come (lodestone-grab --slam): next() waits for them, nullptr ends
      * the run. No pre-scan of the input; the rest as for a rawlog. */
     std::shared_ptr<io::DataSource> live;
+    /** Called after every observation with the graph's node and loop-closure counts (for a
+     * caller's status line; on the run's thread). */
+    std::function<void(std::size_t nodes, std::size_t loopClosures)> onProgress;
     std::string config;       ///< the SLAM INI ([graphslam] and the deciders' sections)
     std::string outDir;
     std::string groundTruth;  ///< TUM file for the ATE (with --sim: the simulator's own)
