@@ -222,3 +222,15 @@ TEST(GrabBinary, ABadSlamIniIsRefusedBeforeGrabbing) {
     EXPECT_FALSE(fs::exists(dir.file("run.rawlog.gz")));
     EXPECT_FALSE(fs::exists(dir.file("run.rawlog.gz.partial")));
 }
+
+TEST(GrabBinary, SigintDuringLiveSlamEndsBothCleanly) {
+    lodestone::test::TempDir dir;
+    const auto ini = writeGrabIni(dir, "time_scale = 1");
+    const auto r = runCommand(kGrab + " " + ini + " -q --slam " + LODESTONE_CONFIG_INI_DIR +
+                              "/slam.ini & pid=$!; sleep 4; kill -INT $pid; wait $pid");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("stopped by signal"), std::string::npos) << r.output;
+    EXPECT_TRUE(fs::exists(dir.file("run.rawlog.gz")));
+    EXPECT_TRUE(fs::exists(dir.file("run_slam/report.json")));  // written last: the run completed
+    EXPECT_GT(numberIn(r.output, "live SLAM: ([0-9]+) nodes"), 3) << r.output;
+}
