@@ -12,16 +12,13 @@
 #include <thread>
 
 #include "Abandoned.h"
+#include "SectionKey.h"
 
 IMPLEMENTS_GENERIC_SENSOR(CMagnetometerFromImu, lodestone::drivers)
 
 namespace lodestone::drivers {
 
 namespace {
-std::string keyName(const std::string& section, const char* key) {
-    return "sensor section '" + section + "', key '" + key + "'";
-}
-
 std::string seconds(double s) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%g", s);
@@ -47,23 +44,23 @@ void CMagnetometerFromImu::loadConfig_sensorSpecific(const mrpt::config::CConfig
                                                      const std::string& section) {
     section_ = section;
     imu_driver_ = config.read_string(section, "imu_driver", "");
-    if (imu_driver_.empty()) throw std::runtime_error(keyName(section, "imu_driver") + ": missing (e.g. CIMUXSens_MT4)");
+    if (imu_driver_.empty()) throw std::runtime_error(detail::sectionKey(section, "imu_driver") + ": missing (e.g. CIMUXSens_MT4)");
     imu_section_ = config.read_string(section, "imu_section", "");
-    if (imu_section_.empty()) throw std::runtime_error(keyName(section, "imu_section") + ": missing");
+    if (imu_section_.empty()) throw std::runtime_error(detail::sectionKey(section, "imu_section") + ": missing");
     try {
         unit_ = obs::MagneticUnit::parse(config.read_string(section, "unit", "gauss"));
     } catch (const std::exception& e) {
-        throw std::runtime_error(keyName(section, "unit") + ": " + e.what());
+        throw std::runtime_error(detail::sectionKey(section, "unit") + ": " + e.what());
     }
     calibrated_ = config.read_bool(section, "calibrated", true);
     noise_std_ = config.read_double(section, "noise_std_uT", 0.0);
-    if (!(noise_std_ >= 0)) throw std::runtime_error(keyName(section, "noise_std_uT") + ": must be >= 0");
+    if (!(noise_std_ >= 0)) throw std::runtime_error(detail::sectionKey(section, "noise_std_uT") + ": must be >= 0");
     init_timeout_s_ = config.read_double(section, "init_timeout_s", 10.0);
-    if (!(init_timeout_s_ > 0)) throw std::runtime_error(keyName(section, "init_timeout_s") + ": must be > 0");
+    if (!(init_timeout_s_ > 0)) throw std::runtime_error(detail::sectionKey(section, "init_timeout_s") + ": must be > 0");
     port_ = portOf(config, imu_section_);
     inner_ = mrpt::hwdrivers::CGenericSensor::createSensor(imu_driver_);
     if (!inner_) {
-        throw std::runtime_error(keyName(section, "imu_driver") + ": unknown driver '" + imu_driver_ + "'");
+        throw std::runtime_error(detail::sectionKey(section, "imu_driver") + ": unknown driver '" + imu_driver_ + "'");
     }
     try {
         inner_->loadConfig(config, imu_section_);

@@ -12,18 +12,13 @@
 #include <limits>
 #include <stdexcept>
 
+#include "SectionKey.h"
+
 IMPLEMENTS_GENERIC_SENSOR(CSimulatedRobot, lodestone::drivers)
 
 namespace lodestone::drivers {
 
 namespace fs = std::filesystem;
-
-namespace {
-// Not "[SECTION] key": MRPT's loadConfig() rethrows with the text parsed for a "[location]".
-std::string keyName(const std::string& section, const char* key) {
-    return "sensor section '" + section + "', key '" + key + "'";
-}
-}  // namespace
 
 CSimulatedRobot::CSimulatedRobot() = default;
 CSimulatedRobot::~CSimulatedRobot() = default;
@@ -31,7 +26,7 @@ CSimulatedRobot::~CSimulatedRobot() = default;
 void CSimulatedRobot::loadConfig_sensorSpecific(const mrpt::config::CConfigFileBase& config,
                                                 const std::string& section) {
     section_ = section;
-    const auto where = [&](const char* key) { return keyName(section, key); };
+    const auto where = [&](const char* key) { return detail::sectionKey(section, key); };
     scenario_path_ = config.read_string(section, "scenario", "");
     if (scenario_path_.empty()) throw std::runtime_error(where("scenario") + ": missing (a lodestone-sim scenario INI)");
     time_scale_ = config.read_double(section, "time_scale", 1.0);
@@ -48,7 +43,7 @@ void CSimulatedRobot::loadConfig_sensorSpecific(const mrpt::config::CConfigFileB
 }
 
 void CSimulatedRobot::initialize() {
-    const auto where = [&](const char* key) { return keyName(section_, key); };
+    const auto where = [&](const char* key) { return detail::sectionKey(section_, key); };
     sim::Scenario scenario;
     try {
         scenario = sim::Scenario::load(scenario_path_);

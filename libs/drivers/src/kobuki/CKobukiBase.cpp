@@ -9,15 +9,13 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "../SectionKey.h"
+
 IMPLEMENTS_GENERIC_SENSOR(CKobukiBase, lodestone::drivers)
 
 namespace lodestone::drivers {
 
 namespace {
-std::string keyName(const std::string& section, const char* key) {
-    return "sensor section '" + section + "', key '" + key + "'";
-}
-
 std::string flagsText(std::uint8_t bits, const char* none) {
     std::string s;
     const char* names[] = {"right", "centre", "left"};
@@ -35,11 +33,11 @@ void CKobukiBase::loadConfig_sensorSpecific(const mrpt::config::CConfigFileBase&
                                             const std::string& section) {
     section_ = section;
     port_name_ = config.read_string(section, "serial_port", "");
-    if (port_name_.empty()) throw std::runtime_error(keyName(section, "serial_port") + ": missing (e.g. /dev/ttyUSB0)");
+    if (port_name_.empty()) throw std::runtime_error(detail::sectionKey(section, "serial_port") + ": missing (e.g. /dev/ttyUSB0)");
     baud_ = config.read_int(section, "baud_rate", 115200);
     read_timeout_ms_ = config.read_int(section, "read_timeout_ms", 5);
     if (read_timeout_ms_ < 0 || read_timeout_ms_ > 1000) {
-        throw std::runtime_error(keyName(section, "read_timeout_ms") + ": must be 0..1000");
+        throw std::runtime_error(detail::sectionKey(section, "read_timeout_ms") + ": must be 0..1000");
     }
     odometry::DiffDriveOdometry::Params p;
     p.wheelBase = config.read_double(section, "wheel_base", p.wheelBase);
@@ -47,7 +45,7 @@ void CKobukiBase::loadConfig_sensorSpecific(const mrpt::config::CConfigFileBase&
     p.ticksPerRev = config.read_double(section, "ticks_per_rev", p.ticksPerRev);
     for (const auto& [key, v] : {std::pair<const char*, double>{"wheel_base", p.wheelBase},
                                  {"wheel_radius", p.wheelRadius}, {"ticks_per_rev", p.ticksPerRev}}) {
-        if (!(v > 0) || !std::isfinite(v)) throw std::runtime_error(keyName(section, key) + ": must be > 0");
+        if (!(v > 0) || !std::isfinite(v)) throw std::runtime_error(detail::sectionKey(section, key) + ": must be > 0");
     }
     odometry_ = std::make_unique<odometry::DiffDriveOdometry>(p);
 }
