@@ -21,12 +21,18 @@ echo "== lodestone-slam on the bundled rawlog $sample"
 "$slam" --rawlog "$sample" --ground-truth "${sample%.rawlog.gz}.gt.tum" \
     --config "$root/config_ini/slam.ini" --out "$out/bundled"
 echo
+echo "== lodestone-inspect report of the bundled rawlog and that run"
+"$inspect" report "$sample" --out "$out/report" --slam "$out/bundled" \
+    --ground-truth "${sample%.rawlog.gz}.gt.tum" -q
+echo
 echo "== lodestone-slam on the office scenario, simulated on the fly"
 "$slam" --sim "$root/config_ini/office.ini" --config "$root/config_ini/slam.ini" \
     --out "$out/office"
 echo
 echo "demo: results in $out"
 echo "  bundled/, office/  trajectory.tum (every node), graph.graph (MRPT), map.ply (keyframe"
-echo "                     clouds), report.json (counts, timings, ATE), graph.png, trajectory.png"
+echo "                     clouds), report.json (counts, timings, ATE), graph.png, trajectory.png,"
+echo "                     field_map.png (|B| on the optimized trajectory), nodes.csv"
+echo "  report/index.html  the visual report of the bundled rawlog and its SLAM run"
 echo "  office/ground_truth.tum  the simulator's truth"
 echo "  summary.txt        lodestone-inspect summary of the bundled rawlog"
