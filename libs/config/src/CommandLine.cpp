@@ -10,7 +10,11 @@ namespace {
 class RecordingOutput : public TCLAP::StdOutput {
   public:
     void failure(TCLAP::CmdLineInterface&, TCLAP::ArgException& e) override {
-        error = e.argId() + ": " + e.error();
+        // TCLAP's argId is " " for errors of no one argument (a required one missing).
+        std::string id = e.argId();
+        id.erase(0, id.find_first_not_of(' '));
+        id.erase(id.find_last_not_of(' ') + 1);
+        error = id.empty() ? e.error() : id + ": " + e.error();
     }
     std::string error;
 };

@@ -31,3 +31,13 @@ TEST(CommandLine, KnownOptionsNegativeNumbersAndWordsAfterDoubleDashPass) {
     EXPECT_EQ(parse({"app", "-qq", "a"}).kind, ParseOutcome::Kind::Run);  // switches run together
     EXPECT_EQ(parse({"app", "-qz", "a"}).kind, ParseOutcome::Kind::UsageError);
 }
+
+TEST(CommandLine, AMissingRequiredArgumentReadsCleanly) {
+    TCLAP::CmdLine cmd("test", ' ', "");
+    TCLAP::UnlabeledValueArg<std::string> file("FILE", "a file", true, "", "FILE", cmd);
+    TCLAP::ValueArg<double> step("", "step", "a number", false, 1.0, "M", cmd);
+    auto r = parseCommandLine(cmd, {"app"});
+    EXPECT_EQ(r.kind, ParseOutcome::Kind::UsageError);
+    // Not " : One or more ..." (TCLAP's argument id of such an error is a blank).
+    EXPECT_EQ(r.error.rfind("One or more required arguments missing", 0), 0u) << r.error;
+}
