@@ -54,7 +54,7 @@ class StatusLine {
                       writer.waiting());
         line += buf;
         if (feed) {
-            const auto f = feed->stats();
+            const auto f = feed->current();
             std::snprintf(buf, sizeof buf, " | slam %zu nodes, %zu closures, lag %.2f s, %zu frames skipped",
                           slamNodes.load(), slamClosures.load(), f.lagNow, f.skippedFrames);
             line += buf;

@@ -51,6 +51,16 @@ void LiveSlamFeed::abandon() {
     queue_.clear();
 }
 
+LiveSlamFeed::Stats LiveSlamFeed::current() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    Stats s;
+    s.handed = lags_.size();
+    s.skippedFrames = skipped_;
+    s.frames = frames_;
+    s.lagNow = lagNow_;
+    return s;
+}
+
 LiveSlamFeed::Stats LiveSlamFeed::stats() const {
     std::lock_guard<std::mutex> lock(mutex_);
     Stats s;

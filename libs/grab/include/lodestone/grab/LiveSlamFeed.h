@@ -33,7 +33,11 @@ class LiveSlamFeed : public io::DataSource {
         double lagP50{0}, lagP99{0}, lagMax{0};  ///< [s] newest grabbed - observation handed
         double lagNow{0};
     };
+    /** Everything, the percentiles sorted from every lag kept: at the end of a run. */
     Stats stats() const;
+    /** The current lag and skipped frames only, without the sort: for a status line (the
+     * sort would hold the lock the SLAM thread and the writer take). */
+    Stats current() const;
 
   private:
     mutable std::mutex mutex_;
