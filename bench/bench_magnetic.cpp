@@ -13,6 +13,8 @@
 //       of one field-map search.
 //   bench_magnetic timing-run OUT_DIR [INI]               the ERD's own time per new supernode
 //       on a 2 530 m walk (over 10 000 supernodes stored by its end).
+#include "magnetic_recordings.h"
+
 #include <lodestone/io/MagneticRecordingImport.h>
 #include <lodestone/io/TumTrajectory.h>
 #include <lodestone/magnetic/FieldMapSearch.h>
@@ -132,79 +134,11 @@ Revisits revisits(const io::MagneticRecording& rec, double radius = 0.2, double 
     return r;
 }
 
-struct Recording {
-    std::string name;
-    std::function<io::MagneticRecording()> read;
-};
-
-/** A long walk made here, the kind the Kok walks are too short to be: two laps of a 40 m x
- * 20 m rectangle (the first revisit 120 m after the start) at 1.2 m/s, 10 Hz, through the earth's
- * field plus anomalies along the way (two per metre, up to 1 m beside the path, +-6 uT, 0.3-0.6
- * m wide); the second lap walks 0.3 m beside the first. Seen in the walker's frame. */
-io::MagneticRecording syntheticLongWalk(int laps = 2) {
-    std::mt19937 rng(29);
-    const double w = 40, h = 20;
-    const double corners[5][2] = {{0, 0}, {w, 0}, {w, h}, {0, h}, {0, 0}};
-    struct Bump {
-        double x, y, bx, by, bz, width;
-    };
-    std::vector<Bump> bumps;
-    std::uniform_real_distribution<double> u(0, 1), a(-6, 6), lateral(-1, 1), width(0.3, 0.6);
-    for (int side = 0; side < 4; ++side) {
-        const double x0 = corners[side][0], y0 = corners[side][1];
-        const double dx = corners[side + 1][0] - x0, dy = corners[side + 1][1] - y0;
-        const double len = std::hypot(dx, dy);
-        for (int k = 0; k < static_cast<int>(2 * len); ++k) {
-            const double f = u(rng), off = lateral(rng);
-            bumps.push_back({x0 + f * dx - off * dy / len, y0 + f * dy + off * dx / len, a(rng),
-                             a(rng), a(rng), width(rng)});
-        }
-    }
-    io::MagneticRecording rec;
-    rec.name = "synthetic long walk";
-    rec.calibrated = true;
-    double t = 0, heading = 0;
-    for (int lap = 0; lap < laps; ++lap) {
-        const double inset = 0.3 * (lap % 2);  // every second lap passes beside the first
-        for (int side = 0; side < 4; ++side) {
-            const double x0 = corners[side][0], y0 = corners[side][1];
-            const double dx = corners[side + 1][0] - x0, dy = corners[side + 1][1] - y0;
-            const double len = std::hypot(dx, dy);
-            heading += std::remainder(std::atan2(dy, dx) - heading, 2 * M_PI);
-            for (double s = 0; s < len; s += 0.12, t += 0.1) {
-                const double px = x0 + dx * s / len - inset * dy / len,
-                             py = y0 + dy * s / len + inset * dx / len;
-                double bx = 15, by = 0, bz = -45;
-                for (const auto& b : bumps) {
-                    const double d2 = (px - b.x) * (px - b.x) + (py - b.y) * (py - b.y);
-                    if (d2 > 9 * b.width * b.width) continue;
-                    const double g = std::exp(-0.5 * d2 / (b.width * b.width));
-                    bx += b.bx * g;
-                    by += b.by * g;
-                    bz += b.bz * g;
-                }
-                const double c = std::cos(heading), sn = std::sin(heading);
-                rec.samples.push_back({t, px, py, heading, {c * bx + sn * by, -sn * bx + c * by, bz}});
-            }
-        }
-    }
-    return rec;
-}
-
 int recordings(const std::string& data, const std::string& out, int seeds,
                const std::string& magneticIni, const std::string& only) {
     registerAllClasses();
     const std::string cfg = LODESTONE_CONFIG_INI_DIR;
-    std::vector<Recording> recs;
-    for (int t = 1; t <= 9; ++t) {
-        recs.push_back({"aalto " + std::to_string(t),
-                        [=] { return io::readAaltoTrial(data + "/aalto/invensense", t); }});
-    }
-    for (const char* w : {"eight", "square"}) {
-        recs.push_back({std::string("kok ") + w,
-                        [=] { return io::readKokWalk(data + "/kok/" + w + ".csv"); }});
-    }
-    recs.push_back({"synthetic longwalk", [] { return syntheticLongWalk(); }});
+    const auto recs = benchRecordings(data);
     std::printf(
         "| recording | path [m] | seeds | ATE odometry [m] | ATE magnetic [m]: median / worst | "
         "magnetic / odometry: median / worst | "

@@ -12,10 +12,15 @@ namespace lodestone::eval {
 
 namespace {
 
-/** Revisit passes over the run's nodes: runs of consecutive revisit nodes, as node-ID ranges. */
-std::vector<std::pair<std::size_t, std::size_t>> revisitPasses(
-    const std::vector<io::TumPose>& trajectory, const std::vector<io::TumPose>& truth,
-    const ClosureEvalOptions& o) {
+struct Pass {
+    std::size_t first, last;  ///< node IDs
+    PassDirection direction;
+};
+
+/** Revisit passes over the run's nodes: runs of consecutive revisit nodes of one direction. */
+std::vector<Pass> revisitPasses(const std::vector<io::TumPose>& trajectory,
+                                const std::vector<io::TumPose>& truth,
+                                const ClosureEvalOptions& o) {
     std::vector<const io::TumPose*> gt(trajectory.size());
     std::vector<double> travel(trajectory.size(), 0);
     const io::TumPose* last = nullptr;
@@ -26,28 +31,30 @@ std::vector<std::pair<std::size_t, std::size_t>> revisitPasses(
         if (gt[i]) last = gt[i];
         travel[i] = s;
     }
-    std::vector<bool> revisit(trajectory.size(), false);
+    enum Kind { None, Same, Opposite };
+    std::vector<Kind> kind(trajectory.size(), None);
     for (std::size_t i = 0; i < trajectory.size(); ++i) {
         if (!gt[i]) continue;
         for (std::size_t j = 0; j < i && travel[i] - travel[j] >= o.minGap; ++j) {
-            if (!gt[j]) continue;
-            const double d = gt[i]->pose.distanceTo(gt[j]->pose);
+            if (!gt[j] || gt[i]->pose.distanceTo(gt[j]->pose) > o.radius) continue;
             const double dyaw =
                 std::abs(std::remainder(gt[i]->pose.yaw() - gt[j]->pose.yaw(), 2 * M_PI));
-            if (d <= o.radius && dyaw <= o.revisitYaw) {
-                revisit[i] = true;
+            if (dyaw <= o.revisitYaw) {
+                kind[i] = Same;  // (a same-way visit decides: see PassDirection)
                 break;
             }
+            if (dyaw >= M_PI - o.revisitYaw) kind[i] = Opposite;
         }
     }
-    std::vector<std::pair<std::size_t, std::size_t>> passes;
-    for (std::size_t i = 0; i < revisit.size();) {
-        if (!revisit[i]) {
+    std::vector<Pass> passes;
+    for (std::size_t i = 0; i < kind.size();) {
+        if (kind[i] == None) {
             ++i;
             continue;
         }
         std::size_t j = i;
-        while (j + 1 < revisit.size() && revisit[j + 1]) ++j;
+        while (j + 1 < kind.size() && kind[j + 1] == kind[i]) ++j;
+        const auto direction = kind[i] == Same ? PassDirection::Same : PassDirection::Opposite;
         // A long revisit (a whole lap driven again) is many places to recognise: cut it into
         // pieces of `pieceLength`, the last one joined to its predecessor when short.
         if (travel[j] - travel[i] >= o.minPassLength) {
@@ -55,11 +62,11 @@ std::vector<std::pair<std::size_t, std::size_t>> revisitPasses(
             for (std::size_t k = i; k <= j; ++k) {
                 if (travel[k] - travel[start] >= o.pieceLength &&
                     travel[j] - travel[k] >= o.minPassLength) {
-                    passes.emplace_back(start, k - 1);
+                    passes.push_back({start, k - 1, direction});
                     start = k;
                 }
             }
-            passes.emplace_back(start, j);
+            passes.push_back({start, j, direction});
         }
         i = j + 1;
     }
@@ -112,12 +119,10 @@ std::vector<MatcherQuality> evaluateClosures(const std::vector<ReportedClosure>&
     const auto passOf = [&](long long node) -> std::ptrdiff_t {
         const auto it =
             std::upper_bound(passes.begin(), passes.end(), static_cast<std::size_t>(node),
-                             [](std::size_t v, const std::pair<std::size_t, std::size_t>& p) {
-                                 return v < p.first;
-                             });
+                             [](std::size_t v, const Pass& p) { return v < p.first; });
         if (it == passes.begin()) return -1;
         const auto& p = *(it - 1);
-        return static_cast<std::size_t>(node) <= p.second ? (it - 1) - passes.begin() : -1;
+        return static_cast<std::size_t>(node) <= p.last ? (it - 1) - passes.begin() : -1;
     };
     std::map<std::string, std::vector<std::pair<const ReportedClosure*, double>>> bySource;
     for (const auto& c : closures) {
@@ -163,6 +168,9 @@ std::vector<MatcherQuality> evaluateClosures(const std::vector<ReportedClosure>&
         }
         q.passesDetected = any.size();
         q.passesAt100 = clean.size();
+        for (const auto& p : passes) ++q.byDirection[static_cast<int>(p.direction)].passes;
+        for (const auto p : any) ++q.byDirection[static_cast<int>(passes[p].direction)].detected;
+        for (const auto p : clean) ++q.byDirection[static_cast<int>(passes[p].direction)].at100;
         out.push_back(q);
     }
     return out;
@@ -172,28 +180,32 @@ std::string formatClosureQuality(const std::vector<MatcherQuality>& qs,
                                  const ClosureEvalOptions& o) {
     std::string out =
         "| matcher | proposed | right | wrong | precision | error median / max m | kept (wrong) | "
-        "hypotheses (wrong) | passes | recall | recall at 100 % precision | score threshold |\n"
-        "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-    char line[512];
+        "hypotheses (wrong) | passes | recall | recall at 100 % precision | same direction: passes, "
+        "recall at 100 % | opposite direction: passes, recall at 100 % | score threshold |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+    char line[768];
     for (const auto& q : qs) {
         char threshold[32] = "none wrong";
         if (!std::isnan(q.threshold))
             std::snprintf(threshold, sizeof threshold, "> %.4g", q.threshold);
         std::snprintf(line, sizeof line,
                       "| %s | %zu | %zu | %zu | %.3f | %.3f / %.3f | %zu (%zu) | %zu (%zu) | %zu | "
-                      "%.3f | %.3f | %s |\n",
+                      "%.3f | %.3f | %zu, %.3f | %zu, %.3f | %s |\n",
                       q.source.c_str(), q.proposals, q.right, q.wrong, q.precision(), q.medianError,
                       q.maxError, q.kept, q.keptWrong, q.hypotheses, q.hypothesesWrong, q.passes,
-                      q.recall(), q.recallAt100(), threshold);
+                      q.recall(), q.recallAt100(), q.byDirection[0].passes,
+                      q.byDirection[0].recallAt100(), q.byDirection[1].passes,
+                      q.byDirection[1].recallAt100(), threshold);
         out += line;
     }
     std::snprintf(line, sizeof line,
                   "\nright: the measured pose lands within %.2f m of the truth; a pass: %.1f m "
-                  "(or less, down to %.1f m) of revisit, nodes within %.2f m and %.0f deg of a "
-                  "place passed %.1f m of travel before; recall: passes with a right closure "
+                  "(or less, down to %.1f m) of revisit, nodes within %.2f m of a place passed "
+                  "%.1f m of travel before, facing within %.0f deg of the same way (or of the "
+                  "opposite way: opposite direction); recall: passes with a right closure "
                   "ending in them, at 100 %% precision: scoring above every wrong one\n",
-                  o.radius, o.pieceLength, o.minPassLength, o.radius, o.revisitYaw * 180 / M_PI,
-                  o.minGap);
+                  o.radius, o.pieceLength, o.minPassLength, o.radius, o.minGap,
+                  o.revisitYaw * 180 / M_PI);
     out += line;
     return out;
 }

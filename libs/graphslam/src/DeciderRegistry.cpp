@@ -6,6 +6,7 @@
 #include <lodestone/graphslam/camera/VisualOdometryNRD.h>
 #include <lodestone/graphslam/MagneticGpERD.h>
 #include <lodestone/graphslam/OrbSubmapERD.h>
+#include <lodestone/graphslam/magnetic/MagneticWindowERD.h>
 
 namespace lodestone::graphslam {
 
@@ -50,6 +51,7 @@ DeciderRegistry::DeciderRegistry() {
     registerEdgeDecider("CompositeERD", [] { return std::make_unique<CompositeERD>(); });
     registerEdgeDecider("OrbSubmapERD", [] { return std::make_unique<OrbSubmapERD>(); });
     registerEdgeDecider("MagneticGpERD", [] { return std::make_unique<MagneticGpERD>(); });
+    registerEdgeDecider("MagneticWindowERD", [] { return std::make_unique<MagneticWindowERD>(); });
     registerOptimizer("CeresGSO", [] { return std::make_unique<CeresGSO>(); });
 }
 

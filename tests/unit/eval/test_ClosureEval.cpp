@@ -127,3 +127,50 @@ TEST(ClosureEval, AMalformedLogNamesFileAndLine) {
     }
     EXPECT_THROW(eval::readClosureLog(path), std::runtime_error);
 }
+
+TEST(ClosureEval, PassesWalkedBackAreCountedApart) {
+    // A 10 m corridor walked east, back west, and east again, a node every 0.1 m.
+    std::vector<io::TumPose> truth;
+    int t = 0;
+    for (int leg = 0; leg < 3; ++leg) {
+        for (int k = 0; k < 100; ++k, ++t) {
+            const bool west = leg == 1;
+            const double x = west ? 10.0 - 0.1 * k : 0.1 * k;
+            truth.push_back({double(t), mrpt::poses::CPose3D(x, 0, 0, west ? M_PI : 0, 0, 0)});
+        }
+    }
+    const auto closure = [&](int from, int to, double error) {
+        eval::ReportedClosure c;
+        c.fromNode = from;
+        c.toNode = to;
+        c.fromTime = truth[std::size_t(from)].timestamp;
+        c.toTime = truth[std::size_t(to)].timestamp;
+        c.source = "A";
+        c.score = 1;
+        c.measured = truth[std::size_t(to)].pose - truth[std::size_t(from)].pose;
+        c.measured.x_incr(error);
+        return c;
+    };
+    // West leg: x <= 7.5 is 5 m of travel after its place on the east leg: 7.5 m of opposite
+    // revisit, pieces 2 + 2 + 2 + 1.5. The third leg repeats the first (same way) as well as
+    // the second: Same throughout, 10 m in five pieces.
+    const std::vector<eval::ReportedClosure> closures = {
+        closure(30, 170, 0.0),  // node 170: x = 3.0 west, the east leg's node 30 (opposite)
+        closure(50, 250, 0.0),  // node 250: x = 5.0 east, the first leg's node 50 (same)
+        closure(60, 160, 1.0),  // opposite, but 1 m off: wrong (score 1 ties: nothing at 100 %)
+    };
+    const auto q = eval::evaluateClosures(closures, truth, truth);
+    ASSERT_EQ(q.size(), 1u);
+    const auto& same = q[0].byDirection[int(eval::PassDirection::Same)];
+    const auto& opposite = q[0].byDirection[int(eval::PassDirection::Opposite)];
+    EXPECT_EQ(opposite.passes, 4u);
+    EXPECT_EQ(same.passes, 5u);
+    EXPECT_EQ(q[0].passes, 9u);
+    EXPECT_EQ(opposite.detected, 1u);
+    EXPECT_EQ(same.detected, 1u);
+    EXPECT_EQ(q[0].right, 2u);
+    EXPECT_EQ(q[0].wrong, 1u);
+    EXPECT_EQ(opposite.at100, 0u);
+    const auto table = eval::formatClosureQuality(q, {});
+    EXPECT_NE(table.find("| 5, 0.000 | 4, 0.000 |"), std::string::npos) << table;
+}

@@ -24,11 +24,27 @@ std::vector<ReportedClosure> readClosureLog(const std::string& path);
 
 struct ClosureEvalOptions {
     double radius{0.5};                  ///< [m] a detection is right within this of the truth
-    double revisitYaw{45 * M_PI / 180};  ///< [rad] a revisit faces the same way within this
+    /** [rad] a revisit faces the same way as the earlier visit within this, or the opposite way
+     * within this (a corridor walked back); in between it crosses and is not a pass. */
+    double revisitYaw{45 * M_PI / 180};
     double minGap{5.0};                  ///< [m] of true travel between a place and its revisit
     double minPassLength{1.0};           ///< [m] shorter revisits are not counted as passes
     double pieceLength{2.0};             ///< [m] longer revisits are cut into passes this long
     double maxDt{0.02};                  ///< [s] timestamp association with the truth
+};
+
+/** Which way a revisit pass runs relative to the earlier visit it repeats. A node that repeats
+ * an earlier place both ways (a corridor walked there, back, and there again) counts as Same:
+ * a matcher that compares in travel order alone can find it. */
+enum class PassDirection { Same = 0, Opposite = 1 };
+
+/** Revisit passes of one direction and how many a matcher found. */
+struct PassRecall {
+    std::size_t passes{0};
+    std::size_t detected{0};  ///< with a right detection at any score
+    std::size_t at100{0};     ///< with a right detection scoring above every wrong one
+    double recall() const { return passes ? double(detected) / double(passes) : NAN; }
+    double recallAt100() const { return passes ? double(at100) / double(passes) : NAN; }
 };
 
 /** One matcher's detection quality against the ground truth. */
@@ -38,9 +54,10 @@ struct MatcherQuality {
     std::size_t kept{0}, keptWrong{0};              ///< in the final graph
     std::size_t hypotheses{0}, hypothesesWrong{0};  ///< joined two groups (after kidnaps)
     double medianError{NAN}, maxError{NAN};  ///< [m] position error of the right ones ... all
-    std::size_t passes{0};                   ///< true revisit passes (same for every matcher)
-    std::size_t passesDetected{0};           ///< with a right detection at any score
-    std::size_t passesAt100{0};  ///< with a right detection scoring above every wrong one
+    std::size_t passes{0};          ///< true revisit passes, both directions (every matcher)
+    std::size_t passesDetected{0};  ///< with a right detection at any score
+    std::size_t passesAt100{0};     ///< with a right detection scoring above every wrong one
+    PassRecall byDirection[2];      ///< the same, by PassDirection
     double threshold{NAN};       ///< the highest wrong score (none wrong: NaN)
     double recall() const { return passes ? double(passesDetected) / double(passes) : NAN; }
     double recallAt100() const { return passes ? double(passesAt100) / double(passes) : NAN; }
@@ -50,9 +67,11 @@ struct MatcherQuality {
 /** Judges every proposed closure against the truth: the measured pose of `to` composed on the
  * true pose of `from` must land within `radius` of the true pose of `to`. A revisit pass is a
  * run of consecutive nodes (`trajectory`: every node of the run, in ID order) each within
- * `radius` and `revisitYaw` of the truth of a node at least `minGap` of true travel earlier,
+ * `radius` of the truth of a node at least `minGap` of true travel earlier,
  * `minPassLength` long or more, cut into passes of `pieceLength`; a matcher detects a pass when a
- * right closure ends inside it. Recall at 100 % precision (the DBoW2 / FAB-MAP convention): passes
+ * right closure ends inside it. Passes are told apart by direction (PassDirection): a node
+ * within `revisitYaw` of the earlier node's heading runs the same way, within `revisitYaw` of
+ * its reverse the opposite way. Recall at 100 % precision (the DBoW2 / FAB-MAP convention): passes
  * detected by right closures scoring above the highest-scoring wrong one, over all passes. */
 std::vector<MatcherQuality> evaluateClosures(const std::vector<ReportedClosure>& closures,
                                              const std::vector<io::TumPose>& trajectory,

@@ -1,0 +1,28 @@
+// The magnetic recordings the magnetic benches run on: the real ones read in place from
+// ../shared/data/magnetic (Aalto invensense trials 1-9, Kok & Solin's walks) and walks made here
+// through a synthetic field (a long loop; a corridor walked back and forth).
+#pragma once
+
+#include <lodestone/io/MagneticRecording.h>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+struct Recording {
+    std::string name;  ///< "<set> <walk>", e.g. "kok eight"
+    std::function<lodestone::io::MagneticRecording()> read;
+};
+
+/** A long walk, the kind the Kok walks are too short to be: `laps` laps of a 40 m x 20 m
+ * rectangle (the first revisit 120 m after the start) at 1.2 m/s, 10 Hz; every second lap
+ * 0.3 m beside the first. */
+lodestone::io::MagneticRecording syntheticLongWalk(int laps = 2);
+
+/** A plain 30 m corridor walked back and forth, three times each way (no lap: every revisit
+ * after the first is walked the other way or the same way as one before), each pass at its own
+ * offset of up to 0.15 m across; 1.2 m/s, 10 Hz. */
+lodestone::io::MagneticRecording syntheticCorridorWalk();
+
+/** Aalto trials 1-9 and the Kok walks under `data` (when present), then the synthetic walks. */
+std::vector<Recording> benchRecordings(const std::string& data);

@@ -1,0 +1,104 @@
+#pragma once
+
+#include <lodestone/graphslam/EdgeDecider.h>
+#include <lodestone/graphslam/closure/PathUncertainty.h>
+#include <lodestone/magnetic/SupernodeTrack.h>
+#include <lodestone/magnetic/WindowComparison.h>
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+namespace lodestone::graphslam {
+
+/** Magnetic loop closure by short windows of the field, after Kok & Solin, "Online
+ * One-Dimensional Magnetic Field SLAM with Loop-Closure Detection" (MFI 2024): the last
+ * `window_length` metres of readings, in the levelled robot frame (heading-aligned), compared
+ * with every earlier window both ways - walked again the same way (forward) and walked back
+ * (the sequence reversed; the horizontal components turned by the relative heading, which the
+ * field itself measures) - weighted by a Gaussian position prior from the pose uncertainty.
+ * Every threshold is a quantile of the noise model: the readings of one place repeat between
+ * passes with `window_sigma` per component, the position prior is closure::PathUncertainty.
+ *   - excitation: a window whose field is flat within the noise (chi-square, 3(n-1) dof) never
+ *     closes - it would match anywhere;
+ *   - gate: a target is a candidate only where the robot can be (chi-square, 2 dof, of the
+ *     pose uncertainty since the last closure; across a kidnap, everywhere);
+ *   - fit: the best candidate's differences must be noise (chi-square, 3n dof);
+ *   - distinct: the posterior of the best place (candidates within `distinct_radius` of it
+ *     are the same place, on any earlier pass) against every other candidate in the gate
+ *     must reach `min_posterior`; a look-alike elsewhere, or a field too smooth to say where
+ *     along the path, leaves the window undecided.
+ * An accepted window gives one node-to-node edge: the query node on the target's path,
+ * its heading turned by the field's relative heading, along-track sigma from the fit's
+ * curvature, across-track `sigma_cross`. INI section [MagneticWindowERD]. */
+class MagneticWindowERD : public EdgeDecider {
+  public:
+    struct Params {
+        std::string sensorLabel;   ///< only this magnetometer ("": the first one seen)
+        double saturation{1000.0};  ///< [uT] a component this large is a saturated reading
+        double step{0.05};          ///< [m] readings resampled by travel
+        double window{1.0};         ///< [m] of path per window (Kok & Solin: ~1 s of walking)
+        double queryEvery{0.1};     ///< [m] of travel between queries
+        /** [uT] how well one reading repeats between two passes of a place, per component
+         * (the difference's sigma: sensor noise of both passes, height and tilt). */
+        double sigma{1.0};
+        double minTravelGap{4.0};    ///< [m] targets the robot left at least this long ago
+        double gateChi2{11.83};      ///< 2 dof, 99.73 %
+        closure::PathUncertainty::Params uncertainty;
+        double quantile{0.9973};     ///< of the excitation and fit tests
+        double minPosterior{0.9973};
+        double distinctRadius{0.5};  ///< [m]
+        double closureEvery{0.5};    ///< [m] of query travel between closures
+        double sigmaAlongFloor{0.03};  ///< [m]
+        double sigmaCross{0.20};       ///< [m]
+        double turnFloorDeg{2.0};      ///< [deg] added to the field's turn sigma
+    };
+    /** What became of the queries (the funnel of this decider). */
+    struct Stats {
+        std::size_t readings{0}, droppedReadings{0}, otherSensors{0}, queries{0}, flat{0},
+            noCandidate{0}, noFit{0}, ambiguous{0}, accepted{0}, forward{0}, backward{0}, edges{0};
+        std::vector<double> queryMs;
+    };
+
+    MagneticWindowERD();
+    void configure(const mrpt::config::CConfigFileBase& ini) override;
+    const Params& params() const { return params_; }
+    bool updateState(mrpt::obs::CActionCollection::Ptr action,
+                     mrpt::obs::CSensoryFrame::Ptr observations,
+                     mrpt::obs::CObservation::Ptr observation) override;
+    std::set<std::string> requiredObservations() const override {
+        return {"CObservationMagnetometer"};
+    }
+    JsonObject describe() const override;
+    const Stats& stats() const { return stats_; }
+
+  private:
+    /** The best fit of one stored sample as the query's newest reading's place. */
+    struct Candidate {
+        std::size_t sample{0};
+        magnetic::WindowDirection direction{magnetic::WindowDirection::Forward};
+        magnetic::WindowFit fit;
+        double gate2{0};   ///< position prior's squared Mahalanobis distance
+        double total{0};   ///< fit.chi2 + gate2
+    };
+    void rebuild();
+    void onNode(TNodeID id);
+    void query(std::size_t first);
+    /** Both directions' fits of stored sample `c` (as many as its windows allow). */
+    void compareAt(std::size_t c, std::size_t first, double gate2, double turnPrior,
+                   double turnVariance, std::vector<Candidate>& out) const;
+    void addClosure(const Candidate& best, const std::vector<Candidate>& all, std::size_t first);
+    Eigen::Vector2d positionAtSample(std::size_t i) const;
+
+    Params params_;
+    std::size_t n_{21};  // samples per window
+    std::unique_ptr<magnetic::SupernodeTrack> track_;
+    std::vector<double> travel_;  // per node [m]
+    std::vector<int> segment_;    // per node
+    closure::PathUncertainty uncertainty_;
+    TNodeID seen_{0};
+    double lastQuery_{-1e18}, lastClosure_{-1e18};  // [m] travel
+    Stats stats_;
+};
+
+}  // namespace lodestone::graphslam

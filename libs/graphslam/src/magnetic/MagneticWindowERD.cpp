@@ -1,0 +1,322 @@
+#include <lodestone/config/IniSection.h>
+#include <lodestone/graphslam/magnetic/MagneticWindowERD.h>
+#include <lodestone/magnetic/FieldFeatures.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+
+#include "../Stopwatch.h"
+
+namespace lodestone::graphslam {
+
+using magnetic::WindowDirection;
+
+MagneticWindowERD::MagneticWindowERD() {
+    setClassName("MagneticWindowERD");
+    rebuild();
+}
+
+void MagneticWindowERD::rebuild() {
+    // A window ends at every resampled reading: supernodes of the window's length, one per step.
+    track_ = std::make_unique<magnetic::SupernodeTrack>(
+        magnetic::SupernodeTrack::Params{params_.step, params_.window, params_.step}, 3);
+    n_ = track_->samplesPerSupernode();
+    uncertainty_ = closure::PathUncertainty(params_.uncertainty);
+}
+
+void MagneticWindowERD::configure(const mrpt::config::CConfigFileBase& ini) {
+    config::IniSection s(ini, "MagneticWindowERD", config::sourceName(ini));
+    Params p = params_;  // all or nothing
+    p.sensorLabel = s.getString("sensor_label", p.sensorLabel);
+    p.saturation = s.getDouble("saturation", p.saturation);
+    p.step = s.getDouble("resample_step", p.step);
+    p.window = s.getDouble("window_length", p.window);
+    p.queryEvery = s.getDouble("query_every", p.queryEvery);
+    p.sigma = s.getDouble("window_sigma", p.sigma);
+    p.minTravelGap = s.getDouble("min_travel_gap", p.minTravelGap);
+    p.gateChi2 = s.getDouble("gate_chi2", p.gateChi2);
+    p.uncertainty.headingBias = s.getDouble("gate_heading_drift", p.uncertainty.headingBias);
+    p.uncertainty.floor = s.getDouble("gate_floor", p.uncertainty.floor);
+    p.quantile = s.getDouble("test_quantile", p.quantile);
+    p.minPosterior = s.getDouble("min_posterior", p.minPosterior);
+    p.distinctRadius = s.getDouble("distinct_radius", p.distinctRadius);
+    p.closureEvery = s.getDouble("closure_every", p.closureEvery);
+    p.sigmaAlongFloor = s.getDouble("sigma_along_floor", p.sigmaAlongFloor);
+    p.sigmaCross = s.getDouble("sigma_cross", p.sigmaCross);
+    p.turnFloorDeg = s.getDouble("turn_floor_deg", p.turnFloorDeg);
+    if (!(p.saturation > 0)) s.fail("saturation", "must be > 0");
+    if (!(p.step > 0)) s.fail("resample_step", "must be > 0");
+    if (!(p.window >= 4 * p.step)) s.fail("window_length", "must be >= 4 x resample_step");
+    if (!(p.queryEvery > 0)) s.fail("query_every", "must be > 0");
+    if (!(p.sigma > 0)) s.fail("window_sigma", "must be > 0");
+    if (!(p.minTravelGap > p.window)) s.fail("min_travel_gap", "must be > window_length");
+    if (!(p.gateChi2 > 0)) s.fail("gate_chi2", "must be > 0");
+    if (!(p.uncertainty.headingBias >= 0)) s.fail("gate_heading_drift", "must be >= 0");
+    if (!(p.uncertainty.floor > 0)) s.fail("gate_floor", "must be > 0");
+    if (!(p.quantile > 0.5 && p.quantile < 1)) s.fail("test_quantile", "must be in (0.5, 1)");
+    if (!(p.minPosterior > 0.5 && p.minPosterior < 1)) s.fail("min_posterior", "must be in (0.5, 1)");
+    if (!(p.distinctRadius > 0)) s.fail("distinct_radius", "must be > 0");
+    if (!(p.closureEvery >= 0)) s.fail("closure_every", "must be >= 0");
+    if (!(p.sigmaAlongFloor > 0) || !(p.sigmaCross > 0) || !(p.turnFloorDeg >= 0))
+        s.fail("sigma_cross", "sigmas must be > 0");
+    s.finish();
+    params_ = p;
+    rebuild();
+}
+
+bool MagneticWindowERD::updateState(mrpt::obs::CActionCollection::Ptr,
+                                    mrpt::obs::CSensoryFrame::Ptr, mrpt::obs::CObservation::Ptr) {
+    const std::size_t before = stats_.edges;
+    for (; seen_ < m_graph->nodes.size() && nodes_ && nodes_->has(seen_); ++seen_) onNode(seen_);
+    return stats_.edges > before;
+}
+
+void MagneticWindowERD::onNode(TNodeID id) {
+    const NodeRecord& rec = nodes_->at(id);
+    double step = 0;
+    double t0 = rec.timestamp;
+    const Constraint* odometry = nullptr;
+    if (id > 0) {
+        const auto e = m_graph->edges.find({id - 1, id});
+        // No travel across a kidnap: the edge there says nothing of the path.
+        if (e != m_graph->edges.end() && rec.segment == segment_.back()) {
+            step = std::hypot(e->second.mean.x(), e->second.mean.y());
+            odometry = &e->second;
+        }
+        t0 = nodes_->at(id - 1).timestamp;
+    }
+    uncertainty_.addNode(id, odometry, id > 0 ? m_graph->nodes.at(id - 1).yaw() : 0.0);
+    const double s0 = travel_.empty() ? 0.0 : travel_.back();
+    travel_.push_back(s0 + step);
+    segment_.push_back(rec.segment);
+    for (const auto& m : rec.magnetic) {
+        if (params_.sensorLabel.empty()) params_.sensorLabel = m.sensorLabel;
+        if (m.sensorLabel != params_.sensorLabel) {
+            ++stats_.otherSensors;
+            continue;
+        }
+        ++stats_.readings;
+        const Eigen::Vector3d inSensor(m.field.x, m.field.y, m.field.z);
+        if (!magnetic::usableReading(inSensor, params_.saturation)) {
+            ++stats_.droppedReadings;
+            continue;
+        }
+        // The field in the levelled robot frame: the sensor's mounting applied.
+        const Eigen::Vector3d b = m.sensorPose.getRotationMatrix().asEigen() * inSensor;
+        const double f = rec.timestamp > t0
+                             ? std::clamp((m.timestamp - t0) / (rec.timestamp - t0), 0.0, 1.0)
+                             : 1.0;
+        for (const auto& w : track_->add(s0 + f * step, b, id, rec.segment)) {
+            const double s = track_->samples()[w.last - 1].s;
+            if (s - lastQuery_ + 1e-9 < params_.queryEvery) continue;
+            lastQuery_ = s;
+            query(w.first);
+        }
+    }
+}
+
+Eigen::Vector2d MagneticWindowERD::positionAtSample(std::size_t i) const {
+    // A sample lies in its node's interval: between node - 1 and node, by travel.
+    const auto& sample = track_->samples()[i];
+    const auto k = static_cast<TNodeID>(sample.node);
+    const auto& b = m_graph->nodes.at(k);
+    if (k == 0 || segment_[k - 1] != segment_[k] || travel_[k] <= travel_[k - 1])
+        return {b.x(), b.y()};
+    const auto& a = m_graph->nodes.at(k - 1);
+    const double f = std::clamp((sample.s - travel_[k - 1]) / (travel_[k] - travel_[k - 1]), 0.0, 1.0);
+    return {a.x() + f * (b.x() - a.x()), a.y() + f * (b.y() - a.y())};
+}
+
+void MagneticWindowERD::compareAt(std::size_t c, std::size_t first, double gate2, double turnPrior,
+                                  double turnVariance, std::vector<Candidate>& out) const {
+    const auto& samples = track_->samples();
+    const double newest = samples[first + n_ - 1].s;
+    // Forward: the window ending at c; backward: the window starting at c, read in reverse.
+    if (c + 1 >= n_ && samples[c + 1 - n_].segment == samples[c].segment) {
+        Candidate k{c, WindowDirection::Forward,
+                    magnetic::compareWindows(samples, first, c + 1 - n_, n_,
+                                             WindowDirection::Forward, params_.sigma, turnPrior,
+                                             turnVariance),
+                    gate2, 0};
+        k.total = k.fit.chi2 + gate2;
+        out.push_back(k);
+    }
+    if (c + n_ <= samples.size() && samples[c + n_ - 1].segment == samples[c].segment &&
+        samples[c + n_ - 1].s <= newest - params_.minTravelGap) {
+        Candidate k{c, WindowDirection::Backward,
+                    magnetic::compareWindows(samples, first, c, n_, WindowDirection::Backward,
+                                             params_.sigma, turnPrior, turnVariance),
+                    gate2, 0};
+        k.total = k.fit.chi2 + gate2;
+        out.push_back(k);
+    }
+}
+
+void MagneticWindowERD::query(std::size_t first) {
+    const auto t0 = Clock::now();
+    ++stats_.queries;
+    const auto& samples = track_->samples();
+    const std::size_t newest = first + n_ - 1;
+    const double dof = 3.0 * double(n_);
+    if (magnetic::windowExcitation(samples, first, n_, params_.sigma) <
+        magnetic::chiSquareQuantile(dof - 3, params_.quantile)) {
+        ++stats_.flat;  // a flat field matches anywhere
+        stats_.queryMs.push_back(msSince(t0));
+        return;
+    }
+    const auto qNode = static_cast<TNodeID>(samples[newest].node);
+    const int qSegment = samples[newest].segment;
+    const Eigen::Vector2d here = positionAtSample(newest);
+    const double qYaw = m_graph->nodes.at(qNode).yaw();
+    const double yawVariance = uncertainty_.covariance(qNode)(2, 2);
+    const double turnFloor = params_.turnFloorDeg * M_PI / 180;
+    std::vector<Candidate> candidates;
+    for (std::size_t c = 0; c < samples.size() && samples[c].s <= samples[newest].s - params_.minTravelGap;
+         ++c) {
+        double gate2 = 0, turnPrior = 0, turnVariance = INFINITY;
+        if (samples[c].segment == qSegment) {
+            // Where the robot can be, and which way it faces, under the pose uncertainty since
+            // the last closure. Across a kidnap the graph knows neither: everywhere, any way.
+            gate2 = uncertainty_.gateDistance2(qNode, here - positionAtSample(c));
+            if (gate2 > params_.gateChi2) continue;
+            turnPrior = qYaw - m_graph->nodes.at(static_cast<TNodeID>(samples[c].node)).yaw();
+            turnVariance = yawVariance + turnFloor * turnFloor;
+        }
+        compareAt(c, first, gate2, turnPrior, turnVariance, candidates);
+    }
+    if (candidates.empty()) {
+        ++stats_.noCandidate;
+    } else {
+        const auto best = *std::min_element(
+            candidates.begin(), candidates.end(),
+            [](const Candidate& a, const Candidate& b) { return a.total < b.total; });
+        if (best.fit.chi2 > magnetic::chiSquareQuantile(dof, params_.quantile)) {
+            ++stats_.noFit;
+        } else {
+            // The posterior of the best place against every other place in the gate.
+            const Eigen::Vector2d there = positionAtSample(best.sample);
+            const int bSegment = samples[best.sample].segment;
+            double same = 0, other = 0;
+            for (const auto& k : candidates) {
+                const double w = std::exp(-0.5 * (k.total - best.total));
+                const bool samePlace =
+                    samples[k.sample].segment == bSegment &&
+                    (positionAtSample(k.sample) - there).norm() <= params_.distinctRadius;
+                (samePlace ? same : other) += w;
+            }
+            if (same / (same + other) < params_.minPosterior) {
+                ++stats_.ambiguous;
+            } else {
+                ++stats_.accepted;
+                if (samples[newest].s - lastClosure_ + 1e-9 >= params_.closureEvery)
+                    addClosure(best, candidates, first);
+            }
+        }
+    }
+    stats_.queryMs.push_back(msSince(t0));
+}
+
+void MagneticWindowERD::addClosure(const Candidate& best, const std::vector<Candidate>& all,
+                                   std::size_t first) {
+    const auto& samples = track_->samples();
+    const std::size_t newest = first + n_ - 1;
+    const auto qNode = static_cast<TNodeID>(samples[newest].node);
+    const int tSegment = samples[best.sample].segment;
+    // Along the target's path the fit's curvature over neighbouring samples (same direction)
+    // says how sharply the field places the window: chi2 = -2 log L, information = curvature / 2.
+    double fitAt[2] = {NAN, NAN};
+    for (const auto& k : all) {
+        if (k.direction != best.direction) continue;
+        if (k.sample + 1 == best.sample) fitAt[0] = k.total;
+        if (k.sample == best.sample + 1) fitAt[1] = k.total;
+    }
+    double sigmaAlong2 = params_.sigmaAlongFloor * params_.sigmaAlongFloor + params_.step * params_.step / 12;
+    if (std::isfinite(fitAt[0]) && std::isfinite(fitAt[1])) {
+        const double curvature = (fitAt[0] - 2 * best.total + fitAt[1]) / (params_.step * params_.step);
+        sigmaAlong2 += curvature > 0 ? 2.0 / curvature : INFINITY;
+    } else {
+        sigmaAlong2 += params_.step * params_.step;
+    }
+    if (!std::isfinite(sigmaAlong2)) return;
+    // The query node's place on the target's path: its travel past the newest reading, the
+    // same way along (forward) or back (backward).
+    const double ahead = travel_[qNode] - samples[newest].s;
+    const double sTarget =
+        samples[best.sample].s + (best.direction == WindowDirection::Forward ? ahead : -ahead);
+    const auto it = std::upper_bound(travel_.begin(), travel_.end(), sTarget);
+    if (it == travel_.begin() || it == travel_.end()) return;
+    const auto k = static_cast<TNodeID>(it - travel_.begin() - 1);
+    if (segment_[k] != tSegment || segment_[k + 1] != tSegment || k + 1 > qNode) return;
+    const auto e = m_graph->edges.find({k, k + 1});
+    if (e == m_graph->edges.end()) return;
+    const auto& d = e->second.mean;
+    const double span = travel_[k + 1] - travel_[k];
+    const double frac = span > 0 ? (sTarget - travel_[k]) / span : 0.0;
+    const double turnSigma = params_.turnFloorDeg * M_PI / 180;
+    mrpt::poses::CPosePDFGaussian z;
+    z.mean = mrpt::poses::CPose2D(frac * d.x(), frac * d.y(), frac * d.yaw() + best.fit.turn);
+    const double len = std::hypot(d.x(), d.y());
+    const Eigen::Vector2d u =
+        len > 1e-6 ? Eigen::Vector2d(d.x() / len, d.y() / len) : Eigen::Vector2d(1, 0);
+    const Eigen::Matrix2d P = u * u.transpose();
+    const Eigen::Matrix2d S =
+        sigmaAlong2 * P + params_.sigmaCross * params_.sigmaCross * (Eigen::Matrix2d::Identity() - P);
+    z.cov.setZero();
+    for (int r = 0; r < 2; ++r)
+        for (int c = 0; c < 2; ++c) z.cov(r, c) = S(r, c);
+    z.cov(2, 2) = best.fit.turnVariance + turnSigma * turnSigma;
+    registerClosure(k, qNode, planarConstraint(z), stats_.edges, false,
+                    -best.fit.chi2 / (3.0 * double(n_)));
+    // The query node is now known as well as the closure says (in the map frame).
+    const Eigen::Matrix2d R = Eigen::Rotation2Dd(m_graph->nodes.at(k).yaw()).toRotationMatrix();
+    Eigen::Matrix3d pinned = Eigen::Matrix3d::Zero();
+    pinned.topLeftCorner<2, 2>() = R * S * R.transpose();
+    pinned(2, 2) = z.cov(2, 2);
+    uncertainty_.pin(qNode, pinned);
+    lastClosure_ = samples[newest].s;
+    ++stats_.edges;
+    ++(best.direction == WindowDirection::Forward ? stats_.forward : stats_.backward);
+}
+
+JsonObject MagneticWindowERD::describe() const {
+    JsonObject params;
+    params.set("sensor_label", params_.sensorLabel)
+        .set("resample_step", params_.step)
+        .set("window_length", params_.window)
+        .set("query_every", params_.queryEvery)
+        .set("window_sigma", params_.sigma)
+        .set("min_travel_gap", params_.minTravelGap)
+        .set("gate_chi2", params_.gateChi2)
+        .set("gate_heading_drift", params_.uncertainty.headingBias)
+        .set("gate_floor", params_.uncertainty.floor)
+        .set("test_quantile", params_.quantile)
+        .set("min_posterior", params_.minPosterior)
+        .set("distinct_radius", params_.distinctRadius)
+        .set("closure_every", params_.closureEvery)
+        .set("sigma_cross", params_.sigmaCross)
+        .set("turn_floor_deg", params_.turnFloorDeg);
+    double total = 0, worst = 0;
+    for (double ms : stats_.queryMs) {
+        total += ms;
+        worst = std::max(worst, ms);
+    }
+    JsonObject stats;
+    stats.set("readings", stats_.readings)
+        .set("dropped_readings", stats_.droppedReadings)
+        .set("other_sensor_readings", stats_.otherSensors)
+        .set("queries", stats_.queries)
+        .set("flat", stats_.flat)
+        .set("no_candidate", stats_.noCandidate)
+        .set("no_fit", stats_.noFit)
+        .set("ambiguous", stats_.ambiguous)
+        .set("accepted", stats_.accepted)
+        .set("edges", stats_.edges)
+        .set("forward_edges", stats_.forward)
+        .set("backward_edges", stats_.backward)
+        .set("query_ms_mean", stats_.queryMs.empty() ? 0.0 : total / double(stats_.queryMs.size()))
+        .set("query_ms_max", worst);
+    return JsonObject().set("class", getClassName()).set("params", params).set("stats", stats);
+}
+
+}  // namespace lodestone::graphslam

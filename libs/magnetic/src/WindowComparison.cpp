@@ -1,0 +1,72 @@
+#include <lodestone/magnetic/WindowComparison.h>
+
+#include <Eigen/Core>
+#include <cmath>
+#include <stdexcept>
+
+namespace lodestone::magnetic {
+
+WindowFit compareWindows(const std::vector<TrackSample>& samples, std::size_t query,
+                         std::size_t target, std::size_t n, WindowDirection direction,
+                         double sigma, double turnPrior, double turnPriorVariance) {
+    // Horizontal parts h, turned by theta: |h_q - R(theta) h_t|^2 summed is
+    // K - 2 (C cos theta + S sin theta) = K - 2 M cos(theta - theta*), with C the dot and S the
+    // cross products summed; theta = -(psi_q - psi_t) since readings are in the robot frame.
+    double vertical = 0, K = 0, C = 0, S = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+        const auto& q = samples[query + k].value;
+        const auto& t =
+            samples[direction == WindowDirection::Forward ? target + k : target + n - 1 - k].value;
+        const double dz = double(q[2]) - double(t[2]);
+        vertical += dz * dz;
+        K += double(q[0]) * q[0] + double(q[1]) * q[1] + double(t[0]) * t[0] + double(t[1]) * t[1];
+        C += double(t[0]) * q[0] + double(t[1]) * q[1];
+        S += double(t[0]) * q[1] - double(t[1]) * q[0];
+    }
+    const double s2 = sigma * sigma;
+    const double M = std::hypot(C, S);
+    const double thetaStar = std::atan2(S, C);
+    // Near theta* the field term is (K - 2M)/s2 + (M/s2)(theta - theta*)^2: information M/s2,
+    // combined with the prior's 1/variance (the prior wrapped next to theta*).
+    const double fieldInfo = M / s2;
+    const double priorInfo = std::isfinite(turnPriorVariance) && turnPriorVariance > 0
+                                 ? 1.0 / turnPriorVariance
+                                 : 0.0;
+    const double theta0 = thetaStar + std::remainder(-turnPrior - thetaStar, 2 * M_PI);
+    WindowFit fit;
+    const double info = fieldInfo + priorInfo;
+    const double theta = info > 0 ? (fieldInfo * thetaStar + priorInfo * theta0) / info : thetaStar;
+    fit.chi2 = (vertical + K - 2 * M * std::cos(theta - thetaStar)) / s2 +
+               priorInfo * (theta - theta0) * (theta - theta0);
+    fit.turn = std::remainder(-theta, 2 * M_PI);
+    fit.turnVariance = info > 0 ? 1.0 / info : INFINITY;
+    return fit;
+}
+
+double windowExcitation(const std::vector<TrackSample>& samples, std::size_t first, std::size_t n,
+                        double sigma) {
+    if (n < 2) return 0;
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (std::size_t k = 0; k < n; ++k) mean += samples[first + k].value.head<3>().cast<double>();
+    mean /= double(n);
+    double sum = 0;
+    for (std::size_t k = 0; k < n; ++k)
+        sum += (samples[first + k].value.head<3>().cast<double>() - mean).squaredNorm();
+    return sum / (sigma * sigma);
+}
+
+double chiSquareQuantile(double dof, double p) {
+    if (!(dof > 0) || !(p > 0 && p < 1)) throw std::invalid_argument("chiSquareQuantile: bad input");
+    // The standard normal quantile, by bisection on the normal CDF (exact to 1e-12).
+    double lo = -40, hi = 40;
+    for (int i = 0; i < 200 && hi - lo > 1e-12; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (0.5 * std::erfc(-mid / std::sqrt(2.0)) < p ? lo : hi) = mid;
+    }
+    const double z = 0.5 * (lo + hi);
+    const double a = 2.0 / (9.0 * dof);
+    const double c = 1 - a + z * std::sqrt(a);
+    return dof * c * c * c;
+}
+
+}  // namespace lodestone::magnetic
