@@ -1,5 +1,6 @@
 #include <lodestone/magnetic/WindowComparison.h>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <cmath>
 #include <stdexcept>
@@ -36,11 +37,56 @@ WindowFit compareWindows(const std::vector<TrackSample>& samples, std::size_t qu
     WindowFit fit;
     const double info = fieldInfo + priorInfo;
     const double theta = info > 0 ? (fieldInfo * thetaStar + priorInfo * theta0) / info : thetaStar;
-    fit.chi2 = (vertical + K - 2 * M * std::cos(theta - thetaStar)) / s2 +
-               priorInfo * (theta - theta0) * (theta - theta0);
+    fit.turnPriorChi2 = priorInfo * (theta - theta0) * (theta - theta0);
+    fit.chi2 = (vertical + K - 2 * M * std::cos(theta - thetaStar)) / s2 + fit.turnPriorChi2;
     fit.turn = std::remainder(-theta, 2 * M_PI);
     fit.turnVariance = info > 0 ? 1.0 / info : INFINITY;
     return fit;
+}
+
+Eigen::MatrixX3d windowResiduals(const std::vector<TrackSample>& samples, std::size_t query,
+                                 std::size_t target, std::size_t n, WindowDirection direction,
+                                 const WindowFit& fit) {
+    // The target's horizontal parts turned into the query's frame: R(-turn).
+    const double c = std::cos(fit.turn), s = std::sin(fit.turn);
+    Eigen::MatrixX3d d(static_cast<Eigen::Index>(n), 3);
+    for (std::size_t k = 0; k < n; ++k) {
+        const auto& q = samples[query + k].value;
+        const auto& t =
+            samples[direction == WindowDirection::Forward ? target + k : target + n - 1 - k].value;
+        const auto r = static_cast<Eigen::Index>(k);
+        d(r, 0) = double(q[0]) - (c * t[0] + s * t[1]);
+        d(r, 1) = double(q[1]) - (-s * t[0] + c * t[1]);
+        d(r, 2) = double(q[2]) - double(t[2]);
+    }
+    return d;
+}
+
+WindowNullModel::WindowNullModel(std::size_t n, double step, double sigma, double sigmaF,
+                                 double lengthScale)
+    : sigma2_(sigma * sigma) {
+    const auto m = static_cast<Eigen::Index>(n);
+    Eigen::MatrixXd C(m, m);
+    for (Eigen::Index i = 0; i < m; ++i) {
+        for (Eigen::Index j = 0; j < m; ++j) {
+            const double r = double(i - j) * step / lengthScale;
+            C(i, j) = 2 * sigmaF * sigmaF * std::exp(-0.5 * r * r) + (i == j ? sigma2_ : 0.0);
+        }
+    }
+    const Eigen::LLT<Eigen::MatrixXd> llt(C);
+    nullInverse_ = llt.solve(Eigen::MatrixXd::Identity(m, m));
+    const double logDetNull = 2 * llt.matrixLLT().diagonal().array().log().sum();
+    // Per component: -1/2 log det(2 pi sigma^2 I) + 1/2 log det(2 pi C); three components.
+    logNormalizers_ = 3 * 0.5 * (logDetNull - double(m) * std::log(sigma2_));
+}
+
+double WindowNullModel::logLikelihoodRatio(const Eigen::MatrixX3d& d) const {
+    double same = 0, unrelated = 0;
+    for (int c = 0; c < 3; ++c) {
+        same += d.col(c).squaredNorm() / sigma2_;
+        unrelated += d.col(c).dot(nullInverse_ * d.col(c));
+    }
+    return -0.5 * same + 0.5 * unrelated + logNormalizers_;
 }
 
 double windowExcitation(const std::vector<TrackSample>& samples, std::size_t first, std::size_t n,

@@ -1,10 +1,11 @@
 #pragma once
-// A scripted run of MagneticGpERD alone: the nodes' odometry steps and records (with their
-// magnetometer readings) replayed through the engine with CeresGSO, the ERD configured from
-// `ini`.
+// A scripted run of one magnetic loop closer alone (MagneticGpERD, MagneticWindowERD): the
+// nodes' odometry steps and records (with their magnetometer readings) replayed through the
+// engine with CeresGSO, the ERD configured from `ini`.
 #include <lodestone/graphslam/CeresGSO.h>
 #include <lodestone/graphslam/CompositeERD.h>
 #include <lodestone/graphslam/MagneticGpERD.h>
+#include <lodestone/graphslam/magnetic/MagneticWindowERD.h>
 #include <lodestone/graphslam/SlamEngine.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/obs/CObservationComment.h>
@@ -17,16 +18,18 @@
 
 namespace lodestone::test {
 
+template <typename Erd = graphslam::MagneticGpERD>
 struct ScriptedMagneticRun {
     std::unique_ptr<graphslam::SlamEngine> engine;
-    const graphslam::MagneticGpERD* erd{nullptr};
+    const Erd* erd{nullptr};
 };
 
-inline ScriptedMagneticRun runMagneticScript(std::vector<ScriptedNRD::Step> steps,
-                                             std::vector<graphslam::NodeRecord> records,
-                                             const std::string& ini) {
-    ScriptedMagneticRun r;
-    auto erd = std::make_unique<graphslam::MagneticGpERD>();
+template <typename Erd = graphslam::MagneticGpERD>
+ScriptedMagneticRun<Erd> runMagneticScript(std::vector<ScriptedNRD::Step> steps,
+                                           std::vector<graphslam::NodeRecord> records,
+                                           const std::string& ini) {
+    ScriptedMagneticRun<Erd> r;
+    auto erd = std::make_unique<Erd>();
     erd->configure(mrpt::config::CConfigFileMemory(ini));
     r.erd = erd.get();
     auto composite = std::make_unique<graphslam::CompositeERD>();

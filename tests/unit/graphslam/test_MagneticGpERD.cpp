@@ -52,7 +52,13 @@ struct MagRun {
     std::vector<mrpt::poses::CPose2D> truth;
 };
 
-MagRun run(const Decoy& decoy, const std::string& ini) {
+struct Script {
+    std::vector<test::ScriptedNRD::Step> steps;
+    std::vector<graphslam::NodeRecord> records;
+    std::vector<mrpt::poses::CPose2D> truth;
+};
+
+Script script(const Decoy& decoy) {
     const double side = 12.0, step = 0.1, n = decoy.separation;
     const Pattern south(3, side, 6.0), extra(4, side, decoy.extra), legs(5, 300.0, 6.0),
         fresh(6, side, 6.0);
@@ -80,8 +86,8 @@ MagRun run(const Decoy& decoy, const std::string& ini) {
                                    {-10, -10, 0, -10, Field::Legs},
                                    {0, -10, 0, 0, Field::Legs},
                                    {0, 0, side, 0, Field::Again}};
-    MagRun r;
-    std::vector<graphslam::NodeRecord> records;
+    Script r;
+    std::vector<graphslam::NodeRecord>& records = r.records;
     double legTravel = 0;  // along the detours, for their own field
     for (std::size_t li = 0; li < path.size(); ++li) {
         const auto& leg = path[li];
@@ -127,7 +133,7 @@ MagRun run(const Decoy& decoy, const std::string& ini) {
         if (leg.field == Field::Legs) legTravel += len;
     }
     // Odometry: the truth's increments, with the noise an odometry would claim.
-    std::vector<test::ScriptedNRD::Step> steps;
+    std::vector<test::ScriptedNRD::Step>& steps = r.steps;
     for (std::size_t i = 1; i < r.truth.size(); ++i) {
         mrpt::poses::CPosePDFGaussian z;
         z.mean = r.truth[i] - r.truth[i - 1];
@@ -139,7 +145,14 @@ MagRun run(const Decoy& decoy, const std::string& ini) {
         z.cov(2, 2) = 2e-6;
         steps.push_back({graphslam::planarConstraint(z), 0});
     }
-    auto run = test::runMagneticScript(std::move(steps), std::move(records), ini);
+    return r;
+}
+
+MagRun run(const Decoy& decoy, const std::string& ini) {
+    auto sc = script(decoy);
+    MagRun r;
+    r.truth = sc.truth;
+    auto run = test::runMagneticScript(std::move(sc.steps), std::move(sc.records), ini);
     r.engine = std::move(run.engine);
     r.erd = run.erd;
     return r;
@@ -172,7 +185,75 @@ Verdict judge(const MagRun& r, double tolerance = 0.3) {
     return v;
 }
 
+/** The same judgement of every closure the engine was proposed, for any decider. */
+Verdict judgeProposals(const graphslam::SlamEngine& engine,
+                       const std::vector<mrpt::poses::CPose2D>& truth, double tolerance = 0.3) {
+    Verdict v;
+    for (const auto& p : engine.proposals()) {
+        const auto& c = p.closure;
+        ++v.closures;
+        const auto& m = c.constraint.mean;
+        const auto implied = truth[c.from] + mrpt::poses::CPose2D(m.x(), m.y(), m.yaw());
+        v.right += std::hypot(implied.x() - truth[c.to].x(), implied.y() - truth[c.to].y()) <=
+                   tolerance;
+        v.toDecoy += std::abs(truth[c.from].y() - truth[c.to].y()) > 0.6;
+    }
+    return v;
+}
+
+/** The decoy run through MagneticWindowERD (its defaults, the gate's heading drift off as for
+ * the GP decider). */
+Verdict runWindow(const Decoy& decoy, graphslam::MagneticWindowERD::Stats* stats = nullptr) {
+    auto sc = script(decoy);
+    const auto r = test::runMagneticScript<graphslam::MagneticWindowERD>(
+        std::move(sc.steps), std::move(sc.records), "[MagneticWindowERD]\ngate_heading_drift = 0\n");
+    if (stats) *stats = r.erd->stats();
+    return judgeProposals(*r.engine, sc.truth);
+}
+
 }  // namespace
+
+TEST(MagneticWindowERD, ALookAlikeOutsideTheGateIsNotMatched) {
+    Decoy d;
+    d.separation = 20;
+    const auto v = runWindow(d);
+    EXPECT_GT(v.closures, 5u);
+    EXPECT_EQ(v.toDecoy, 0u);
+    EXPECT_EQ(v.right, v.closures);
+}
+
+TEST(MagneticWindowERD, InsideTheGateTheLikelierPlaceIsChosen) {
+    Decoy d;
+    d.separation = 2.5;
+    d.extra = 1.0;
+    const auto v = runWindow(d);
+    EXPECT_GT(v.closures, 5u);
+    EXPECT_EQ(v.toDecoy, 0u);
+    EXPECT_EQ(v.right, v.closures);
+}
+
+// An exact copy inside the gate: the field cannot tell the places apart, the position prior
+// can (the copy lies 3 sigma out; the GP decider, which ignores where in the gate a place is,
+// finds them equally likely and closes nothing). Only where the prior alone reaches
+// min_posterior is a closure made, and then to the true place.
+TEST(MagneticWindowERD, AnExactCopyInsideTheGateIsToldApartByThePositionPriorOnly) {
+    Decoy d;
+    d.separation = 2.5;
+    d.extra = 0;
+    graphslam::MagneticWindowERD::Stats stats;
+    const auto v = runWindow(d, &stats);
+    EXPECT_GT(stats.ambiguous, 0u);
+    EXPECT_EQ(v.toDecoy, 0u);
+    EXPECT_EQ(v.right, v.closures);
+}
+
+TEST(MagneticWindowERD, AFieldNeverSeenBeforeGivesNoClosure) {
+    Decoy d;
+    d.separation = 20;
+    d.freshThirdPass = true;
+    EXPECT_EQ(runWindow(d).closures, 0u);
+}
+
 
 TEST(PathUncertainty, MatchesMonteCarloOfTheOdometryModel) {
     // A straight drive of 200 steps of 0.1 m with per-step noise and a heading drift per metre.

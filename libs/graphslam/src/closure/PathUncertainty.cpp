@@ -39,6 +39,8 @@ void PathUncertainty::addNode(TNodeID id, const Constraint* edge, double previou
     }
     steps_.push_back(s);
     sigma_.emplace_back();
+    reference_.push_back(id);
+    pinned_.push_back(false);
     propagate(id);
 }
 
@@ -47,8 +49,12 @@ void PathUncertainty::propagate(std::size_t from) {
         const Step& s = steps_[k];
         if (s.segmentStart) {
             sigma_[k] = startState();
+            reference_[k] = static_cast<TNodeID>(k);
             continue;
         }
+        // (a later pin is propagated over, as its covariance is: the newer pin decides)
+        pinned_[k] = false;
+        reference_[k] = reference_[k - 1];
         // x' = x + R(yaw) d, yaw' = yaw + dyaw + bias * length, bias' = bias.
         Matrix4 F = Matrix4::Identity();
         F(0, 2) = -s.delta.y();
@@ -70,6 +76,8 @@ void PathUncertainty::pin(TNodeID id, const Eigen::Matrix3d& covariance) {
     s.topLeftCorner<3, 3>() = covariance;
     if (sigma_[id].topLeftCorner<2, 2>().trace() < covariance.topLeftCorner<2, 2>().trace()) return;
     sigma_[id] = s;
+    reference_[id] = id;
+    pinned_[id] = true;
     if (id + 1 < steps_.size()) propagate(id + 1);
 }
 
@@ -80,6 +88,22 @@ Eigen::Matrix3d PathUncertainty::covariance(TNodeID id) const {
 double PathUncertainty::gateDistance2(TNodeID id, const Eigen::Vector2d& d) const {
     const Eigen::Matrix2d S = sigma_.at(id).topLeftCorner<2, 2>() +
                               params_.floor * params_.floor * Eigen::Matrix2d::Identity();
+    return d.dot(S.ldlt().solve(d));
+}
+
+double PathUncertainty::relativeGateDistance2(TNodeID target, TNodeID query,
+                                              const Eigen::Vector2d& d) const {
+    const Eigen::Matrix2d St = sigma_.at(target).topLeftCorner<2, 2>();
+    const Eigen::Matrix2d Sq = sigma_.at(query).topLeftCorner<2, 2>();
+    Eigen::Matrix2d S;
+    if (reference_.at(query) <= target && target <= query) {
+        const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(Sq - St);
+        S = eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).asDiagonal() *
+            eig.eigenvectors().transpose();
+    } else {
+        S = Sq + St;
+    }
+    S += params_.floor * params_.floor * Eigen::Matrix2d::Identity();
     return d.dot(S.ldlt().solve(d));
 }
 

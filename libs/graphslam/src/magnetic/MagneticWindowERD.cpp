@@ -34,6 +34,8 @@ void MagneticWindowERD::configure(const mrpt::config::CConfigFileBase& ini) {
     p.window = s.getDouble("window_length", p.window);
     p.queryEvery = s.getDouble("query_every", p.queryEvery);
     p.sigma = s.getDouble("window_sigma", p.sigma);
+    p.lengthScale = s.getDouble("gp_length_scale", p.lengthScale);
+    p.nullOdds = s.getDouble("null_odds", p.nullOdds);
     p.minTravelGap = s.getDouble("min_travel_gap", p.minTravelGap);
     p.gateChi2 = s.getDouble("gate_chi2", p.gateChi2);
     p.uncertainty.headingBias = s.getDouble("gate_heading_drift", p.uncertainty.headingBias);
@@ -50,6 +52,8 @@ void MagneticWindowERD::configure(const mrpt::config::CConfigFileBase& ini) {
     if (!(p.window >= 4 * p.step)) s.fail("window_length", "must be >= 4 x resample_step");
     if (!(p.queryEvery > 0)) s.fail("query_every", "must be > 0");
     if (!(p.sigma > 0)) s.fail("window_sigma", "must be > 0");
+    if (!(p.lengthScale > 0)) s.fail("gp_length_scale", "must be > 0");
+    if (!(p.nullOdds > 0)) s.fail("null_odds", "must be > 0");
     if (!(p.minTravelGap > p.window)) s.fail("min_travel_gap", "must be > window_length");
     if (!(p.gateChi2 > 0)) s.fail("gate_chi2", "must be > 0");
     if (!(p.uncertainty.headingBias >= 0)) s.fail("gate_heading_drift", "must be >= 0");
@@ -159,8 +163,8 @@ void MagneticWindowERD::query(std::size_t first) {
     const auto& samples = track_->samples();
     const std::size_t newest = first + n_ - 1;
     const double dof = 3.0 * double(n_);
-    if (magnetic::windowExcitation(samples, first, n_, params_.sigma) <
-        magnetic::chiSquareQuantile(dof - 3, params_.quantile)) {
+    const double excitation = magnetic::windowExcitation(samples, first, n_, params_.sigma);
+    if (excitation < magnetic::chiSquareQuantile(dof - 3, params_.quantile)) {
         ++stats_.flat;  // a flat field matches anywhere
         stats_.queryMs.push_back(msSince(t0));
         return;
@@ -178,7 +182,8 @@ void MagneticWindowERD::query(std::size_t first) {
         if (samples[c].segment == qSegment) {
             // Where the robot can be, and which way it faces, under the pose uncertainty since
             // the last closure. Across a kidnap the graph knows neither: everywhere, any way.
-            gate2 = uncertainty_.gateDistance2(qNode, here - positionAtSample(c));
+            gate2 = uncertainty_.relativeGateDistance2(
+                static_cast<TNodeID>(samples[c].node), qNode, here - positionAtSample(c));
             if (gate2 > params_.gateChi2) continue;
             turnPrior = qYaw - m_graph->nodes.at(static_cast<TNodeID>(samples[c].node)).yaw();
             turnVariance = yawVariance + turnFloor * turnFloor;
@@ -194,18 +199,16 @@ void MagneticWindowERD::query(std::size_t first) {
         if (best.fit.chi2 > magnetic::chiSquareQuantile(dof, params_.quantile)) {
             ++stats_.noFit;
         } else {
-            // The posterior of the best place against every other place in the gate.
-            const Eigen::Vector2d there = positionAtSample(best.sample);
-            const int bSegment = samples[best.sample].segment;
-            double same = 0, other = 0;
-            for (const auto& k : candidates) {
-                const double w = std::exp(-0.5 * (k.total - best.total));
-                const bool samePlace =
-                    samples[k.sample].segment == bSegment &&
-                    (positionAtSample(k.sample) - there).norm() <= params_.distinctRadius;
-                (samePlace ? same : other) += w;
-            }
-            if (same / (same + other) < params_.minPosterior) {
+            // The null's field amplitude is this window's own: its spread about its mean, the
+            // reading noise (half the difference's variance) taken out. A stretch that varies
+            // little is no strong evidence when it matches another that varies little.
+            const double spread2 = excitation * params_.sigma * params_.sigma / (dof - 3) -
+                                   0.5 * params_.sigma * params_.sigma;
+            const magnetic::WindowNullModel null(n_, params_.step, params_.sigma,
+                                                 std::sqrt(std::max(spread2, 1e-6)),
+                                                 params_.lengthScale);
+            const double post = placePosterior(best, candidates, first, null);
+            if (post < params_.minPosterior) {
                 ++stats_.ambiguous;
             } else {
                 ++stats_.accepted;
@@ -215,6 +218,43 @@ void MagneticWindowERD::query(std::size_t first) {
         }
     }
     stats_.queryMs.push_back(msSince(t0));
+}
+
+double MagneticWindowERD::placePosterior(const Candidate& best, std::vector<Candidate>& all,
+                                        std::size_t first,
+                                        const magnetic::WindowNullModel& null) const {
+    const auto& samples = track_->samples();
+    // The position prior normalized over the candidates (both directions of every sample).
+    double logZ = -INFINITY;
+    for (const auto& k : all) {
+        const double v = -0.5 * k.gate2;
+        logZ = std::max(logZ, v) + std::log1p(std::exp(-std::abs(logZ - v)));
+    }
+    // A candidate that fits worse than this beyond the fit test weighs nothing next to one
+    // that passes it: its likelihood ratio is not worth computing.
+    const double negligible =
+        magnetic::chiSquareQuantile(3.0 * double(n_), 1 - 1e-12) + best.fit.chi2;
+    double maxLog = std::log(params_.nullOdds);
+    for (auto& k : all) {
+        if (k.fit.chi2 > negligible) continue;
+        const auto d = magnetic::windowResiduals(
+            samples, first,
+            k.direction == WindowDirection::Forward ? k.sample + 1 - n_ : k.sample, n_,
+            k.direction, k.fit);
+        k.logWeight = null.logLikelihoodRatio(d) - 0.5 * (k.gate2 + k.fit.turnPriorChi2) - logZ;
+        maxLog = std::max(maxLog, k.logWeight);
+    }
+    const Eigen::Vector2d there = positionAtSample(best.sample);
+    const int segment = samples[best.sample].segment;
+    double same = 0, rest = std::exp(std::log(params_.nullOdds) - maxLog);
+    for (const auto& k : all) {
+        if (!std::isfinite(k.logWeight)) continue;
+        const double w = std::exp(k.logWeight - maxLog);
+        const bool samePlace = samples[k.sample].segment == segment &&
+                               (positionAtSample(k.sample) - there).norm() <= params_.distinctRadius;
+        (samePlace ? same : rest) += w;
+    }
+    return same / (same + rest);
 }
 
 void MagneticWindowERD::addClosure(const Candidate& best, const std::vector<Candidate>& all,
@@ -286,6 +326,8 @@ JsonObject MagneticWindowERD::describe() const {
         .set("window_length", params_.window)
         .set("query_every", params_.queryEvery)
         .set("window_sigma", params_.sigma)
+        .set("gp_length_scale", params_.lengthScale)
+        .set("null_odds", params_.nullOdds)
         .set("min_travel_gap", params_.minTravelGap)
         .set("gate_chi2", params_.gateChi2)
         .set("gate_heading_drift", params_.uncertainty.headingBias)

@@ -2,6 +2,7 @@
 
 #include <lodestone/magnetic/SupernodeTrack.h>
 
+#include <Eigen/Core>
 #include <cmath>
 #include <cstddef>
 #include <vector>
@@ -19,6 +20,7 @@ struct WindowFit {
     /** -2 log-likelihood of the differences: the sum of squared component differences over
      * sigma^2 at the best turn, plus the turn's prior term ((turn - prior)^2 / variance). */
     double chi2{INFINITY};
+    double turnPriorChi2{0};  ///< the turn's prior term alone
     double turn{0};          ///< [rad] the query's heading minus the target's, from the field
     double turnVariance{0};  ///< [rad^2] its posterior variance
 };
@@ -32,6 +34,28 @@ struct WindowFit {
 WindowFit compareWindows(const std::vector<TrackSample>& samples, std::size_t query,
                          std::size_t target, std::size_t n, WindowDirection direction,
                          double sigma, double turnPrior, double turnPriorVariance);
+
+/** The differences of compareWindows' pairs at `fit`'s turn (n x 3, query minus turned target). */
+Eigen::MatrixX3d windowResiduals(const std::vector<TrackSample>& samples, std::size_t query,
+                                 std::size_t target, std::size_t n, WindowDirection direction,
+                                 const WindowFit& fit);
+
+/** How much likelier a window's differences are under "the same place" (each component
+ * N(0, sigma^2), independent) than under "two unrelated places": each component then differs
+ * as two independent draws of the field's anomalies along the path do, N(0, 2 K + sigma^2 I)
+ * with K the squared-exponential kernel (sigmaF, lengthScale) of lodestone-magfit's fit over
+ * the window's sample spacing. A chance look-alike far away fits no better than two unrelated
+ * stretches usually do; the log ratio says by how much better this one does. */
+class WindowNullModel {
+  public:
+    WindowNullModel(std::size_t n, double step, double sigma, double sigmaF, double lengthScale);
+    /** log p(d | same place) - log p(d | unrelated places) for the residuals `d` (n x 3). */
+    double logLikelihoodRatio(const Eigen::MatrixX3d& d) const;
+
+  private:
+    Eigen::MatrixXd nullInverse_;
+    double sigma2_{1}, logNormalizers_{0};
+};
 
 /** sum_k |q_k - mean(q)|^2 / sigma^2 over the window [first, first + n): how far the field
  * there is from flat, in units of the noise (chi-square with 3(n-1) dof if it were flat). */

@@ -42,6 +42,13 @@ class PathUncertainty {
     /** Squared Mahalanobis distance of the map-frame offset `d` between `id` and a stored
      * place, under its position covariance plus floor^2 I. */
     double gateDistance2(TNodeID id, const Eigen::Vector2d& d) const;
+    /** Squared Mahalanobis distance of the offset `d` of `query` from the earlier node
+     * `target` under their relative uncertainty: where `target` lies on the chain since the
+     * place `query` is known from (its last pin or segment start), the growth between the two
+     * (Sigma_query - Sigma_target, made positive semi-definite): a place a few metres back on
+     * the same unbroken path is not "anywhere the robot may have drifted"; otherwise both
+     * uncertainties added. Plus floor^2 I, as gateDistance2. */
+    double relativeGateDistance2(TNodeID target, TNodeID query, const Eigen::Vector2d& d) const;
     std::size_t size() const { return steps_.size(); }
     const Params& params() const { return params_; }
 
@@ -61,6 +68,8 @@ class PathUncertainty {
     Params params_;
     std::vector<Step> steps_;
     std::vector<Matrix4> sigma_;
+    std::vector<TNodeID> reference_;  // per node: its last pin or segment start
+    std::vector<bool> pinned_;
 };
 
 }  // namespace lodestone::graphslam::closure

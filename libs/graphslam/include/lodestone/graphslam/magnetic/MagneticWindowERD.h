@@ -25,9 +25,14 @@ namespace lodestone::graphslam {
  *     pose uncertainty since the last closure; across a kidnap, everywhere);
  *   - fit: the best candidate's differences must be noise (chi-square, 3n dof);
  *   - distinct: the posterior of the best place (candidates within `distinct_radius` of it
- *     are the same place, on any earlier pass) against every other candidate in the gate
- *     must reach `min_posterior`; a look-alike elsewhere, or a field too smooth to say where
- *     along the path, leaves the window undecided.
+ *     are the same place, on any earlier pass) against every other candidate in the gate and
+ *     against the null hypothesis - no earlier place: the window differs from each candidate
+ *     as two unrelated stretches of a field as lively as this window's do
+ *     (magnetic::WindowNullModel with the window's own spread) - must reach
+ *     `min_posterior`. Each candidate's weight is its likelihood ratio over the null times its
+ *     position prior normalized over the candidates, so a wide gate (many places to be
+ *     fooled by) asks for more evidence. A look-alike elsewhere, a field too smooth to say
+ *     where along the path, or too little field for the gate's size leaves it undecided.
  * An accepted window gives one node-to-node edge: the query node on the target's path,
  * its heading turned by the field's relative heading, along-track sigma from the fit's
  * curvature, across-track `sigma_cross`. INI section [MagneticWindowERD]. */
@@ -37,11 +42,16 @@ class MagneticWindowERD : public EdgeDecider {
         std::string sensorLabel;   ///< only this magnetometer ("": the first one seen)
         double saturation{1000.0};  ///< [uT] a component this large is a saturated reading
         double step{0.05};          ///< [m] readings resampled by travel
-        double window{1.0};         ///< [m] of path per window (Kok & Solin: ~1 s of walking)
+        double window{1.5};  ///< [m] of path per window (Kok & Solin: ~1 s of walking; README)
         double queryEvery{0.1};     ///< [m] of travel between queries
         /** [uT] how well one reading repeats between two passes of a place, per component
          * (the difference's sigma: sensor noise of both passes, height and tilt). */
         double sigma{1.0};
+        /** [m] the field's correlation length along a path (lodestone-magfit's fit): with
+         * the query window's own spread, how two unrelated stretches differ - the null
+         * hypothesis every candidate must beat. */
+        double lengthScale{0.28};
+        double nullOdds{1.0};  ///< prior odds of "no earlier place" against "one of the candidates"
         double minTravelGap{4.0};    ///< [m] targets the robot left at least this long ago
         double gateChi2{11.83};      ///< 2 dof, 99.73 %
         closure::PathUncertainty::Params uncertainty;
@@ -80,6 +90,7 @@ class MagneticWindowERD : public EdgeDecider {
         magnetic::WindowFit fit;
         double gate2{0};   ///< position prior's squared Mahalanobis distance
         double total{0};   ///< fit.chi2 + gate2
+        double logWeight{-INFINITY};  ///< log of its posterior weight (unnormalized)
     };
     void rebuild();
     void onNode(TNodeID id);
@@ -87,6 +98,10 @@ class MagneticWindowERD : public EdgeDecider {
     /** Both directions' fits of stored sample `c` (as many as its windows allow). */
     void compareAt(std::size_t c, std::size_t first, double gate2, double turnPrior,
                    double turnVariance, std::vector<Candidate>& out) const;
+    /** The posterior of the best candidate's place against every other place and against
+     * the null (no earlier place), candidates' logWeight filled in. */
+    double placePosterior(const Candidate& best, std::vector<Candidate>& all, std::size_t first,
+                          const magnetic::WindowNullModel& null) const;
     void addClosure(const Candidate& best, const std::vector<Candidate>& all, std::size_t first);
     Eigen::Vector2d positionAtSample(std::size_t i) const;
 
