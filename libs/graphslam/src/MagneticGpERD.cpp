@@ -21,7 +21,7 @@ void MagneticGpERD::rebuild() {
     index_ = std::make_unique<magnetic::SupernodeIndex>(
         track_->channels(), track_->samplesPerSupernode(), params_.indexBins);
     matcher_ = std::make_unique<magnetic::BundleMatcher>(params_.bundle);
-    uncertainty_ = closure::PathUncertainty(params_.uncertainty);
+    path_ = MagneticPath(params_.uncertainty);
 }
 
 void MagneticGpERD::configure(const mrpt::config::CConfigFileBase& ini) {
@@ -141,48 +141,16 @@ mrpt::math::TPoint2D MagneticGpERD::positionOf(TNodeID id) const {
 }
 
 void MagneticGpERD::onNode(TNodeID id) {
-    const NodeRecord& rec = nodes_->at(id);
-    double step = 0, heading = m_graph->nodes.at(id).yaw();
-    double t0 = rec.timestamp;
-    const Constraint* odometry = nullptr;
-    if (id > 0) {
-        const auto e = m_graph->edges.find({id - 1, id});
-        // No travel across a kidnap: the edge there says nothing of the path.
-        if (e != m_graph->edges.end() && rec.segment == segment_.back()) {
-            step = std::hypot(e->second.mean.x(), e->second.mean.y());
-            odometry = &e->second;
-        }
-        t0 = nodes_->at(id - 1).timestamp;
-    }
-    uncertainty_.addNode(id, odometry, id > 0 ? m_graph->nodes.at(id - 1).yaw() : 0.0);
-    const double s0 = travel_.empty() ? 0.0 : travel_.back();
-    travel_.push_back(s0 + step);
-    segment_.push_back(rec.segment);
+    const double heading = m_graph->nodes.at(id).yaw();
+    const int segment = nodes_->at(id).segment;
     constrained_.push_back(false);
-    for (const auto& m : rec.magnetic) {
-        if (params_.sensorLabel.empty()) params_.sensorLabel = m.sensorLabel;
-        if (m.sensorLabel != params_.sensorLabel) {
-            ++stats_.otherSensors;
-            continue;
-        }
-        ++stats_.readings;
-        // The field in the robot frame: the sensor's mounting applied.
-        const auto& R = m.sensorPose.getRotationMatrix();
-        const Eigen::Vector3d inSensor(m.field.x, m.field.y, m.field.z);
-        if (!magnetic::usableReading(inSensor, params_.saturation)) {
-            ++stats_.droppedReadings;
-            continue;
-        }
-        const Eigen::Vector3d b = R.asEigen() * inSensor;
-        const double f = rec.timestamp > t0
-                             ? std::clamp((m.timestamp - t0) / (rec.timestamp - t0), 0.0, 1.0)
-                             : 1.0;
-        for (const auto& sn :
-             track_->add(s0 + f * step, magnetic::fieldFeature(b, heading, params_.mode), id,
-                         rec.segment)) {
-            query(sn);
-        }
-    }
+    path_.addNode(id, *m_graph, *nodes_, params_.sensorLabel, params_.saturation,
+                  [&](double s, const Eigen::Vector3d& b) {
+                      for (const auto& sn : track_->add(
+                               s, magnetic::fieldFeature(b, heading, params_.mode), id, segment)) {
+                          query(sn);
+                      }
+                  });
 }
 
 void MagneticGpERD::query(const magnetic::Supernode& q) {
@@ -214,7 +182,7 @@ void MagneticGpERD::query(const magnetic::Supernode& q) {
             if (t.segment == q.segment) {
                 const auto there = positionOf(static_cast<TNodeID>(samples[t.last - 1].node));
                 const Eigen::Vector2d d(here.x - there.x, here.y - there.y);
-                if (uncertainty_.gateDistance2(qNode, d) > params_.gateChi2) {
+                if (path_.uncertainty.gateDistance2(qNode, d) > params_.gateChi2) {
                     ++stats_.gatedOut;
                     continue;
                 }
@@ -324,9 +292,9 @@ JsonObject MagneticGpERD::describe() const {
         worst = std::max(worst, ms);
     }
     JsonObject stats;
-    stats.set("readings", stats_.readings)
-        .set("dropped_readings", stats_.droppedReadings)
-        .set("other_sensor_readings", stats_.otherSensors)
+    stats.set("readings", path_.counts.readings)
+        .set("dropped_readings", path_.counts.dropped)
+        .set("other_sensor_readings", path_.counts.otherSensors)
         .set("supernodes", stats_.supernodes)
         .set("flat_supernodes", stats_.flatSupernodes)
         .set("matched_supernodes", stats_.matchedSupernodes)

@@ -10,13 +10,13 @@
 namespace lodestone::graphslam {
 
 bool MagneticGpERD::nodeAtTravel(double s, int segment, TNodeID& k, double& frac) const {
-    const auto it = std::upper_bound(travel_.begin(), travel_.end(), s);
-    if (it == travel_.begin() || it == travel_.end()) return false;
-    const auto next = static_cast<std::size_t>(it - travel_.begin());
+    const auto it = std::upper_bound(path_.travel.begin(), path_.travel.end(), s);
+    if (it == path_.travel.begin() || it == path_.travel.end()) return false;
+    const auto next = static_cast<std::size_t>(it - path_.travel.begin());
     k = static_cast<TNodeID>(next - 1);
-    if (segment_[k] != segment || segment_[next] != segment) return false;
-    const double span = travel_[next] - travel_[k];
-    frac = span > 0 ? (s - travel_[k]) / span : 0.0;
+    if (path_.segment[k] != segment || path_.segment[next] != segment) return false;
+    const double span = path_.travel[next] - path_.travel[k];
+    frac = span > 0 ? (s - path_.travel[k]) / span : 0.0;
     return true;
 }
 
@@ -106,7 +106,7 @@ void MagneticGpERD::addPathEdges(const magnetic::BundleMatch& b, std::size_t qBe
         if (constrained_[qn] || qn % static_cast<std::size_t>(params_.edgeEvery) != 0) continue;
         TNodeID k;
         double frac;
-        if (!nodeAtTravel(travel_[qn] + b.offset + shift.shift, tSegment, k, frac)) continue;
+        if (!nodeAtTravel(path_.travel[qn] + b.offset + shift.shift, tSegment, k, frac)) continue;
         const auto e = m_graph->edges.find({k, k + 1});
         if (e == m_graph->edges.end()) continue;
         const auto& d = e->second.mean;
@@ -147,7 +147,7 @@ void MagneticGpERD::addEdge(TNodeID target, std::size_t queryNode,
     Eigen::Matrix3d pinned = Eigen::Matrix3d::Zero();
     pinned.topLeftCorner<2, 2>() = R * positionCov * R.transpose();
     pinned(2, 2) = yawVariance;
-    uncertainty_.pin(q, pinned);
+    path_.uncertainty.pin(q, pinned);
     rec.edges.emplace_back(target, q);
     rec.constraints.push_back(c);
     constrained_[queryNode] = true;
@@ -254,7 +254,7 @@ bool MagneticGpERD::alignInPlane(const std::vector<magnetic::BundleMatch>& bundl
         if (constrained_[qn] || qn % static_cast<std::size_t>(params_.edgeEvery) != 0) continue;
         TNodeID k;
         double frac;
-        if (!nodeAtTravel(travel_[qn] + best.offset + shift, sn[best.lastTarget].segment, k, frac))
+        if (!nodeAtTravel(path_.travel[qn] + best.offset + shift, sn[best.lastTarget].segment, k, frac))
             continue;
         if (frac > 0.5) ++k;
         const auto& q = m_graph->nodes.at(static_cast<TNodeID>(qn));

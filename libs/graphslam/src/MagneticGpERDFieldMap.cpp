@@ -43,7 +43,7 @@ void MagneticGpERD::matchFieldMap(const magnetic::Supernode& q) {
     // error (gate_floor), as for the sequence matcher's candidates. A gate wider than the
     // search may cover is not searched: a place outside could fit as well.
     const double floor2 = params_.uncertainty.floor * params_.uncertainty.floor;
-    const Eigen::Matrix2d gate = uncertainty_.covariance(static_cast<TNodeID>(qNode)).topLeftCorner<2, 2>() +
+    const Eigen::Matrix2d gate = path_.uncertainty.covariance(static_cast<TNodeID>(qNode)).topLeftCorner<2, 2>() +
                                  floor2 * Eigen::Matrix2d::Identity();
     const double gateReach = magnetic::gateRadius(gate, fm.search.gateChi2);
     if (gateReach > fm.search.maxRadius) {

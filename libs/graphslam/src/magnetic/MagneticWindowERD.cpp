@@ -1,6 +1,5 @@
 #include <lodestone/config/IniSection.h>
 #include <lodestone/graphslam/magnetic/MagneticWindowERD.h>
-#include <lodestone/magnetic/FieldFeatures.h>
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -22,7 +21,7 @@ void MagneticWindowERD::rebuild() {
     track_ = std::make_unique<magnetic::SupernodeTrack>(
         magnetic::SupernodeTrack::Params{params_.step, params_.window, params_.step}, 3);
     n_ = track_->samplesPerSupernode();
-    uncertainty_ = closure::PathUncertainty(params_.uncertainty);
+    path_ = MagneticPath(params_.uncertainty);
 }
 
 void MagneticWindowERD::configure(const mrpt::config::CConfigFileBase& ini) {
@@ -77,47 +76,16 @@ bool MagneticWindowERD::updateState(mrpt::obs::CActionCollection::Ptr,
 }
 
 void MagneticWindowERD::onNode(TNodeID id) {
-    const NodeRecord& rec = nodes_->at(id);
-    double step = 0;
-    double t0 = rec.timestamp;
-    const Constraint* odometry = nullptr;
-    if (id > 0) {
-        const auto e = m_graph->edges.find({id - 1, id});
-        // No travel across a kidnap: the edge there says nothing of the path.
-        if (e != m_graph->edges.end() && rec.segment == segment_.back()) {
-            step = std::hypot(e->second.mean.x(), e->second.mean.y());
-            odometry = &e->second;
-        }
-        t0 = nodes_->at(id - 1).timestamp;
-    }
-    uncertainty_.addNode(id, odometry, id > 0 ? m_graph->nodes.at(id - 1).yaw() : 0.0);
-    const double s0 = travel_.empty() ? 0.0 : travel_.back();
-    travel_.push_back(s0 + step);
-    segment_.push_back(rec.segment);
-    for (const auto& m : rec.magnetic) {
-        if (params_.sensorLabel.empty()) params_.sensorLabel = m.sensorLabel;
-        if (m.sensorLabel != params_.sensorLabel) {
-            ++stats_.otherSensors;
-            continue;
-        }
-        ++stats_.readings;
-        const Eigen::Vector3d inSensor(m.field.x, m.field.y, m.field.z);
-        if (!magnetic::usableReading(inSensor, params_.saturation)) {
-            ++stats_.droppedReadings;
-            continue;
-        }
-        // The field in the levelled robot frame: the sensor's mounting applied.
-        const Eigen::Vector3d b = m.sensorPose.getRotationMatrix().asEigen() * inSensor;
-        const double f = rec.timestamp > t0
-                             ? std::clamp((m.timestamp - t0) / (rec.timestamp - t0), 0.0, 1.0)
-                             : 1.0;
-        for (const auto& w : track_->add(s0 + f * step, b, id, rec.segment)) {
-            const double s = track_->samples()[w.last - 1].s;
-            if (s - lastQuery_ + 1e-9 < params_.queryEvery) continue;
-            lastQuery_ = s;
-            query(w.first);
-        }
-    }
+    const int segment = nodes_->at(id).segment;
+    path_.addNode(id, *m_graph, *nodes_, params_.sensorLabel, params_.saturation,
+                  [&](double s, const Eigen::Vector3d& b) {
+                      for (const auto& w : track_->add(s, b, id, segment)) {
+                          const double end = track_->samples()[w.last - 1].s;
+                          if (end - lastQuery_ + 1e-9 < params_.queryEvery) continue;
+                          lastQuery_ = end;
+                          query(w.first);
+                      }
+                  });
 }
 
 Eigen::Vector2d MagneticWindowERD::positionAtSample(std::size_t i) const {
@@ -125,10 +93,10 @@ Eigen::Vector2d MagneticWindowERD::positionAtSample(std::size_t i) const {
     const auto& sample = track_->samples()[i];
     const auto k = static_cast<TNodeID>(sample.node);
     const auto& b = m_graph->nodes.at(k);
-    if (k == 0 || segment_[k - 1] != segment_[k] || travel_[k] <= travel_[k - 1])
+    if (k == 0 || path_.segment[k - 1] != path_.segment[k] || path_.travel[k] <= path_.travel[k - 1])
         return {b.x(), b.y()};
     const auto& a = m_graph->nodes.at(k - 1);
-    const double f = std::clamp((sample.s - travel_[k - 1]) / (travel_[k] - travel_[k - 1]), 0.0, 1.0);
+    const double f = std::clamp((sample.s - path_.travel[k - 1]) / (path_.travel[k] - path_.travel[k - 1]), 0.0, 1.0);
     return {a.x() + f * (b.x() - a.x()), a.y() + f * (b.y() - a.y())};
 }
 
@@ -173,7 +141,7 @@ void MagneticWindowERD::query(std::size_t first) {
     const int qSegment = samples[newest].segment;
     const Eigen::Vector2d here = positionAtSample(newest);
     const double qYaw = m_graph->nodes.at(qNode).yaw();
-    const double yawVariance = uncertainty_.covariance(qNode)(2, 2);
+    const double yawVariance = path_.uncertainty.covariance(qNode)(2, 2);
     const double turnFloor = params_.turnFloorDeg * M_PI / 180;
     std::vector<Candidate> candidates;
     for (std::size_t c = 0; c < samples.size() && samples[c].s <= samples[newest].s - params_.minTravelGap;
@@ -182,7 +150,7 @@ void MagneticWindowERD::query(std::size_t first) {
         if (samples[c].segment == qSegment) {
             // Where the robot can be, and which way it faces, under the pose uncertainty since
             // the last closure. Across a kidnap the graph knows neither: everywhere, any way.
-            gate2 = uncertainty_.relativeGateDistance2(
+            gate2 = path_.uncertainty.relativeGateDistance2(
                 static_cast<TNodeID>(samples[c].node), qNode, here - positionAtSample(c));
             if (gate2 > params_.gateChi2) continue;
             turnPrior = qYaw - m_graph->nodes.at(static_cast<TNodeID>(samples[c].node)).yaw();
@@ -281,18 +249,18 @@ void MagneticWindowERD::addClosure(const Candidate& best, const std::vector<Cand
     if (!std::isfinite(sigmaAlong2)) return;
     // The query node's place on the target's path: its travel past the newest reading, the
     // same way along (forward) or back (backward).
-    const double ahead = travel_[qNode] - samples[newest].s;
+    const double ahead = path_.travel[qNode] - samples[newest].s;
     const double sTarget =
         samples[best.sample].s + (best.direction == WindowDirection::Forward ? ahead : -ahead);
-    const auto it = std::upper_bound(travel_.begin(), travel_.end(), sTarget);
-    if (it == travel_.begin() || it == travel_.end()) return;
-    const auto k = static_cast<TNodeID>(it - travel_.begin() - 1);
-    if (segment_[k] != tSegment || segment_[k + 1] != tSegment || k + 1 > qNode) return;
+    const auto it = std::upper_bound(path_.travel.begin(), path_.travel.end(), sTarget);
+    if (it == path_.travel.begin() || it == path_.travel.end()) return;
+    const auto k = static_cast<TNodeID>(it - path_.travel.begin() - 1);
+    if (path_.segment[k] != tSegment || path_.segment[k + 1] != tSegment || k + 1 > qNode) return;
     const auto e = m_graph->edges.find({k, k + 1});
     if (e == m_graph->edges.end()) return;
     const auto& d = e->second.mean;
-    const double span = travel_[k + 1] - travel_[k];
-    const double frac = span > 0 ? (sTarget - travel_[k]) / span : 0.0;
+    const double span = path_.travel[k + 1] - path_.travel[k];
+    const double frac = span > 0 ? (sTarget - path_.travel[k]) / span : 0.0;
     const double turnSigma = params_.turnFloorDeg * M_PI / 180;
     mrpt::poses::CPosePDFGaussian z;
     z.mean = mrpt::poses::CPose2D(frac * d.x(), frac * d.y(), frac * d.yaw() + best.fit.turn);
@@ -313,7 +281,7 @@ void MagneticWindowERD::addClosure(const Candidate& best, const std::vector<Cand
     Eigen::Matrix3d pinned = Eigen::Matrix3d::Zero();
     pinned.topLeftCorner<2, 2>() = R * S * R.transpose();
     pinned(2, 2) = z.cov(2, 2);
-    uncertainty_.pin(qNode, pinned);
+    path_.uncertainty.pin(qNode, pinned);
     lastClosure_ = samples[newest].s;
     ++stats_.edges;
     ++(best.direction == WindowDirection::Forward ? stats_.forward : stats_.backward);
@@ -344,9 +312,9 @@ JsonObject MagneticWindowERD::describe() const {
         worst = std::max(worst, ms);
     }
     JsonObject stats;
-    stats.set("readings", stats_.readings)
-        .set("dropped_readings", stats_.droppedReadings)
-        .set("other_sensor_readings", stats_.otherSensors)
+    stats.set("readings", path_.counts.readings)
+        .set("dropped_readings", path_.counts.dropped)
+        .set("other_sensor_readings", path_.counts.otherSensors)
         .set("queries", stats_.queries)
         .set("flat", stats_.flat)
         .set("no_candidate", stats_.noCandidate)

@@ -2,6 +2,7 @@
 
 #include <lodestone/graphslam/EdgeDecider.h>
 #include <lodestone/graphslam/closure/PathUncertainty.h>
+#include <lodestone/graphslam/magnetic/MagneticPath.h>
 #include <lodestone/magnetic/BundleMatcher.h>
 #include <lodestone/magnetic/FieldFeatures.h>
 #include <lodestone/magnetic/FieldMapSearch.h>
@@ -111,8 +112,7 @@ class MagneticGpERD : public EdgeDecider {
         std::vector<Constraint> constraints;
     };
     struct Stats {
-        std::size_t readings{0}, droppedReadings{0}, otherSensors{0}, supernodes{0},
-            flatSupernodes{0}, matchedSupernodes{0}, gatedOut{0}, bundles{0}, ambiguous{0},
+        std::size_t supernodes{0}, flatSupernodes{0}, matchedSupernodes{0}, gatedOut{0}, bundles{0}, ambiguous{0},
             resolved{0}, gpRejected{0}, alignments{0}, edges{0}, planeRejected{0};
         /** Field-map searches and what became of them. */
         std::size_t mapSearches{0}, mapGateTooWide{0}, mapNoMap{0}, mapNoFit{0}, mapNotAboveNull{0},
@@ -178,10 +178,8 @@ class MagneticGpERD : public EdgeDecider {
     std::unique_ptr<magnetic::SupernodeTrack> track_;
     std::unique_ptr<magnetic::SupernodeIndex> index_;
     std::unique_ptr<magnetic::BundleMatcher> matcher_;
-    std::vector<double> travel_;     // per node [m]
-    std::vector<int> segment_;       // per node
+    MagneticPath path_;              // travel, segment, pose uncertainty per node
     std::vector<bool> constrained_;  // per node: has a magnetic edge already
-    closure::PathUncertainty uncertainty_;
     std::optional<std::size_t> previous_supernode_;
     std::deque<std::size_t> unindexed_;  // supernodes too recent to be matched yet
     TNodeID seen_{0};

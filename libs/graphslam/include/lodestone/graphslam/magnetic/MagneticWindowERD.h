@@ -2,11 +2,11 @@
 
 #include <lodestone/graphslam/EdgeDecider.h>
 #include <lodestone/graphslam/closure/PathUncertainty.h>
+#include <lodestone/graphslam/magnetic/MagneticPath.h>
 #include <lodestone/magnetic/SupernodeTrack.h>
 #include <lodestone/magnetic/WindowComparison.h>
 
 #include <memory>
-#include <optional>
 #include <vector>
 
 namespace lodestone::graphslam {
@@ -22,7 +22,8 @@ namespace lodestone::graphslam {
  *   - excitation: a window whose field is flat within the noise (chi-square, 3(n-1) dof) never
  *     closes - it would match anywhere;
  *   - gate: a target is a candidate only where the robot can be (chi-square, 2 dof, of the
- *     pose uncertainty since the last closure; across a kidnap, everywhere);
+ *     pose uncertainty relative to the target: closure::PathUncertainty::relativeGateDistance2;
+ *     across a kidnap, everywhere);
  *   - fit: the best candidate's differences must be noise (chi-square, 3n dof);
  *   - distinct: the posterior of the best place (candidates within `distinct_radius` of it
  *     are the same place, on any earlier pass) against every other candidate in the gate and
@@ -65,8 +66,7 @@ class MagneticWindowERD : public EdgeDecider {
     };
     /** What became of the queries (the funnel of this decider). */
     struct Stats {
-        std::size_t readings{0}, droppedReadings{0}, otherSensors{0}, queries{0}, flat{0},
-            noCandidate{0}, noFit{0}, ambiguous{0}, accepted{0}, forward{0}, backward{0}, edges{0};
+        std::size_t queries{0}, flat{0}, noCandidate{0}, noFit{0}, ambiguous{0}, accepted{0}, forward{0}, backward{0}, edges{0};
         std::vector<double> queryMs;
     };
 
@@ -106,11 +106,9 @@ class MagneticWindowERD : public EdgeDecider {
     Eigen::Vector2d positionAtSample(std::size_t i) const;
 
     Params params_;
-    std::size_t n_{21};  // samples per window
+    std::size_t n_{0};  // samples per window (rebuild)
     std::unique_ptr<magnetic::SupernodeTrack> track_;
-    std::vector<double> travel_;  // per node [m]
-    std::vector<int> segment_;    // per node
-    closure::PathUncertainty uncertainty_;
+    MagneticPath path_;  // travel, segment, pose uncertainty per node
     TNodeID seen_{0};
     double lastQuery_{-1e18}, lastClosure_{-1e18};  // [m] travel
     Stats stats_;

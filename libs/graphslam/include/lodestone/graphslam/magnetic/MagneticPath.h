@@ -1,0 +1,42 @@
+#pragma once
+
+#include <lodestone/graphslam/NodeStore.h>
+#include <lodestone/graphslam/PoseGraph.h>
+#include <lodestone/graphslam/closure/PathUncertainty.h>
+
+#include <Eigen/Core>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace lodestone::graphslam {
+
+/** The path both magnetic loop closers build from the nodes as they come: each node's travel
+ * and segment, the pose uncertainty along it, and one magnetometer's readings over each node's
+ * interval. */
+class MagneticPath {
+  public:
+    /** What became of the readings. */
+    struct Counts {
+        std::size_t readings{0}, dropped{0}, otherSensors{0};
+    };
+    using ReadingSink = std::function<void(double travel, const Eigen::Vector3d& robotField)>;
+
+    explicit MagneticPath(const closure::PathUncertainty::Params& p = {}) : uncertainty(p) {}
+
+    /** Node `id` (IDs in order): its odometry edge from id - 1 (none at the first node or
+     * across a kidnap: no travel) into `travel` and `uncertainty`; then each reading of the
+     * magnetometer `label` (empty: the first one seen, which `label` then names) in the node's
+     * record, placed along the step by its time between the previous node's and this one's, in
+     * the levelled robot frame (the sensor's mounting applied), to `sink`. NaN, infinite and
+     * saturated (a component over `saturation` uT) readings are counted and skipped. */
+    void addNode(TNodeID id, const Graph& graph, const NodeStore& nodes, std::string& label,
+                 double saturation, const ReadingSink& sink);
+
+    std::vector<double> travel;  ///< per node [m]
+    std::vector<int> segment;    ///< per node
+    closure::PathUncertainty uncertainty;
+    Counts counts;
+};
+
+}  // namespace lodestone::graphslam

@@ -1,0 +1,47 @@
+#include <lodestone/graphslam/magnetic/MagneticPath.h>
+#include <lodestone/magnetic/FieldFeatures.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace lodestone::graphslam {
+
+void MagneticPath::addNode(TNodeID id, const Graph& graph, const NodeStore& nodes,
+                           std::string& label, double saturation, const ReadingSink& sink) {
+    const NodeRecord& rec = nodes.at(id);
+    double step = 0;
+    double t0 = rec.timestamp;
+    const Constraint* odometry = nullptr;
+    if (id > 0) {
+        const auto e = graph.edges.find({id - 1, id});
+        // No travel across a kidnap: the edge there says nothing of the path.
+        if (e != graph.edges.end() && rec.segment == segment.back()) {
+            step = std::hypot(e->second.mean.x(), e->second.mean.y());
+            odometry = &e->second;
+        }
+        t0 = nodes.at(id - 1).timestamp;
+    }
+    uncertainty.addNode(id, odometry, id > 0 ? graph.nodes.at(id - 1).yaw() : 0.0);
+    const double s0 = travel.empty() ? 0.0 : travel.back();
+    travel.push_back(s0 + step);
+    segment.push_back(rec.segment);
+    for (const auto& m : rec.magnetic) {
+        if (label.empty()) label = m.sensorLabel;
+        if (m.sensorLabel != label) {
+            ++counts.otherSensors;
+            continue;
+        }
+        ++counts.readings;
+        const Eigen::Vector3d inSensor(m.field.x, m.field.y, m.field.z);
+        if (!magnetic::usableReading(inSensor, saturation)) {
+            ++counts.dropped;
+            continue;
+        }
+        const double f = rec.timestamp > t0
+                             ? std::clamp((m.timestamp - t0) / (rec.timestamp - t0), 0.0, 1.0)
+                             : 1.0;
+        sink(s0 + f * step, m.sensorPose.getRotationMatrix().asEigen() * inSensor);
+    }
+}
+
+}  // namespace lodestone::graphslam
