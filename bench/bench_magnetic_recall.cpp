@@ -1,13 +1,15 @@
-// Magnetic loop closers judged as place recognition is (precision and recall against the
-// truth), side by side on every recording (bench/magnetic_recordings.h):
+// Magnetic loop closers judged as place recognition (precision and recall against the truth),
+// side by side on every recording (bench/magnetic_recordings.h):
 //   bench_magnetic_recall DATA_DIR OUT_DIR SEEDS INI [INI ...] [--only NAME]
 // Each recording is imported with the drift model for seeds 1..SEEDS and run through
-// lodestone-slam's code path with each INI (a config_ini/ name, or a path); its closures.csv is
-// judged by lodestone-eval closures' rules (eval::evaluateClosures: 2 m revisit passes, a pass
-// found when a closure placing its later node within 0.5 m of the truth ends in it), passes
-// counted apart by direction. A row per recording and INI: passes found over all seeds (at any
-// score), the worst seed's recall, wrong closures (> 0.5 m), ATE median / worst, real-time
-// factor.
+// lodestone-slam's code path (the rawlog written to disk and read back) with each INI (a
+// config_ini/ name, or a path); its closures.csv is judged by lodestone-eval closures' rules
+// (eval::evaluateClosures: 2 m revisit passes, a pass found when a closure placing its later node
+// within 0.5 m of the truth ends in it), passes counted apart by direction. Table 1, a row per
+// recording and INI: passes found over all seeds, the worst seed's recall each way, precision,
+// wrong closures (> 0.5 m), ATE median / worst, real-time factor. Table 2, for deciders that
+// report a truth funnel (MagneticWindowERD): every pass missed, by the furthest stage its true
+// place reached in any query inside it; how often the truth lay inside the position gate.
 #include "magnetic_recordings.h"
 
 #include <lodestone/eval/ClosureEval.h>
@@ -15,11 +17,14 @@
 #include <lodestone/io/TumTrajectory.h>
 #include <lodestone/obs/registerAllClasses.h>
 #include <lodestone/slamapp/SlamRun.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <fstream>
 #include <iostream>
+#include <map>
 #include <sstream>
 
 using namespace lodestone;
@@ -38,11 +43,87 @@ std::string fraction(std::size_t found, std::size_t all) {
     return b;
 }
 
+// MagneticWindowERD::TruthStage, in order, and a pass no query looked at.
+const char* const kStages[] = {"flat",          "no_window", "outside_gate", "no_fit",
+                               "lost_to_other", "ambiguous", "accepted",     "closed"};
+constexpr int kNoQuery = -1;
+
 struct Row {
-    std::size_t passes[2]{0, 0}, found[2]{0, 0}, wrong{0}, closures{0};
-    double worstRecall{INFINITY};
+    std::size_t passes[2]{0, 0}, found[2]{0, 0}, right{0}, judged{0}, wrong{0}, closures{0};
+    double worst[2]{INFINITY, INFINITY};  // the worst seed's recall, each direction
     std::vector<double> ate, realtime;
+    bool funnel{false};
+    std::map<int, std::size_t> missedBy[2];  // furthest stage -> missed passes, each direction
+    std::vector<double> insideGate;          // per seed: share of true places inside the gate
 };
+
+/** The truth funnel of the first edge decider in report.json that has one: per revisiting
+ * query, its node and its stage. */
+bool readFunnel(const std::string& reportPath, std::vector<std::pair<double, int>>& queries,
+                double& insideGate) {
+    std::ifstream in(reportPath);
+    const auto report = nlohmann::json::parse(in);
+    const auto& erd = report["engine"]["edge_decider"];
+    for (const auto& child : erd.value("children", nlohmann::json::array({erd}))) {
+        if (!child.contains("truth_funnel")) continue;
+        const auto& f = child["truth_funnel"];
+        for (std::size_t i = 0; i < f["query_node"].size(); ++i)
+            queries.emplace_back(f["query_node"][i].get<double>(), f["stage"][i].get<int>());
+        insideGate = f["truth_inside_gate"].is_number() ? f["truth_inside_gate"].get<double>() : NAN;
+        return true;
+    }
+    return false;
+}
+
+/** One seed's run judged into `row`; false (with the message on stderr) if it failed. */
+bool judgeRun(const slamapp::SlamRunOptions& o, Row& row) {
+    const auto truth = io::readTumTrajectory(o.groundTruth);
+    const auto nodes = io::readTumTrajectory(o.outDir + "/trajectory.tum");
+    const auto passes = eval::revisitPasses(nodes, truth);
+    const auto qs = eval::evaluateClosures(eval::readClosureLog(o.outDir + "/closures.csv"), nodes, truth);
+    std::vector<bool> found(passes.size(), false);
+    for (const auto& q : qs) {
+        row.closures += q.proposals;
+        row.wrong += q.wrong;
+        row.right += q.right;
+        row.judged += q.judged;
+        for (const auto p : q.detectedPasses) found[p] = true;  // by any matcher
+    }
+    std::size_t all[2] = {0, 0}, hit[2] = {0, 0};
+    for (std::size_t p = 0; p < passes.size(); ++p) {
+        const int d = static_cast<int>(passes[p].direction);
+        ++all[d];
+        hit[d] += found[p];
+    }
+    std::vector<std::pair<double, int>> queries;
+    double inside = NAN;
+    if (readFunnel(o.outDir + "/report.json", queries, inside)) {
+        row.funnel = true;
+        row.insideGate.push_back(inside);
+        for (std::size_t p = 0; p < passes.size(); ++p) {
+            if (found[p]) continue;
+            int furthest = kNoQuery;
+            for (const auto& [node, stage] : queries) {
+                if (node >= double(passes[p].first) && node <= double(passes[p].last))
+                    furthest = std::max(furthest, stage);
+            }
+            ++row.missedBy[static_cast<int>(passes[p].direction)][furthest];
+        }
+    }
+    for (int d = 0; d < 2; ++d) {
+        row.passes[d] += all[d];
+        row.found[d] += hit[d];
+        if (all[d]) row.worst[d] = std::min(row.worst[d], double(hit[d]) / double(all[d]));
+    }
+    return true;
+}
+
+std::string worstOf(double v) {
+    char b[16];
+    if (!std::isfinite(v)) return "-";
+    std::snprintf(b, sizeof b, "%.2f", v);
+    return b;
+}
 
 }  // namespace
 
@@ -64,9 +145,11 @@ int main(int argc, char** argv) {
     const int seeds = std::atoi(argv[3]);
     registerAllClasses();
     const std::string cfg = LODESTONE_CONFIG_INI_DIR;
+    std::vector<std::pair<std::string, Row>> rows;
     std::printf("| recording | INI | same-direction passes found | opposite-direction found | "
-                "worst seed's recall | closures | wrong (> 0.5 m) | ATE median / worst [m] | "
-                "real-time factor |\n|---|---|---|---|---|---|---|---|---|\n");
+                "worst seed's recall: same / opposite | precision | closures | wrong (> 0.5 m) | "
+                "ATE median / worst [m] | real-time factor |\n"
+                "|---|---|---|---|---|---|---|---|---|---|\n");
     for (const auto& rec : benchRecordings(data)) {
         if (!only.empty() && rec.name.find(only) == std::string::npos) continue;
         const auto recording = rec.read();
@@ -96,44 +179,45 @@ int main(int argc, char** argv) {
                 }
                 row.ate.push_back(*r.ateRmse);
                 row.realtime.push_back(imported.duration / wall);
-                const auto truth = io::readTumTrajectory(imported.groundTruth);
-                const auto nodes = io::readTumTrajectory(o.outDir + "/trajectory.tum");
-                const auto closures = eval::readClosureLog(o.outDir + "/closures.csv");
-                std::size_t passes = 0, found = 0;
-                const auto qs = eval::evaluateClosures(closures, nodes, truth);
-                // Passes are the run's (every matcher sees the same); a pass is found by any.
-                std::size_t byDir[2] = {0, 0};
-                if (qs.empty()) {
-                    // no closure at all: count the passes with an empty matcher's evaluation
-                    eval::ReportedClosure none;
-                    none.source = "none";
-                    none.fromTime = none.toTime = -1e9;
-                    const auto q = eval::evaluateClosures({none}, nodes, truth);
-                    for (int d = 0; d < 2; ++d) row.passes[d] += q[0].byDirection[d].passes;
-                    passes = q[0].passes;
-                } else {
-                    for (int d = 0; d < 2; ++d) row.passes[d] += qs[0].byDirection[d].passes;
-                    passes = qs[0].passes;
-                    for (const auto& q : qs) {
-                        row.closures += q.proposals;
-                        row.wrong += q.wrong;
-                        for (int d = 0; d < 2; ++d) byDir[d] = std::max(byDir[d], q.byDirection[d].detected);
-                    }
-                }
-                for (int d = 0; d < 2; ++d) {
-                    row.found[d] += byDir[d];
-                    found += byDir[d];
-                }
-                if (passes) row.worstRecall = std::min(row.worstRecall, double(found) / double(passes));
+                judgeRun(o, row);
             }
-            std::printf("| %s | %s | %s | %s | %.2f | %zu | %zu | %.3f / %.3f | %.0fx |\n",
+            std::printf("| %s | %s | %s | %s | %s / %s | %s | %zu | %zu | %.3f / %.3f | %.0fx |\n",
                         rec.name.c_str(), ini.c_str(), fraction(row.found[0], row.passes[0]).c_str(),
-                        fraction(row.found[1], row.passes[1]).c_str(),
-                        std::isfinite(row.worstRecall) ? row.worstRecall : NAN, row.closures, row.wrong,
-                        median(row.ate), *std::max_element(row.ate.begin(), row.ate.end()),
-                        median(row.realtime));
+                        fraction(row.found[1], row.passes[1]).c_str(), worstOf(row.worst[0]).c_str(),
+                        worstOf(row.worst[1]).c_str(),
+                        row.judged ? worstOf(double(row.right) / double(row.judged)).c_str() : "-",
+                        row.closures, row.wrong, median(row.ate),
+                        *std::max_element(row.ate.begin(), row.ate.end()), median(row.realtime));
             std::fflush(stdout);
+            rows.emplace_back(rec.name + " | " + ini, row);
         }
+    }
+    std::printf("\nPasses missed, by the furthest stage their true place reached (same / opposite "
+                "direction, all seeds):\n\n| recording | INI | no query |");
+    for (const char* s : kStages) std::printf(" %s |", s);
+    std::printf(" truth inside the gate: mean / worst seed |\n|---|---|---|");
+    for (std::size_t k = 0; k < std::size(kStages); ++k) std::printf("---|");
+    std::printf("---|\n");
+    for (const auto& [name, row] : rows) {
+        if (!row.funnel) continue;
+        const auto cell = [&](int stage) {
+            const auto count = [&](int d) {
+                const auto it = row.missedBy[d].find(stage);
+                return it == row.missedBy[d].end() ? std::size_t{0} : it->second;
+            };
+            std::printf(" %zu / %zu |", count(0), count(1));
+        };
+        std::printf("| %s |", name.c_str());
+        for (int stage = kNoQuery; stage < int(std::size(kStages)); ++stage) cell(stage);
+        double sum = 0, worst = INFINITY;
+        std::size_t n = 0;
+        for (double v : row.insideGate) {
+            if (!std::isfinite(v)) continue;
+            sum += v;
+            worst = std::min(worst, v);
+            ++n;
+        }
+        std::printf(" %s / %s |\n", n ? worstOf(sum / double(n)).c_str() : "-", worstOf(worst).c_str());
     }
     return 0;
 }

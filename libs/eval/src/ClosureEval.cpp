@@ -10,17 +10,10 @@
 
 namespace lodestone::eval {
 
-namespace {
-
-struct Pass {
-    std::size_t first, last;  ///< node IDs
-    PassDirection direction;
-};
-
-/** Revisit passes over the run's nodes: runs of consecutive revisit nodes of one direction. */
-std::vector<Pass> revisitPasses(const std::vector<io::TumPose>& trajectory,
-                                const std::vector<io::TumPose>& truth,
-                                const ClosureEvalOptions& o) {
+/** Runs of consecutive revisit nodes of one direction, cut into pieces. */
+std::vector<RevisitPass> revisitPasses(const std::vector<io::TumPose>& trajectory,
+                                       const std::vector<io::TumPose>& truth,
+                                       const ClosureEvalOptions& o) {
     std::vector<const io::TumPose*> gt(trajectory.size());
     std::vector<double> travel(trajectory.size(), 0);
     const io::TumPose* last = nullptr;
@@ -46,7 +39,7 @@ std::vector<Pass> revisitPasses(const std::vector<io::TumPose>& trajectory,
             if (dyaw >= M_PI - o.revisitYaw) kind[i] = Opposite;
         }
     }
-    std::vector<Pass> passes;
+    std::vector<RevisitPass> passes;
     for (std::size_t i = 0; i < kind.size();) {
         if (kind[i] == None) {
             ++i;
@@ -73,7 +66,6 @@ std::vector<Pass> revisitPasses(const std::vector<io::TumPose>& trajectory,
     return passes;
 }
 
-}  // namespace
 
 std::vector<ReportedClosure> readClosureLog(const std::string& path) {
     {
@@ -119,7 +111,7 @@ std::vector<MatcherQuality> evaluateClosures(const std::vector<ReportedClosure>&
     const auto passOf = [&](long long node) -> std::ptrdiff_t {
         const auto it =
             std::upper_bound(passes.begin(), passes.end(), static_cast<std::size_t>(node),
-                             [](std::size_t v, const Pass& p) { return v < p.first; });
+                             [](std::size_t v, const RevisitPass& p) { return v < p.first; });
         if (it == passes.begin()) return -1;
         const auto& p = *(it - 1);
         return static_cast<std::size_t>(node) <= p.last ? (it - 1) - passes.begin() : -1;
@@ -167,6 +159,7 @@ std::vector<MatcherQuality> evaluateClosures(const std::vector<ReportedClosure>&
             if (c->score > worstWrong) clean.insert(p);
         }
         q.passesDetected = any.size();
+        q.detectedPasses.assign(any.begin(), any.end());
         q.passesAt100 = clean.size();
         for (const auto& p : passes) ++q.byDirection[static_cast<int>(p.direction)].passes;
         for (const auto p : any) ++q.byDirection[static_cast<int>(passes[p].direction)].detected;

@@ -23,14 +23,7 @@ double rms(const std::vector<double>& v) {
 }  // namespace
 
 const io::TumPose* truthAt(const std::vector<io::TumPose>& truth, double t, double maxDt) {
-    const auto it = std::lower_bound(truth.begin(), truth.end(), t,
-                                     [](const io::TumPose& p, double v) { return p.timestamp < v; });
-    const io::TumPose* best = nullptr;
-    for (auto c : {it, it == truth.begin() ? it : it - 1}) {
-        if (c == truth.end()) continue;
-        if (!best || std::abs(c->timestamp - t) < std::abs(best->timestamp - t)) best = &*c;
-    }
-    return best && std::abs(best->timestamp - t) <= maxDt ? best : nullptr;
+    return io::poseNearest(truth, t, maxDt);
 }
 
 std::vector<std::pair<std::size_t, std::size_t>> associate(const std::vector<io::TumPose>& est,

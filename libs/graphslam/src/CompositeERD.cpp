@@ -25,6 +25,7 @@ void CompositeERD::configure(const mrpt::config::CConfigFileBase& ini) {
 void CompositeERD::addChild(std::unique_ptr<EdgeDecider> child) {
     if (m_graph) child->setGraphPtr(m_graph);
     if (nodes_) child->setNodeStore(nodes_);
+    if (truth_) child->setDiagnosticTruth(truth_);
     children_.push_back(std::move(child));
 }
 
@@ -39,6 +40,11 @@ bool CompositeERD::updateState(mrpt::obs::CActionCollection::Ptr action,
 void CompositeERD::setGraphPtr(Graph* graph) {
     EdgeDecider::setGraphPtr(graph);
     for (auto& c : children_) c->setGraphPtr(graph);
+}
+
+void CompositeERD::setDiagnosticTruth(std::shared_ptr<const std::vector<io::TumPose>> truth) {
+    EdgeDecider::setDiagnosticTruth(truth);
+    for (auto& c : children_) c->setDiagnosticTruth(truth);
 }
 
 void CompositeERD::setNodeStore(NodeStore* nodes) {

@@ -44,6 +44,13 @@ std::unique_ptr<SlamEngine> SlamEngine::fromConfig(const mrpt::config::CConfigFi
                                         relocalization::Relocalizer::readParams(ini));
 }
 
+void SlamEngine::setDiagnosticTruth(const std::shared_ptr<const std::vector<io::TumPose>>& truth) {
+    for (SlamComponent* c :
+         std::initializer_list<SlamComponent*>{nrd_.get(), erd_.get(), gso_.get()}) {
+        c->setDiagnosticTruth(truth);
+    }
+}
+
 std::set<std::string> SlamEngine::requiredObservations() const {
     std::set<std::string> all = nrd_->requiredObservations();
     for (const auto& o : erd_->requiredObservations()) all.insert(o);

@@ -2,6 +2,7 @@
 #include <lodestone/io/TumTrajectory.h>
 #include <mrpt/math/CQuaternion.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstdio>
@@ -88,6 +89,17 @@ std::vector<TumPose> readTumTrajectory(const std::string& path) {
         out.push_back({v[0], mrpt::poses::CPose3D(q, v[1], v[2], v[3])});
     }
     return out;
+}
+
+const TumPose* poseNearest(const std::vector<TumPose>& trajectory, double t, double maxDt) {
+    const auto it = std::lower_bound(trajectory.begin(), trajectory.end(), t,
+                                     [](const TumPose& p, double v) { return p.timestamp < v; });
+    const TumPose* best = nullptr;
+    for (auto c : {it, it == trajectory.begin() ? it : it - 1}) {
+        if (c == trajectory.end()) continue;
+        if (!best || std::abs(c->timestamp - t) < std::abs(best->timestamp - t)) best = &*c;
+    }
+    return best && std::abs(best->timestamp - t) <= maxDt ? best : nullptr;
 }
 
 }  // namespace lodestone::io

@@ -257,8 +257,10 @@ SlamRunResult runSlam(const SlamRunOptions& options, std::ostream& out, std::ost
             if (!fs::exists(options.groundTruth)) {
                 throw InputError("cannot open ground truth '" + options.groundTruth + "'");
             }
-            // Read now, not after the run: a bad line is named before any work.
-            io::readTumTrajectory(options.groundTruth);
+            // Read now, not after the run: a bad line is named before any work. The deciders
+            // may report their diagnostics against it.
+            engine->setDiagnosticTruth(std::make_shared<const std::vector<io::TumPose>>(
+                io::readTumTrajectory(options.groundTruth)));
         }
         std::error_code ec;
         fs::create_directories(dir, ec);

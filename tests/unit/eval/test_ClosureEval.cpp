@@ -171,6 +171,14 @@ TEST(ClosureEval, PassesWalkedBackAreCountedApart) {
     EXPECT_EQ(q[0].right, 2u);
     EXPECT_EQ(q[0].wrong, 1u);
     EXPECT_EQ(opposite.at100, 0u);
+    // The passes themselves, in node order; the two found named by index.
+    const auto passes = eval::revisitPasses(truth, truth);
+    ASSERT_EQ(passes.size(), 9u);
+    ASSERT_EQ(q[0].detectedPasses.size(), 2u);
+    const auto& a = passes[q[0].detectedPasses[0]];
+    const auto& b = passes[q[0].detectedPasses[1]];
+    EXPECT_TRUE(a.first <= 170 && 170 <= a.last && a.direction == eval::PassDirection::Opposite);
+    EXPECT_TRUE(b.first <= 250 && 250 <= b.last && b.direction == eval::PassDirection::Same);
     const auto table = eval::formatClosureQuality(q, {});
     EXPECT_NE(table.find("| 5, 0.000 | 4, 0.000 |"), std::string::npos) << table;
 }

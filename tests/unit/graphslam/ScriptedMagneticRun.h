@@ -25,9 +25,9 @@ struct ScriptedMagneticRun {
 };
 
 template <typename Erd = graphslam::MagneticGpERD>
-ScriptedMagneticRun<Erd> runMagneticScript(std::vector<ScriptedNRD::Step> steps,
-                                           std::vector<graphslam::NodeRecord> records,
-                                           const std::string& ini) {
+ScriptedMagneticRun<Erd> runMagneticScript(
+    std::vector<ScriptedNRD::Step> steps, std::vector<graphslam::NodeRecord> records,
+    const std::string& ini, std::shared_ptr<const std::vector<io::TumPose>> truth = nullptr) {
     ScriptedMagneticRun<Erd> r;
     auto erd = std::make_unique<Erd>();
     erd->configure(mrpt::config::CConfigFileMemory(ini));
@@ -37,6 +37,7 @@ ScriptedMagneticRun<Erd> runMagneticScript(std::vector<ScriptedNRD::Step> steps,
     r.engine = std::make_unique<graphslam::SlamEngine>(
         std::make_unique<ScriptedNRD>(std::move(steps), std::move(records)), std::move(composite),
         std::make_unique<graphslam::CeresGSO>());
+    if (truth) r.engine->setDiagnosticTruth(truth);
     const auto tick = mrpt::obs::CObservationComment::Create();
     while (r.engine->process(tick)) {
     }

@@ -16,9 +16,10 @@ namespace {
  * 0.2-0.4 m wide, +-6 uT per component): a metre to the side the field is another. */
 class FloorField {
   public:
-    explicit FloorField(unsigned seed) {
+    explicit FloorField(unsigned seed, double amplitude = 6) {
         std::mt19937 rng(seed);
-        std::uniform_real_distribution<double> x(-6, 26), y(-2, 7), a(-6, 6), w(0.2, 0.4);
+        std::uniform_real_distribution<double> x(-6, 26), y(-2, 7), a(-amplitude, amplitude),
+            w(0.2, 0.4);
         for (int k = 0; k < 3 * 32 * 9; ++k) bumps_.push_back({{x(rng), y(rng)}, {a(rng), a(rng), a(rng)}, w(rng)});
     }
     /** What a magnetometer at `p` facing `yaw` reads, in the levelled robot frame. */
@@ -45,6 +46,7 @@ struct Walk {
     std::vector<mrpt::poses::CPose2D> truth;
     std::unique_ptr<graphslam::SlamEngine> engine;
     graphslam::MagneticWindowERD::Stats stats;
+    std::vector<graphslam::MagneticWindowERD::TruthQuery> funnel;
 };
 
 /** Walks the polyline `corners` at 0.1 m per node, ten readings per node, odometry exact but
@@ -82,11 +84,23 @@ Walk walk(const std::vector<Eigen::Vector2d>& corners, const FloorField& field) 
         z.cov(2, 2) = 2e-6;
         steps.push_back({graphslam::planarConstraint(z), 0});
     }
+    // The truth for the diagnostics: node k at time k.
+    auto truth = std::make_shared<std::vector<io::TumPose>>();
+    for (std::size_t k = 0; k < w.truth.size(); ++k)
+        truth->push_back({double(k), mrpt::poses::CPose3D(w.truth[k])});
     auto r = test::runMagneticScript<graphslam::MagneticWindowERD>(
-        std::move(steps), std::move(records), "[MagneticWindowERD]\ngate_heading_drift = 0\n");
+        std::move(steps), std::move(records), "[MagneticWindowERD]\ngate_heading_drift = 0\n",
+        truth);
     w.stats = r.erd->stats();
+    w.funnel = r.erd->truthQueries();
     w.engine = std::move(r.engine);
     return w;
+}
+
+std::size_t countStage(const Walk& w, graphslam::MagneticWindowERD::TruthStage stage) {
+    std::size_t n = 0;
+    for (const auto& q : w.funnel) n += q.stage == stage;
+    return n;
 }
 
 /** Position error of each proposed closure's `to` placed from the truth of `from`, and its
@@ -122,6 +136,24 @@ TEST(MagneticWindowERD, ACorridorWalkedBackIsRecognisedTheOtherWayRound) {
         EXPECT_GT(c.trueTurn, M_PI - 0.1);   // a node walked the other way ...
         EXPECT_LT(c.heading, 5 * M_PI / 180);  // ... and the closure says so
     }
+    // The funnel against the truth: every revisiting query is walked back, its true place
+    // inside the gate; as many reach an edge as edges were made.
+    using S = graphslam::MagneticWindowERD::TruthStage;
+    ASSERT_GT(w.funnel.size(), 50u);
+    for (const auto& q : w.funnel) {
+        EXPECT_TRUE(q.backward);
+        EXPECT_LE(q.gate2, 11.83);
+    }
+    EXPECT_EQ(countStage(w, S::Closed), w.stats.edges);
+    EXPECT_EQ(countStage(w, S::OutsideGate), 0u);
+}
+
+TEST(MagneticWindowERD, AFlatCorridorIsReportedFlatAndNeverClosed) {
+    const FloorField flat(13, 0.0);  // the earth's field alone
+    const auto w = walk({{0, 0}, {20, 0}, {0, 0}}, flat);
+    EXPECT_TRUE(w.engine->proposals().empty());
+    ASSERT_GT(w.funnel.size(), 50u);
+    EXPECT_EQ(countStage(w, graphslam::MagneticWindowERD::TruthStage::Flat), w.funnel.size());
 }
 
 TEST(MagneticWindowERD, APassOneMetreBesideAnEarlierOneIsNotTheSamePlace) {

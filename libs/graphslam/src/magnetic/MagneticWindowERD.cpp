@@ -125,46 +125,51 @@ void MagneticWindowERD::compareAt(std::size_t c, std::size_t first, double gate2
     }
 }
 
+MagneticWindowERD::Prior MagneticWindowERD::priorAt(std::size_t c, TNodeID qNode,
+                                                   const Eigen::Vector2d& here) const {
+    const auto& samples = track_->samples();
+    Prior p;
+    if (samples[c].segment != path_.segment[qNode]) return p;
+    // Where the robot can be, and which way it faces, under the pose uncertainty relative to
+    // the target. Across a kidnap the graph knows neither: everywhere, any way.
+    const auto target = static_cast<TNodeID>(samples[c].node);
+    p.gate2 = path_.uncertainty.relativeGateDistance2(target, qNode, here - positionAtSample(c));
+    p.turn = m_graph->nodes.at(qNode).yaw() - m_graph->nodes.at(target).yaw();
+    const double turnFloor = params_.turnFloorDeg * M_PI / 180;
+    p.turnVariance = path_.uncertainty.covariance(qNode)(2, 2) + turnFloor * turnFloor;
+    return p;
+}
+
 void MagneticWindowERD::query(std::size_t first) {
     const auto t0 = Clock::now();
     ++stats_.queries;
     const auto& samples = track_->samples();
     const std::size_t newest = first + n_ - 1;
     const double dof = 3.0 * double(n_);
+    Outcome out;
     const double excitation = magnetic::windowExcitation(samples, first, n_, params_.sigma);
-    if (excitation < magnetic::chiSquareQuantile(dof - 3, params_.quantile)) {
-        ++stats_.flat;  // a flat field matches anywhere
-        stats_.queryMs.push_back(msSince(t0));
-        return;
-    }
-    const auto qNode = static_cast<TNodeID>(samples[newest].node);
-    const int qSegment = samples[newest].segment;
-    const Eigen::Vector2d here = positionAtSample(newest);
-    const double qYaw = m_graph->nodes.at(qNode).yaw();
-    const double yawVariance = path_.uncertainty.covariance(qNode)(2, 2);
-    const double turnFloor = params_.turnFloorDeg * M_PI / 180;
+    out.flat = excitation < magnetic::chiSquareQuantile(dof - 3, params_.quantile);
     std::vector<Candidate> candidates;
-    for (std::size_t c = 0; c < samples.size() && samples[c].s <= samples[newest].s - params_.minTravelGap;
-         ++c) {
-        double gate2 = 0, turnPrior = 0, turnVariance = INFINITY;
-        if (samples[c].segment == qSegment) {
-            // Where the robot can be, and which way it faces, under the pose uncertainty since
-            // the last closure. Across a kidnap the graph knows neither: everywhere, any way.
-            gate2 = path_.uncertainty.relativeGateDistance2(
-                static_cast<TNodeID>(samples[c].node), qNode, here - positionAtSample(c));
-            if (gate2 > params_.gateChi2) continue;
-            turnPrior = qYaw - m_graph->nodes.at(static_cast<TNodeID>(samples[c].node)).yaw();
-            turnVariance = yawVariance + turnFloor * turnFloor;
+    if (out.flat) {
+        ++stats_.flat;  // a flat field matches anywhere
+    } else {
+        const auto qNode = static_cast<TNodeID>(samples[newest].node);
+        const Eigen::Vector2d here = positionAtSample(newest);
+        for (std::size_t c = 0;
+             c < samples.size() && samples[c].s <= samples[newest].s - params_.minTravelGap; ++c) {
+            const Prior p = priorAt(c, qNode, here);
+            if (p.gate2 > params_.gateChi2) continue;
+            compareAt(c, first, p.gate2, p.turn, p.turnVariance, candidates);
         }
-        compareAt(c, first, gate2, turnPrior, turnVariance, candidates);
     }
-    if (candidates.empty()) {
+    if (out.flat) {
+    } else if (candidates.empty()) {
         ++stats_.noCandidate;
     } else {
-        const auto best = *std::min_element(
+        out.best = *std::min_element(
             candidates.begin(), candidates.end(),
             [](const Candidate& a, const Candidate& b) { return a.total < b.total; });
-        if (best.fit.chi2 > magnetic::chiSquareQuantile(dof, params_.quantile)) {
+        if (out.best->fit.chi2 > magnetic::chiSquareQuantile(dof, params_.quantile)) {
             ++stats_.noFit;
         } else {
             // The null's field amplitude is this window's own: its spread about its mean, the
@@ -175,16 +180,19 @@ void MagneticWindowERD::query(std::size_t first) {
             const magnetic::WindowNullModel null(n_, params_.step, params_.sigma,
                                                  std::sqrt(std::max(spread2, 1e-6)),
                                                  params_.lengthScale);
-            const double post = placePosterior(best, candidates, first, null);
-            if (post < params_.minPosterior) {
+            out.posterior = placePosterior(*out.best, candidates, first, null);
+            if (out.posterior < params_.minPosterior) {
                 ++stats_.ambiguous;
             } else {
                 ++stats_.accepted;
+                const std::size_t edges = stats_.edges;
                 if (samples[newest].s - lastClosure_ + 1e-9 >= params_.closureEvery)
-                    addClosure(best, candidates, first);
+                    addClosure(*out.best, candidates, first);
+                out.closed = stats_.edges > edges;
             }
         }
     }
+    if (truth_) diagnose(first, out);
     stats_.queryMs.push_back(msSince(t0));
 }
 
@@ -326,7 +334,10 @@ JsonObject MagneticWindowERD::describe() const {
         .set("backward_edges", stats_.backward)
         .set("query_ms_mean", stats_.queryMs.empty() ? 0.0 : total / double(stats_.queryMs.size()))
         .set("query_ms_max", worst);
-    return JsonObject().set("class", getClassName()).set("params", params).set("stats", stats);
+    JsonObject out;
+    out.set("class", getClassName()).set("params", params).set("stats", stats);
+    if (truth_) out.set("truth_funnel", describeTruth());
+    return out;
 }
 
 }  // namespace lodestone::graphslam

@@ -38,6 +38,18 @@ struct ClosureEvalOptions {
  * a matcher that compares in travel order alone can find it. */
 enum class PassDirection { Same = 0, Opposite = 1 };
 
+/** One revisit pass: the run's nodes [first, last] (IDs). */
+struct RevisitPass {
+    std::size_t first{0}, last{0};
+    PassDirection direction{PassDirection::Same};
+};
+
+/** The run's revisit passes as evaluateClosures counts them (`trajectory`: every node of the
+ * run, in ID order). */
+std::vector<RevisitPass> revisitPasses(const std::vector<io::TumPose>& trajectory,
+                                       const std::vector<io::TumPose>& truth,
+                                       const ClosureEvalOptions& options = {});
+
 /** Revisit passes of one direction and how many a matcher found. */
 struct PassRecall {
     std::size_t passes{0};
@@ -58,6 +70,7 @@ struct MatcherQuality {
     std::size_t passesDetected{0};  ///< with a right detection at any score
     std::size_t passesAt100{0};     ///< with a right detection scoring above every wrong one
     PassRecall byDirection[2];      ///< the same, by PassDirection
+    std::vector<std::size_t> detectedPasses;  ///< their indices in revisitPasses(), ascending
     double threshold{NAN};       ///< the highest wrong score (none wrong: NaN)
     double recall() const { return passes ? double(passesDetected) / double(passes) : NAN; }
     double recallAt100() const { return passes ? double(passesAt100) / double(passes) : NAN; }

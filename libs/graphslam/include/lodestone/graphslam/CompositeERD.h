@@ -25,6 +25,7 @@ class CompositeERD : public EdgeDecider {
                      mrpt::obs::CObservation::Ptr observation) override;
     void setGraphPtr(Graph* graph) override;
     void setNodeStore(NodeStore* nodes) override;
+    void setDiagnosticTruth(std::shared_ptr<const std::vector<io::TumPose>> truth) override;
     std::vector<LoopClosure> takeNewLoopClosures() override;
     bool justInsertedLoopClosure() const override;
     void getEdgesStats(std::map<std::string, int>* edge_type_to_num) const override;

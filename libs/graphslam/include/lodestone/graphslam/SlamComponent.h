@@ -2,10 +2,13 @@
 
 #include <lodestone/graphslam/NodeStore.h>
 #include <lodestone/graphslam/ReportJson.h>
+#include <lodestone/io/TumTrajectory.h>
 #include <mrpt/config/CConfigFileBase.h>
 
+#include <memory>
 #include <set>
 #include <string>
+#include <vector>
 
 namespace lodestone::graphslam {
 
@@ -19,6 +22,12 @@ class SlamComponent {
      * config::ConfigError naming file, section and key. */
     virtual void configure(const mrpt::config::CConfigFileBase& ini) = 0;
     virtual void setNodeStore(NodeStore* nodes) { nodes_ = nodes; }
+    /** The run's true trajectory, when it has one (lodestone-slam --ground-truth): what a
+     * decider may report its diagnostics against (a loop closer: which stage lost each true
+     * revisit) - never an input to its decisions. */
+    virtual void setDiagnosticTruth(std::shared_ptr<const std::vector<io::TumPose>> truth) {
+        truth_ = std::move(truth);
+    }
     /** MRPT class names of the observations it cannot work without (e.g.
      * "CObservation3DRangeScan"). */
     virtual std::set<std::string> requiredObservations() const { return {}; }
@@ -27,6 +36,7 @@ class SlamComponent {
 
   protected:
     NodeStore* nodes_{nullptr};
+    std::shared_ptr<const std::vector<io::TumPose>> truth_;
 };
 
 }  // namespace lodestone::graphslam

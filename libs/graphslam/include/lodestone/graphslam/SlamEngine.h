@@ -45,6 +45,8 @@ class SlamEngine {
     NodeDecider& nodeDecider() { return *nrd_; }
     EdgeDecider& edgeDecider() { return *erd_; }
     GraphOptimizer& optimizer() { return *gso_; }
+    /** The run's true trajectory for the deciders' diagnostics (SlamComponent). */
+    void setDiagnosticTruth(const std::shared_ptr<const std::vector<io::TumPose>>& truth);
     /** Union of the deciders' required observation classes. */
     std::set<std::string> requiredObservations() const;
     mrpt::poses::CPose3D currentPose() const;

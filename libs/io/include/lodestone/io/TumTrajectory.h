@@ -40,4 +40,8 @@ class TumTrajectoryWriter {
  * and line for a malformed line. */
 std::vector<TumPose> readTumTrajectory(const std::string& path);
 
+/** The pose of `trajectory` (sorted by time) nearest `t`, if one lies within `maxDt`; else
+ * nullptr. */
+const TumPose* poseNearest(const std::vector<TumPose>& trajectory, double t, double maxDt);
+
 }  // namespace lodestone::io

@@ -7,6 +7,7 @@
 #include <lodestone/magnetic/WindowComparison.h>
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace lodestone::graphslam {
@@ -70,6 +71,28 @@ class MagneticWindowERD : public EdgeDecider {
         std::vector<double> queryMs;
     };
 
+    /** With the run's true trajectory (SlamComponent::setDiagnosticTruth): for every query
+     * whose newest reading revisits an earlier place (within `distinct_radius` of it, at least
+     * `min_travel_gap` of travel later), how far the true place got through the tests. */
+    enum class TruthStage {
+        Flat,         ///< the query window was flat
+        NoWindow,     ///< the true place has no whole window that way (a segment's start or end)
+        OutsideGate,  ///< the true place lay outside the position gate
+        NoFit,        ///< its differences were not noise (fit test)
+        LostToOther,  ///< another place fitted best
+        Ambiguous,    ///< it fitted best, short of min_posterior
+        Accepted,     ///< accepted, no edge (closure_every)
+        Closed        ///< an edge was made
+    };
+    static const char* toString(TruthStage stage);
+    struct TruthQuery {
+        TNodeID queryNode{0};
+        TruthStage stage{TruthStage::Flat};
+        bool backward{false};  ///< the true place walked the other way
+        double gate2{NAN};     ///< the true place's squared Mahalanobis distance in the gate
+        double fitChi2{NAN};
+    };
+
     MagneticWindowERD();
     void configure(const mrpt::config::CConfigFileBase& ini) override;
     const Params& params() const { return params_; }
@@ -81,6 +104,7 @@ class MagneticWindowERD : public EdgeDecider {
     }
     JsonObject describe() const override;
     const Stats& stats() const { return stats_; }
+    const std::vector<TruthQuery>& truthQueries() const { return truthQueries_; }
 
   private:
     /** The best fit of one stored sample as the query's newest reading's place. */
@@ -92,9 +116,24 @@ class MagneticWindowERD : public EdgeDecider {
         double total{0};   ///< fit.chi2 + gate2
         double logWeight{-INFINITY};  ///< log of its posterior weight (unnormalized)
     };
+    /** A candidate's prior: the gate's squared Mahalanobis distance, the graph's relative
+     * heading and its variance (across a kidnap: 0, 0, infinite). */
+    struct Prior {
+        double gate2{0}, turn{0}, turnVariance{INFINITY};
+    };
+    /** What a query came to, for the diagnostics. */
+    struct Outcome {
+        bool flat{false}, closed{false};
+        std::optional<Candidate> best;
+        double posterior{NAN};
+    };
     void rebuild();
     void onNode(TNodeID id);
     void query(std::size_t first);
+    Prior priorAt(std::size_t c, TNodeID qNode, const Eigen::Vector2d& here) const;
+    /** The truth's stage for the query ending at `first` + n - 1 (MagneticWindowFunnel.cpp). */
+    void diagnose(std::size_t first, const Outcome& out);
+    JsonObject describeTruth() const;
     /** Both directions' fits of stored sample `c` (as many as its windows allow). */
     void compareAt(std::size_t c, std::size_t first, double gate2, double turnPrior,
                    double turnVariance, std::vector<Candidate>& out) const;
@@ -112,6 +151,7 @@ class MagneticWindowERD : public EdgeDecider {
     TNodeID seen_{0};
     double lastQuery_{-1e18}, lastClosure_{-1e18};  // [m] travel
     Stats stats_;
+    std::vector<TruthQuery> truthQueries_;
 };
 
 }  // namespace lodestone::graphslam
