@@ -286,15 +286,8 @@ JsonObject MagneticGpERD::describe() const {
         .set("map_search_radius", params_.fieldMap.search.maxRadius)
         .set("map_min_log_ratio", params_.fieldMap.search.minLogRatio)
         .set("map_sigma_n", params_.fieldMap.sigmaN);
-    double total = 0, worst = 0;
-    for (double ms : stats_.queryMs) {
-        total += ms;
-        worst = std::max(worst, ms);
-    }
     JsonObject stats;
-    stats.set("readings", path_.counts.readings)
-        .set("dropped_readings", path_.counts.dropped)
-        .set("other_sensor_readings", path_.counts.otherSensors)
+    path_.describeCounts(stats)
         .set("supernodes", stats_.supernodes)
         .set("flat_supernodes", stats_.flatSupernodes)
         .set("matched_supernodes", stats_.matchedSupernodes)
@@ -313,9 +306,8 @@ JsonObject MagneticGpERD::describe() const {
         .set("map_not_above_null", stats_.mapNotAboveNull)
         .set("map_ambiguous", stats_.mapAmbiguous)
         .set("map_too_loose", stats_.mapTooLoose)
-        .set("map_accepted", stats_.mapAccepted)
-        .set("query_ms_mean", stats_.queryMs.empty() ? 0.0 : total / double(stats_.queryMs.size()))
-        .set("query_ms_max", worst);
+        .set("map_accepted", stats_.mapAccepted);
+    describeQueryTimes(stats, stats_.queryMs);
     return JsonObject().set("class", getClassName()).set("params", params).set("stats", stats);
 }
 

@@ -142,12 +142,7 @@ void MagneticGpERD::addEdge(TNodeID target, std::size_t queryNode,
         registerClosure(target, q, c, records_.size(), false, -rec.normalizedRms);
     }
     // The query node is now known as well as the closure says (in the map frame).
-    const double yaw = m_graph->nodes.at(target).yaw();
-    const Eigen::Matrix2d R = Eigen::Rotation2Dd(yaw).toRotationMatrix();
-    Eigen::Matrix3d pinned = Eigen::Matrix3d::Zero();
-    pinned.topLeftCorner<2, 2>() = R * positionCov * R.transpose();
-    pinned(2, 2) = yawVariance;
-    path_.uncertainty.pin(q, pinned);
+    path_.pinClosure(q, m_graph->nodes.at(target).yaw(), positionCov, yawVariance);
     rec.edges.emplace_back(target, q);
     rec.constraints.push_back(c);
     constrained_[queryNode] = true;

@@ -1,6 +1,7 @@
 #include <lodestone/graphslam/magnetic/MagneticPath.h>
 #include <lodestone/magnetic/FieldFeatures.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 
@@ -42,6 +43,31 @@ void MagneticPath::addNode(TNodeID id, const Graph& graph, const NodeStore& node
                              : 1.0;
         sink(s0 + f * step, m.sensorPose.getRotationMatrix().asEigen() * inSensor);
     }
+}
+
+void MagneticPath::pinClosure(TNodeID query, double targetYaw, const Eigen::Matrix2d& positionCov,
+                              double yawVariance) {
+    const Eigen::Matrix2d R = Eigen::Rotation2Dd(targetYaw).toRotationMatrix();
+    Eigen::Matrix3d pinned = Eigen::Matrix3d::Zero();
+    pinned.topLeftCorner<2, 2>() = R * positionCov * R.transpose();
+    pinned(2, 2) = yawVariance;
+    uncertainty.pin(query, pinned);
+}
+
+JsonObject& MagneticPath::describeCounts(JsonObject& stats) const {
+    return stats.set("readings", counts.readings)
+        .set("dropped_readings", counts.dropped)
+        .set("other_sensor_readings", counts.otherSensors);
+}
+
+JsonObject& describeQueryTimes(JsonObject& stats, const std::vector<double>& queryMs) {
+    double total = 0, worst = 0;
+    for (double ms : queryMs) {
+        total += ms;
+        worst = std::max(worst, ms);
+    }
+    return stats.set("query_ms_mean", queryMs.empty() ? 0.0 : total / double(queryMs.size()))
+        .set("query_ms_max", worst);
 }
 
 }  // namespace lodestone::graphslam

@@ -285,11 +285,7 @@ void MagneticWindowERD::addClosure(const Candidate& best, const std::vector<Cand
     registerClosure(k, qNode, planarConstraint(z), stats_.edges, false,
                     -best.fit.chi2 / (3.0 * double(n_)));
     // The query node is now known as well as the closure says (in the map frame).
-    const Eigen::Matrix2d R = Eigen::Rotation2Dd(m_graph->nodes.at(k).yaw()).toRotationMatrix();
-    Eigen::Matrix3d pinned = Eigen::Matrix3d::Zero();
-    pinned.topLeftCorner<2, 2>() = R * S * R.transpose();
-    pinned(2, 2) = z.cov(2, 2);
-    path_.uncertainty.pin(qNode, pinned);
+    path_.pinClosure(qNode, m_graph->nodes.at(k).yaw(), S, z.cov(2, 2));
     lastClosure_ = samples[newest].s;
     ++stats_.edges;
     ++(best.direction == WindowDirection::Forward ? stats_.forward : stats_.backward);
@@ -314,15 +310,8 @@ JsonObject MagneticWindowERD::describe() const {
         .set("closure_every", params_.closureEvery)
         .set("sigma_cross", params_.sigmaCross)
         .set("turn_floor_deg", params_.turnFloorDeg);
-    double total = 0, worst = 0;
-    for (double ms : stats_.queryMs) {
-        total += ms;
-        worst = std::max(worst, ms);
-    }
     JsonObject stats;
-    stats.set("readings", path_.counts.readings)
-        .set("dropped_readings", path_.counts.dropped)
-        .set("other_sensor_readings", path_.counts.otherSensors)
+    path_.describeCounts(stats)
         .set("queries", stats_.queries)
         .set("flat", stats_.flat)
         .set("no_candidate", stats_.noCandidate)
@@ -331,9 +320,8 @@ JsonObject MagneticWindowERD::describe() const {
         .set("accepted", stats_.accepted)
         .set("edges", stats_.edges)
         .set("forward_edges", stats_.forward)
-        .set("backward_edges", stats_.backward)
-        .set("query_ms_mean", stats_.queryMs.empty() ? 0.0 : total / double(stats_.queryMs.size()))
-        .set("query_ms_max", worst);
+        .set("backward_edges", stats_.backward);
+    describeQueryTimes(stats, stats_.queryMs);
     JsonObject out;
     out.set("class", getClassName()).set("params", params).set("stats", stats);
     if (truth_) out.set("truth_funnel", describeTruth());

@@ -2,6 +2,7 @@
 
 #include <lodestone/graphslam/NodeStore.h>
 #include <lodestone/graphslam/PoseGraph.h>
+#include <lodestone/graphslam/ReportJson.h>
 #include <lodestone/graphslam/closure/PathUncertainty.h>
 
 #include <Eigen/Core>
@@ -33,10 +34,21 @@ class MagneticPath {
     void addNode(TNodeID id, const Graph& graph, const NodeStore& nodes, std::string& label,
                  double saturation, const ReadingSink& sink);
 
+    /** A loop closure placed node `query` with `positionCov` in the frame of a node facing
+     * `targetYaw` and `yawVariance`: the uncertainty pinned there, in the map frame. */
+    void pinClosure(TNodeID query, double targetYaw, const Eigen::Matrix2d& positionCov,
+                    double yawVariance);
+    /** The reading counts into report.json's stats: readings, dropped_readings,
+     * other_sensor_readings. */
+    JsonObject& describeCounts(JsonObject& stats) const;
+
     std::vector<double> travel;  ///< per node [m]
     std::vector<int> segment;    ///< per node
     closure::PathUncertainty uncertainty;
     Counts counts;
 };
+
+/** query_ms_mean and query_ms_max of per-query times [ms] into report.json's stats. */
+JsonObject& describeQueryTimes(JsonObject& stats, const std::vector<double>& queryMs);
 
 }  // namespace lodestone::graphslam
