@@ -137,7 +137,6 @@ Revisits revisits(const io::MagneticRecording& rec, double radius = 0.2, double 
 int recordings(const std::string& data, const std::string& out, int seeds,
                const std::string& magneticIni, const std::string& only) {
     registerAllClasses();
-    const std::string cfg = LODESTONE_CONFIG_INI_DIR;
     const auto recs = benchRecordings(data);
     std::printf(
         "| recording | path [m] | seeds | ATE odometry [m] | ATE magnetic [m]: median / worst | "
@@ -156,28 +155,17 @@ int recordings(const std::string& data, const std::string& out, int seeds,
             const std::string stem = out + "/" + rec.name.substr(0, rec.name.find(' ')) +
                                      rec.name.substr(rec.name.find(' ') + 1) + "_s" +
                                      std::to_string(seed);
-            io::OdometryDriftModel model;
-            model.seed = static_cast<std::uint64_t>(seed);
-            const auto imported = io::writeMagneticRecording(recording, stem + ".rawlog", model);
+            const auto imported = importSeed(recording, stem + ".rawlog", seed);
             const auto gt = io::readTumTrajectory(imported.groundTruth);
             double ate[2] = {0, 0};
             for (int k = 0; k < 2; ++k) {
-                slamapp::SlamRunOptions o;
-                o.rawlog = imported.rawlog;
-                o.groundTruth = imported.groundTruth;
-                // (an INI named with a folder is used as it is; else it is one of config_ini/)
-                o.config = k == 0 ? cfg + "/odometry_only.ini"
-                           : magneticIni.find('/') != std::string::npos ? magneticIni
-                                                                         : cfg + "/" + magneticIni;
-                o.outDir = stem + (k == 0 ? "_odo" : "_mag");
-                o.quiet = true;
-                std::ostringstream sout, serr;
-                const auto t0 = std::chrono::steady_clock::now();
-                const auto r = slamapp::runSlam(o, sout, serr);
-                const double wall =
-                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-                if (r.exitCode != 0 || !r.ateRmse) {
-                    std::cerr << rec.name << ": " << serr.str();
+                const auto run = runImported(imported, k == 0 ? "odometry_only.ini" : magneticIni,
+                                             stem + (k == 0 ? "_odo" : "_mag"));
+                const auto& o = run.options;
+                const auto& r = run.result;
+                const double wall = run.wallSeconds;
+                if (!run.ok()) {
+                    std::cerr << rec.name << ": " << run.errors;
                     return 1;
                 }
                 ate[k] = *r.ateRmse;

@@ -20,12 +20,10 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <map>
-#include <sstream>
 
 using namespace lodestone;
 
@@ -144,7 +142,6 @@ int main(int argc, char** argv) {
     const std::string data = argv[1], out = argv[2];
     const int seeds = std::atoi(argv[3]);
     registerAllClasses();
-    const std::string cfg = LODESTONE_CONFIG_INI_DIR;
     std::vector<std::pair<std::string, Row>> rows;
     std::printf("| recording | INI | same-direction passes found | opposite-direction found | "
                 "worst seed's recall: same / opposite | precision | closures | wrong (> 0.5 m) | "
@@ -158,28 +155,15 @@ int main(int argc, char** argv) {
             for (int seed = 1; seed <= seeds; ++seed) {
                 std::string stem = rec.name + "_s" + std::to_string(seed);
                 std::replace(stem.begin(), stem.end(), ' ', '_');
-                io::OdometryDriftModel model;
-                model.seed = static_cast<std::uint64_t>(seed);
-                const auto imported =
-                    io::writeMagneticRecording(recording, out + "/" + stem + ".rawlog", model);
-                slamapp::SlamRunOptions o;
-                o.rawlog = imported.rawlog;
-                o.groundTruth = imported.groundTruth;
-                o.config = ini.find('/') != std::string::npos ? ini : cfg + "/" + ini;
-                o.outDir = out + "/" + stem + "_run";
-                o.quiet = true;
-                std::ostringstream sout, serr;
-                const auto t0 = std::chrono::steady_clock::now();
-                const auto r = slamapp::runSlam(o, sout, serr);
-                const double wall =
-                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-                if (r.exitCode != 0 || !r.ateRmse) {
-                    std::cerr << rec.name << " " << ini << ": " << serr.str();
+                const auto imported = importSeed(recording, out + "/" + stem + ".rawlog", seed);
+                const auto run = runImported(imported, ini, out + "/" + stem + "_run");
+                if (!run.ok()) {
+                    std::cerr << rec.name << " " << ini << ": " << run.errors;
                     return 1;
                 }
-                row.ate.push_back(*r.ateRmse);
-                row.realtime.push_back(imported.duration / wall);
-                judgeRun(o, row);
+                row.ate.push_back(*run.result.ateRmse);
+                row.realtime.push_back(imported.duration / run.wallSeconds);
+                judgeRun(run.options, row);
             }
             std::printf("| %s | %s | %s | %s | %s / %s | %s | %zu | %zu | %.3f / %.3f | %.0fx |\n",
                         rec.name.c_str(), ini.c_str(), fraction(row.found[0], row.passes[0]).c_str(),

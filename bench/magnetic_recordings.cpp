@@ -4,9 +4,11 @@
 
 #include <Eigen/Core>
 
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <random>
+#include <sstream>
 
 using namespace lodestone;
 
@@ -119,4 +121,29 @@ std::vector<Recording> benchRecordings(const std::string& data) {
     recs.push_back({"synthetic longwalk", [] { return syntheticLongWalk(); }});
     recs.push_back({"synthetic corridor", [] { return syntheticCorridorWalk(); }});
     return recs;
+}
+
+io::MagneticImportResult importSeed(const io::MagneticRecording& recording, const std::string& path,
+                                    int seed) {
+    io::OdometryDriftModel model;
+    model.seed = static_cast<std::uint64_t>(seed);
+    return io::writeMagneticRecording(recording, path, model);
+}
+
+TimedRun runImported(const io::MagneticImportResult& imported, const std::string& config,
+                     const std::string& outDir) {
+    TimedRun run;
+    run.options.rawlog = imported.rawlog;
+    run.options.groundTruth = imported.groundTruth;
+    run.options.config = config.find('/') != std::string::npos
+                             ? config
+                             : std::string(LODESTONE_CONFIG_INI_DIR) + "/" + config;
+    run.options.outDir = outDir;
+    run.options.quiet = true;
+    std::ostringstream out, err;
+    const auto t0 = std::chrono::steady_clock::now();
+    run.result = slamapp::runSlam(run.options, out, err);
+    run.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    run.errors = err.str();
+    return run;
 }

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <lodestone/io/MagneticRecording.h>
+#include <lodestone/io/MagneticRecordingImport.h>
+#include <lodestone/slamapp/SlamRun.h>
 
 #include <functional>
 #include <string>
@@ -26,3 +28,20 @@ lodestone::io::MagneticRecording syntheticCorridorWalk();
 
 /** Aalto trials 1-9 and the Kok walks under `data` (when present), then the synthetic walks. */
 std::vector<Recording> benchRecordings(const std::string& data);
+
+/** `recording` imported with the drift model of `seed` as the rawlog `path` (and its ground
+ * truth beside it). */
+lodestone::io::MagneticImportResult importSeed(const lodestone::io::MagneticRecording& recording,
+                                               const std::string& path, int seed);
+
+/** One quiet run of lodestone-slam's code path on an imported rawlog, read from disk: `config`
+ * is a config_ini/ name, or a path when it names a folder. */
+struct TimedRun {
+    lodestone::slamapp::SlamRunOptions options;
+    lodestone::slamapp::SlamRunResult result;
+    double wallSeconds{0};
+    std::string errors;  ///< what the run wrote to its error stream
+    bool ok() const { return result.exitCode == 0 && result.ateRmse.has_value(); }
+};
+TimedRun runImported(const lodestone::io::MagneticImportResult& imported, const std::string& config,
+                     const std::string& outDir);
