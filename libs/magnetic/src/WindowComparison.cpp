@@ -9,11 +9,14 @@ namespace lodestone::magnetic {
 
 WindowFit compareWindows(const std::vector<TrackSample>& samples, std::size_t query,
                          std::size_t target, std::size_t n, WindowDirection direction,
-                         double sigma, double turnPrior, double turnPriorVariance) {
+                         const PassNoise& noise, double turnPrior, double turnPriorVariance) {
     // Horizontal parts h, turned by theta: |h_q - R(theta) h_t|^2 summed is
     // K - 2 (C cos theta + S sin theta) = K - 2 M cos(theta - theta*), with C the dot and S the
     // cross products summed; theta = -(psi_q - psi_t) since readings are in the robot frame.
-    double vertical = 0, K = 0, C = 0, S = 0;
+    // The offset and trend see the differences only through their plain and x-weighted sums
+    // (x: a reading's place in the window, centred), linear in each side's sums.
+    double vertical = 0, K = 0, C = 0, S = 0, xx = 0;
+    Eigen::Vector3d sq = Eigen::Vector3d::Zero(), st = sq, xq = sq, xt = sq;
     for (std::size_t k = 0; k < n; ++k) {
         const auto& q = samples[query + k].value;
         const auto& t =
@@ -23,8 +26,15 @@ WindowFit compareWindows(const std::vector<TrackSample>& samples, std::size_t qu
         K += double(q[0]) * q[0] + double(q[1]) * q[1] + double(t[0]) * t[0] + double(t[1]) * t[1];
         C += double(t[0]) * q[0] + double(t[1]) * q[1];
         S += double(t[0]) * q[1] - double(t[1]) * q[0];
+        const double x = (double(k) - 0.5 * double(n - 1)) * noise.step;
+        const Eigen::Vector3d qv = q.head<3>().cast<double>(), tv = t.head<3>().cast<double>();
+        sq += qv;
+        st += tv;
+        xq += x * qv;
+        xt += x * tv;
+        xx += x * x;
     }
-    const double s2 = sigma * sigma;
+    const double s2 = noise.sigma * noise.sigma;
     const double M = std::hypot(C, S);
     const double thetaStar = std::atan2(S, C);
     // Near theta* the field term is (K - 2M)/s2 + (M/s2)(theta - theta*)^2: information M/s2,
@@ -37,8 +47,23 @@ WindowFit compareWindows(const std::vector<TrackSample>& samples, std::size_t qu
     WindowFit fit;
     const double info = fieldInfo + priorInfo;
     const double theta = info > 0 ? (fieldInfo * thetaStar + priorInfo * theta0) / info : thetaStar;
+    double white = (vertical + K - 2 * M * std::cos(theta - thetaStar)) / s2;
+    // Woodbury: d'(s2 I + b2 11' + t2 xx')^-1 d = (|d|^2 - (1'd)^2 / (n + s2/b2)
+    // - (x'd)^2 / (x'x + s2/t2)) / s2, per component (1 and x are orthogonal).
+    const double c = std::cos(theta), s = std::sin(theta);
+    const auto turned = [&](const Eigen::Vector3d& v) {
+        return Eigen::Vector3d(c * v.x() - s * v.y(), s * v.x() + c * v.y(), v.z());
+    };
+    if (noise.biasSigma > 0) {
+        const Eigen::Vector3d sd = sq - turned(st);
+        white -= sd.squaredNorm() / (double(n) + s2 / (noise.biasSigma * noise.biasSigma)) / s2;
+    }
+    if (noise.trendSigma > 0) {
+        const Eigen::Vector3d xd = xq - turned(xt);
+        white -= xd.squaredNorm() / (xx + s2 / (noise.trendSigma * noise.trendSigma)) / s2;
+    }
     fit.turnPriorChi2 = priorInfo * (theta - theta0) * (theta - theta0);
-    fit.chi2 = (vertical + K - 2 * M * std::cos(theta - thetaStar)) / s2 + fit.turnPriorChi2;
+    fit.chi2 = white + fit.turnPriorChi2;
     fit.turn = std::remainder(-theta, 2 * M_PI);
     fit.turnVariance = info > 0 ? 1.0 / info : INFINITY;
     return fit;
@@ -62,28 +87,41 @@ Eigen::MatrixX3d windowResiduals(const std::vector<TrackSample>& samples, std::s
     return d;
 }
 
-WindowNullModel::WindowNullModel(std::size_t n, double step, double sigma, double sigmaF,
-                                 double lengthScale)
-    : sigma2_(sigma * sigma) {
+Eigen::MatrixXd passNoiseCovariance(std::size_t n, const PassNoise& noise) {
     const auto m = static_cast<Eigen::Index>(n);
-    Eigen::MatrixXd C(m, m);
+    Eigen::VectorXd x(m);
+    for (Eigen::Index i = 0; i < m; ++i) x[i] = (double(i) - 0.5 * double(n - 1)) * noise.step;
+    Eigen::MatrixXd C = noise.sigma * noise.sigma * Eigen::MatrixXd::Identity(m, m);
+    C.array() += noise.biasSigma * noise.biasSigma;
+    C += noise.trendSigma * noise.trendSigma * x * x.transpose();
+    return C;
+}
+
+WindowNullModel::WindowNullModel(std::size_t n, const PassNoise& noise, double sigmaF,
+                                 double lengthScale) {
+    const auto m = static_cast<Eigen::Index>(n);
+    const Eigen::MatrixXd same = passNoiseCovariance(n, noise);
+    Eigen::MatrixXd unrelated = same;
     for (Eigen::Index i = 0; i < m; ++i) {
         for (Eigen::Index j = 0; j < m; ++j) {
-            const double r = double(i - j) * step / lengthScale;
-            C(i, j) = 2 * sigmaF * sigmaF * std::exp(-0.5 * r * r) + (i == j ? sigma2_ : 0.0);
+            const double r = double(i - j) * noise.step / lengthScale;
+            unrelated(i, j) += 2 * sigmaF * sigmaF * std::exp(-0.5 * r * r);
         }
     }
-    const Eigen::LLT<Eigen::MatrixXd> llt(C);
-    nullInverse_ = llt.solve(Eigen::MatrixXd::Identity(m, m));
-    const double logDetNull = 2 * llt.matrixLLT().diagonal().array().log().sum();
-    // Per component: -1/2 log det(2 pi sigma^2 I) + 1/2 log det(2 pi C); three components.
-    logNormalizers_ = 3 * 0.5 * (logDetNull - double(m) * std::log(sigma2_));
+    const Eigen::LLT<Eigen::MatrixXd> a(same), b(unrelated);
+    sameInverse_ = a.solve(Eigen::MatrixXd::Identity(m, m));
+    nullInverse_ = b.solve(Eigen::MatrixXd::Identity(m, m));
+    const auto logDet = [](const Eigen::LLT<Eigen::MatrixXd>& l) {
+        return 2 * l.matrixLLT().diagonal().array().log().sum();
+    };
+    // Per component: -1/2 log det(2 pi C1) + 1/2 log det(2 pi C0); three components.
+    logNormalizers_ = 3 * 0.5 * (logDet(b) - logDet(a));
 }
 
 double WindowNullModel::logLikelihoodRatio(const Eigen::MatrixX3d& d) const {
     double same = 0, unrelated = 0;
     for (int c = 0; c < 3; ++c) {
-        same += d.col(c).squaredNorm() / sigma2_;
+        same += d.col(c).dot(sameInverse_ * d.col(c));
         unrelated += d.col(c).dot(nullInverse_ * d.col(c));
     }
     return -0.5 * same + 0.5 * unrelated + logNormalizers_;

@@ -17,6 +17,7 @@ MagneticWindowERD::MagneticWindowERD() {
 }
 
 void MagneticWindowERD::rebuild() {
+    params_.noise.step = params_.step;
     // A window ends at every resampled reading: supernodes of the window's length, one per step.
     track_ = std::make_unique<magnetic::SupernodeTrack>(
         magnetic::SupernodeTrack::Params{params_.step, params_.window, params_.step}, 3);
@@ -32,7 +33,9 @@ void MagneticWindowERD::configure(const mrpt::config::CConfigFileBase& ini) {
     p.step = s.getDouble("resample_step", p.step);
     p.window = s.getDouble("window_length", p.window);
     p.queryEvery = s.getDouble("query_every", p.queryEvery);
-    p.sigma = s.getDouble("window_sigma", p.sigma);
+    p.noise.sigma = s.getDouble("window_sigma", p.noise.sigma);
+    p.noise.biasSigma = s.getDouble("window_bias_sigma", p.noise.biasSigma);
+    p.noise.trendSigma = s.getDouble("window_trend_sigma", p.noise.trendSigma);
     p.lengthScale = s.getDouble("gp_length_scale", p.lengthScale);
     p.nullOdds = s.getDouble("null_odds", p.nullOdds);
     p.minTravelGap = s.getDouble("min_travel_gap", p.minTravelGap);
@@ -50,7 +53,9 @@ void MagneticWindowERD::configure(const mrpt::config::CConfigFileBase& ini) {
     if (!(p.step > 0)) s.fail("resample_step", "must be > 0");
     if (!(p.window >= 4 * p.step)) s.fail("window_length", "must be >= 4 x resample_step");
     if (!(p.queryEvery > 0)) s.fail("query_every", "must be > 0");
-    if (!(p.sigma > 0)) s.fail("window_sigma", "must be > 0");
+    if (!(p.noise.sigma > 0)) s.fail("window_sigma", "must be > 0");
+    if (!(p.noise.biasSigma >= 0)) s.fail("window_bias_sigma", "must be >= 0");
+    if (!(p.noise.trendSigma >= 0)) s.fail("window_trend_sigma", "must be >= 0");
     if (!(p.lengthScale > 0)) s.fail("gp_length_scale", "must be > 0");
     if (!(p.nullOdds > 0)) s.fail("null_odds", "must be > 0");
     if (!(p.minTravelGap > p.window)) s.fail("min_travel_gap", "must be > window_length");
@@ -108,7 +113,7 @@ void MagneticWindowERD::compareAt(std::size_t c, std::size_t first, double gate2
     if (c + 1 >= n_ && samples[c + 1 - n_].segment == samples[c].segment) {
         Candidate k{c, WindowDirection::Forward,
                     magnetic::compareWindows(samples, first, c + 1 - n_, n_,
-                                             WindowDirection::Forward, params_.sigma, turnPrior,
+                                             WindowDirection::Forward, params_.noise, turnPrior,
                                              turnVariance),
                     gate2, 0};
         k.total = k.fit.chi2 + gate2;
@@ -118,7 +123,7 @@ void MagneticWindowERD::compareAt(std::size_t c, std::size_t first, double gate2
         samples[c + n_ - 1].s <= newest - params_.minTravelGap) {
         Candidate k{c, WindowDirection::Backward,
                     magnetic::compareWindows(samples, first, c, n_, WindowDirection::Backward,
-                                             params_.sigma, turnPrior, turnVariance),
+                                             params_.noise, turnPrior, turnVariance),
                     gate2, 0};
         k.total = k.fit.chi2 + gate2;
         out.push_back(k);
@@ -147,7 +152,7 @@ void MagneticWindowERD::query(std::size_t first) {
     const std::size_t newest = first + n_ - 1;
     const double dof = 3.0 * double(n_);
     Outcome out;
-    const double excitation = magnetic::windowExcitation(samples, first, n_, params_.sigma);
+    const double excitation = magnetic::windowExcitation(samples, first, n_, params_.noise.sigma);
     out.flat = excitation < magnetic::chiSquareQuantile(dof - 3, params_.quantile);
     std::vector<Candidate> candidates;
     if (out.flat) {
@@ -175,9 +180,9 @@ void MagneticWindowERD::query(std::size_t first) {
             // The null's field amplitude is this window's own: its spread about its mean, the
             // reading noise (half the difference's variance) taken out. A stretch that varies
             // little is no strong evidence when it matches another that varies little.
-            const double spread2 = excitation * params_.sigma * params_.sigma / (dof - 3) -
-                                   0.5 * params_.sigma * params_.sigma;
-            const magnetic::WindowNullModel null(n_, params_.step, params_.sigma,
+            const double s2 = params_.noise.sigma * params_.noise.sigma;
+            const double spread2 = excitation * s2 / (dof - 3) - 0.5 * s2;
+            const magnetic::WindowNullModel null(n_, params_.noise,
                                                  std::sqrt(std::max(spread2, 1e-6)),
                                                  params_.lengthScale);
             out.posterior = placePosterior(*out.best, candidates, first, null);
@@ -297,7 +302,9 @@ JsonObject MagneticWindowERD::describe() const {
         .set("resample_step", params_.step)
         .set("window_length", params_.window)
         .set("query_every", params_.queryEvery)
-        .set("window_sigma", params_.sigma)
+        .set("window_sigma", params_.noise.sigma)
+        .set("window_bias_sigma", params_.noise.biasSigma)
+        .set("window_trend_sigma", params_.noise.trendSigma)
         .set("gp_length_scale", params_.lengthScale)
         .set("null_odds", params_.nullOdds)
         .set("min_travel_gap", params_.minTravelGap)

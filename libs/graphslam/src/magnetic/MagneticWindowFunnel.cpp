@@ -82,7 +82,7 @@ void MagneticWindowERD::diagnose(std::size_t first, const Outcome& out) {
         r.fitChi2 = magnetic::compareWindows(samples, first, r.backward ? c : c + 1 - n_, n_,
                                              r.backward ? WindowDirection::Backward
                                                         : WindowDirection::Forward,
-                                             params_.sigma, p.turn, p.turnVariance)
+                                             params_.noise, p.turn, p.turnVariance)
                         .chi2;
     }
     const double fitLimit = magnetic::chiSquareQuantile(3.0 * double(n_), params_.quantile);

@@ -19,7 +19,8 @@ namespace lodestone::graphslam {
  * (the sequence reversed; the horizontal components turned by the relative heading, which the
  * field itself measures) - weighted by a Gaussian position prior from the pose uncertainty.
  * Every threshold is a quantile of the noise model: the readings of one place repeat between
- * passes with `window_sigma` per component, the position prior is closure::PathUncertainty.
+ * passes as magnetic::PassNoise says (white noise, an offset and a trend over the window), the
+ * position prior is closure::PathUncertainty.
  *   - excitation: a window whose field is flat within the noise (chi-square, 3(n-1) dof) never
  *     closes - it would match anywhere;
  *   - gate: a target is a candidate only where the robot can be (chi-square, 2 dof, of the
@@ -46,9 +47,11 @@ class MagneticWindowERD : public EdgeDecider {
         double step{0.05};          ///< [m] readings resampled by travel
         double window{1.5};  ///< [m] of path per window (Kok & Solin: ~1 s of walking; README)
         double queryEvery{0.1};     ///< [m] of travel between queries
-        /** [uT] how well one reading repeats between two passes of a place, per component
-         * (the difference's sigma: sensor noise of both passes, height and tilt). */
-        double sigma{1.0};
+        /** How the readings of one place differ between two passes (magnetic::PassNoise):
+         * white noise of `window_sigma` [uT] per component, plus over a window an offset of
+         * `window_bias_sigma` [uT] and a trend of `window_trend_sigma` [uT/m]. (`step` is
+         * resample_step.) */
+        magnetic::PassNoise noise;
         /** [m] the field's correlation length along a path (lodestone-magfit's fit): with
          * the query window's own spread, how two unrelated stretches differ - the null
          * hypothesis every candidate must beat. */
