@@ -46,6 +46,7 @@ void MagneticWindowERD::configure(const mrpt::config::CConfigFileBase& ini) {
     p.minPosterior = s.getDouble("min_posterior", p.minPosterior);
     p.distinctRadius = s.getDouble("distinct_radius", p.distinctRadius);
     p.closureEvery = s.getDouble("closure_every", p.closureEvery);
+    p.confirm = s.getBool("confirm", p.confirm);
     p.sigmaAlongFloor = s.getDouble("sigma_along_floor", p.sigmaAlongFloor);
     p.sigmaCross = s.getDouble("sigma_cross", p.sigmaCross);
     p.turnFloorDeg = s.getDouble("turn_floor_deg", p.turnFloorDeg);
@@ -190,14 +191,21 @@ void MagneticWindowERD::query(std::size_t first) {
                 ++stats_.ambiguous;
             } else {
                 ++stats_.accepted;
-                const std::size_t edges = stats_.edges;
-                if (samples[newest].s - lastClosure_ + 1e-9 >= params_.closureEvery)
-                    addClosure(*out.best, candidates, first);
-                out.closed = stats_.edges > edges;
+                if (auto c = measureClosure(*out.best, candidates, first)) {
+                    out.closed = confirm(*c);
+                } else {
+                    ++stats_.unmeasured;
+                }
             }
         }
     }
-    if (truth_) diagnose(first, out);
+    if (truth_) {
+        const auto record = diagnose(first, out);
+        // (a pending closure made later marks its query's record then)
+        if (record && !pending_.empty() && pending_.back().query == samples[newest].node &&
+            !out.closed)
+            pending_.back().truthRecord = record;
+    }
     stats_.queryMs.push_back(msSince(t0));
 }
 
@@ -238,64 +246,6 @@ double MagneticWindowERD::placePosterior(const Candidate& best, std::vector<Cand
     return same / (same + rest);
 }
 
-void MagneticWindowERD::addClosure(const Candidate& best, const std::vector<Candidate>& all,
-                                   std::size_t first) {
-    const auto& samples = track_->samples();
-    const std::size_t newest = first + n_ - 1;
-    const auto qNode = static_cast<TNodeID>(samples[newest].node);
-    const int tSegment = samples[best.sample].segment;
-    // Along the target's path the fit's curvature over neighbouring samples (same direction)
-    // says how sharply the field places the window: chi2 = -2 log L, information = curvature / 2.
-    double fitAt[2] = {NAN, NAN};
-    for (const auto& k : all) {
-        if (k.direction != best.direction) continue;
-        if (k.sample + 1 == best.sample) fitAt[0] = k.total;
-        if (k.sample == best.sample + 1) fitAt[1] = k.total;
-    }
-    double sigmaAlong2 = params_.sigmaAlongFloor * params_.sigmaAlongFloor + params_.step * params_.step / 12;
-    if (std::isfinite(fitAt[0]) && std::isfinite(fitAt[1])) {
-        const double curvature = (fitAt[0] - 2 * best.total + fitAt[1]) / (params_.step * params_.step);
-        sigmaAlong2 += curvature > 0 ? 2.0 / curvature : INFINITY;
-    } else {
-        sigmaAlong2 += params_.step * params_.step;
-    }
-    if (!std::isfinite(sigmaAlong2)) return;
-    // The query node's place on the target's path: its travel past the newest reading, the
-    // same way along (forward) or back (backward).
-    const double ahead = path_.travel[qNode] - samples[newest].s;
-    const double sTarget =
-        samples[best.sample].s + (best.direction == WindowDirection::Forward ? ahead : -ahead);
-    const auto it = std::upper_bound(path_.travel.begin(), path_.travel.end(), sTarget);
-    if (it == path_.travel.begin() || it == path_.travel.end()) return;
-    const auto k = static_cast<TNodeID>(it - path_.travel.begin() - 1);
-    if (path_.segment[k] != tSegment || path_.segment[k + 1] != tSegment || k + 1 > qNode) return;
-    const auto e = m_graph->edges.find({k, k + 1});
-    if (e == m_graph->edges.end()) return;
-    const auto& d = e->second.mean;
-    const double span = path_.travel[k + 1] - path_.travel[k];
-    const double frac = span > 0 ? (sTarget - path_.travel[k]) / span : 0.0;
-    const double turnSigma = params_.turnFloorDeg * M_PI / 180;
-    mrpt::poses::CPosePDFGaussian z;
-    z.mean = mrpt::poses::CPose2D(frac * d.x(), frac * d.y(), frac * d.yaw() + best.fit.turn);
-    const double len = std::hypot(d.x(), d.y());
-    const Eigen::Vector2d u =
-        len > 1e-6 ? Eigen::Vector2d(d.x() / len, d.y() / len) : Eigen::Vector2d(1, 0);
-    const Eigen::Matrix2d P = u * u.transpose();
-    const Eigen::Matrix2d S =
-        sigmaAlong2 * P + params_.sigmaCross * params_.sigmaCross * (Eigen::Matrix2d::Identity() - P);
-    z.cov.setZero();
-    for (int r = 0; r < 2; ++r)
-        for (int c = 0; c < 2; ++c) z.cov(r, c) = S(r, c);
-    z.cov(2, 2) = best.fit.turnVariance + turnSigma * turnSigma;
-    registerClosure(k, qNode, planarConstraint(z), stats_.edges, false,
-                    -best.fit.chi2 / (3.0 * double(n_)));
-    // The query node is now known as well as the closure says (in the map frame).
-    path_.pinClosure(qNode, m_graph->nodes.at(k).yaw(), S, z.cov(2, 2));
-    lastClosure_ = samples[newest].s;
-    ++stats_.edges;
-    ++(best.direction == WindowDirection::Forward ? stats_.forward : stats_.backward);
-}
-
 JsonObject MagneticWindowERD::describe() const {
     JsonObject params;
     params.set("sensor_label", params_.sensorLabel)
@@ -315,6 +265,7 @@ JsonObject MagneticWindowERD::describe() const {
         .set("min_posterior", params_.minPosterior)
         .set("distinct_radius", params_.distinctRadius)
         .set("closure_every", params_.closureEvery)
+        .set("confirm", params_.confirm)
         .set("sigma_cross", params_.sigmaCross)
         .set("turn_floor_deg", params_.turnFloorDeg);
     JsonObject stats;
@@ -325,6 +276,8 @@ JsonObject MagneticWindowERD::describe() const {
         .set("no_fit", stats_.noFit)
         .set("ambiguous", stats_.ambiguous)
         .set("accepted", stats_.accepted)
+        .set("unmeasured", stats_.unmeasured)
+        .set("confirmed", stats_.confirmed)
         .set("edges", stats_.edges)
         .set("forward_edges", stats_.forward)
         .set("backward_edges", stats_.backward);

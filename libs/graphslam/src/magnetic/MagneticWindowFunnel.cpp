@@ -31,7 +31,7 @@ const char* MagneticWindowERD::toString(TruthStage stage) {
     return "?";
 }
 
-void MagneticWindowERD::diagnose(std::size_t first, const Outcome& out) {
+std::optional<std::size_t> MagneticWindowERD::diagnose(std::size_t first, const Outcome& out) {
     const auto& samples = track_->samples();
     const std::size_t newest = first + n_ - 1;
     const auto qNode = static_cast<TNodeID>(samples[newest].node);
@@ -51,7 +51,7 @@ void MagneticWindowERD::diagnose(std::size_t first, const Outcome& out) {
     };
     const io::TumPose* q = trueAt(qNode);
     const auto qAt = trueAtSample(newest);
-    if (!q || !qAt) return;
+    if (!q || !qAt) return std::nullopt;
     // The true place: the earlier reading truly nearest the query's newest, within
     // distinct_radius.
     std::optional<std::size_t> place;
@@ -66,7 +66,7 @@ void MagneticWindowERD::diagnose(std::size_t first, const Outcome& out) {
             place = c;
         }
     }
-    if (!place) return;  // not a revisit
+    if (!place) return std::nullopt;  // not a revisit
     TruthQuery r;
     r.queryNode = qNode;
     const std::size_t c = *place;
@@ -99,6 +99,7 @@ void MagneticWindowERD::diagnose(std::size_t first, const Outcome& out) {
               : out.closed                   ? S::Closed
                                              : S::Accepted;
     truthQueries_.push_back(r);
+    return truthQueries_.size() - 1;
 }
 
 JsonObject MagneticWindowERD::describeTruth() const {

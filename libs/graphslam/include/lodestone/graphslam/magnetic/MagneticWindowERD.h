@@ -6,6 +6,7 @@
 #include <lodestone/magnetic/SupernodeTrack.h>
 #include <lodestone/magnetic/WindowComparison.h>
 
+#include <deque>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -64,13 +65,19 @@ class MagneticWindowERD : public EdgeDecider {
         double minPosterior{0.9973};
         double distinctRadius{0.5};  ///< [m]
         double closureEvery{0.5};    ///< [m] of query travel between closures
+        /** An accepted window closes only once a later window that does not overlap it (an
+         * independent stretch of the field, `window_length` on) is accepted and places the
+         * robot consistently (within distinct_radius); after that the match continues with
+         * every agreeing window. A chance look-alike seldom repeats on the next stretch. */
+        bool confirm{false};
         double sigmaAlongFloor{0.03};  ///< [m]
         double sigmaCross{0.20};       ///< [m]
         double turnFloorDeg{2.0};      ///< [deg] added to the field's turn sigma
     };
     /** What became of the queries (the funnel of this decider). */
     struct Stats {
-        std::size_t queries{0}, flat{0}, noCandidate{0}, noFit{0}, ambiguous{0}, accepted{0}, forward{0}, backward{0}, edges{0};
+        std::size_t queries{0}, flat{0}, noCandidate{0}, noFit{0}, ambiguous{0}, accepted{0},
+            unmeasured{0}, confirmed{0}, forward{0}, backward{0}, edges{0};
         std::vector<double> queryMs;
     };
 
@@ -135,7 +142,7 @@ class MagneticWindowERD : public EdgeDecider {
     void query(std::size_t first);
     Prior priorAt(std::size_t c, TNodeID qNode, const Eigen::Vector2d& here) const;
     /** The truth's stage for the query ending at `first` + n - 1 (MagneticWindowFunnel.cpp). */
-    void diagnose(std::size_t first, const Outcome& out);
+    std::optional<std::size_t> diagnose(std::size_t first, const Outcome& out);
     JsonObject describeTruth() const;
     /** Both directions' fits of stored sample `c` (as many as its windows allow). */
     void compareAt(std::size_t c, std::size_t first, double gate2, double turnPrior,
@@ -144,7 +151,25 @@ class MagneticWindowERD : public EdgeDecider {
      * the null (no earlier place), candidates' logWeight filled in. */
     double placePosterior(const Candidate& best, std::vector<Candidate>& all, std::size_t first,
                           const magnetic::WindowNullModel& null) const;
-    void addClosure(const Candidate& best, const std::vector<Candidate>& all, std::size_t first);
+    /** An accepted window's closure, measured (MagneticWindowClosures.cpp). */
+    struct Closure {
+        TNodeID target{0}, query{0};
+        mrpt::poses::CPosePDFGaussian z;
+        Eigen::Matrix2d positionCov{Eigen::Matrix2d::Identity()};  ///< in the target's frame
+        double score{0};
+        magnetic::WindowDirection direction{magnetic::WindowDirection::Forward};
+        double sQuery{0}, sTarget{0};  ///< [m] travel of the query's newest reading and its match
+        int targetSegment{0};
+        std::optional<std::size_t> truthRecord;  ///< in truthQueries_
+    };
+    /** The edge from the target's path to the query node (nullopt: not measurable). */
+    std::optional<Closure> measureClosure(const Candidate& best, const std::vector<Candidate>& all,
+                                          std::size_t first) const;
+    /** `later` continues `earlier`'s match (same direction and path, consistent travel). */
+    bool agree(const Closure& earlier, const Closure& later) const;
+    /** Commits `c` now, or when confirmed (Params::confirm); true when it made an edge. */
+    bool confirm(const Closure& c);
+    bool commit(const Closure& c);
     Eigen::Vector2d positionAtSample(std::size_t i) const;
 
     Params params_;
@@ -154,6 +179,8 @@ class MagneticWindowERD : public EdgeDecider {
     TNodeID seen_{0};
     double lastQuery_{-1e18}, lastClosure_{-1e18};  // [m] travel
     Stats stats_;
+    std::deque<Closure> pending_;      // accepted, waiting for confirmation
+    std::optional<Closure> confirmed_;  // the last closure of a confirmed match
     std::vector<TruthQuery> truthQueries_;
 };
 
