@@ -51,7 +51,8 @@ struct Walk {
 
 /** Walks the polyline `corners` at 0.1 m per node, ten readings per node, odometry exact but
  * claiming the noise of a good one; turns on the spot at each corner. */
-Walk walk(const std::vector<Eigen::Vector2d>& corners, const FloorField& field) {
+Walk walk(const std::vector<Eigen::Vector2d>& corners, const FloorField& field,
+          const std::string& extraIni = "") {
     Walk w;
     std::vector<graphslam::NodeRecord> records;
     double yaw = 0;
@@ -89,7 +90,7 @@ Walk walk(const std::vector<Eigen::Vector2d>& corners, const FloorField& field) 
     for (std::size_t k = 0; k < w.truth.size(); ++k)
         truth->push_back({double(k), mrpt::poses::CPose3D(w.truth[k])});
     auto r = test::runMagneticScript<graphslam::MagneticWindowERD>(
-        std::move(steps), std::move(records), "[MagneticWindowERD]\ngate_heading_drift = 0\n",
+        std::move(steps), std::move(records), "[MagneticWindowERD]\ngate_heading_drift = 0\n" + extraIni,
         truth);
     w.stats = r.erd->stats();
     w.funnel = r.erd->truthQueries();
@@ -162,4 +163,20 @@ TEST(MagneticWindowERD, APassOneMetreBesideAnEarlierOneIsNotTheSamePlace) {
     const auto w = walk({{0, 0}, {20, 0}, {20, 5}, {-3, 5}, {-3, 1}, {20, 1}}, field);
     for (const auto& c : errors(w)) EXPECT_LT(c.position, 0.5);
     EXPECT_GT(w.stats.queries, 100u);
+}
+
+TEST(MagneticWindowERD, ConfirmedClosuresWaitForASecondIndependentWindow) {
+    const FloorField field(11);
+    const auto now = walk({{0, 0}, {20, 0}, {0, 0}}, field);
+    const auto later = walk({{0, 0}, {20, 0}, {0, 0}}, field, "confirm = true\n");
+    EXPECT_GT(later.stats.confirmed, 0u);
+    ASSERT_GT(later.stats.edges, 5u);
+    for (const auto& c : errors(later)) EXPECT_LT(c.position, 0.2);
+    // The first closure is made only once a window 1.5 m on agrees, but it is the first
+    // accepted query's: the same node as without confirmation.
+    ASSERT_FALSE(now.engine->proposals().empty());
+    EXPECT_EQ(later.engine->proposals().front().closure.to,
+              now.engine->proposals().front().closure.to);
+    // Every closure made is one an accepted query gave.
+    EXPECT_LE(later.stats.edges, later.stats.accepted);
 }
