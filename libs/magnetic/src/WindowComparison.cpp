@@ -7,9 +7,10 @@
 
 namespace lodestone::magnetic {
 
-WindowFit compareWindows(const std::vector<TrackSample>& samples, std::size_t query,
-                         std::size_t target, std::size_t n, WindowDirection direction,
-                         const PassNoise& noise, double turnPrior, double turnPriorVariance) {
+WindowFit compareWindows(const std::vector<TrackSample>& querySamples, std::size_t query,
+                         const std::vector<TrackSample>& targetSamples, std::size_t target,
+                         std::size_t n, WindowDirection direction, const PassNoise& noise,
+                         double turnPrior, double turnPriorVariance) {
     // Horizontal parts h, turned by theta: |h_q - R(theta) h_t|^2 summed is
     // K - 2 (C cos theta + S sin theta) = K - 2 M cos(theta - theta*), with C the dot and S the
     // cross products summed; theta = -(psi_q - psi_t) since readings are in the robot frame.
@@ -18,9 +19,10 @@ WindowFit compareWindows(const std::vector<TrackSample>& samples, std::size_t qu
     double vertical = 0, K = 0, C = 0, S = 0, xx = 0;
     Eigen::Vector3d sq = Eigen::Vector3d::Zero(), st = sq, xq = sq, xt = sq;
     for (std::size_t k = 0; k < n; ++k) {
-        const auto& q = samples[query + k].value;
+        const auto& q = querySamples[query + k].value;
         const auto& t =
-            samples[direction == WindowDirection::Forward ? target + k : target + n - 1 - k].value;
+            targetSamples[direction == WindowDirection::Forward ? target + k : target + n - 1 - k]
+                .value;
         const double dz = double(q[2]) - double(t[2]);
         vertical += dz * dz;
         K += double(q[0]) * q[0] + double(q[1]) * q[1] + double(t[0]) * t[0] + double(t[1]) * t[1];
@@ -69,16 +71,17 @@ WindowFit compareWindows(const std::vector<TrackSample>& samples, std::size_t qu
     return fit;
 }
 
-Eigen::MatrixX3d windowResiduals(const std::vector<TrackSample>& samples, std::size_t query,
-                                 std::size_t target, std::size_t n, WindowDirection direction,
-                                 const WindowFit& fit) {
+Eigen::MatrixX3d windowResiduals(const std::vector<TrackSample>& querySamples, std::size_t query,
+                                 const std::vector<TrackSample>& targetSamples, std::size_t target,
+                                 std::size_t n, WindowDirection direction, const WindowFit& fit) {
     // The target's horizontal parts turned into the query's frame: R(-turn).
     const double c = std::cos(fit.turn), s = std::sin(fit.turn);
     Eigen::MatrixX3d d(static_cast<Eigen::Index>(n), 3);
     for (std::size_t k = 0; k < n; ++k) {
-        const auto& q = samples[query + k].value;
+        const auto& q = querySamples[query + k].value;
         const auto& t =
-            samples[direction == WindowDirection::Forward ? target + k : target + n - 1 - k].value;
+            targetSamples[direction == WindowDirection::Forward ? target + k : target + n - 1 - k]
+                .value;
         const auto r = static_cast<Eigen::Index>(k);
         d(r, 0) = double(q[0]) - (c * t[0] + s * t[1]);
         d(r, 1) = double(q[1]) - (-s * t[0] + c * t[1]);

@@ -9,6 +9,17 @@ namespace lodestone::graphslam {
 
 void MagneticPath::addNode(TNodeID id, const Graph& graph, const NodeStore& nodes,
                            std::string& label, double saturation, const ReadingSink& sink) {
+    addNode(
+        id, graph, nodes, saturation,
+        [&](const MagneticSample& m) {
+            if (label.empty()) label = m.sensorLabel;
+            return m.sensorLabel == label;
+        },
+        [&](const MagneticSample&, double s, const Eigen::Vector3d& b) { sink(s, b); });
+}
+
+void MagneticPath::addNode(TNodeID id, const Graph& graph, const NodeStore& nodes,
+                           double saturation, const SensorFilter& take, const SensorSink& sink) {
     const NodeRecord& rec = nodes.at(id);
     double step = 0;
     double t0 = rec.timestamp;
@@ -27,8 +38,7 @@ void MagneticPath::addNode(TNodeID id, const Graph& graph, const NodeStore& node
     travel.push_back(s0 + step);
     segment.push_back(rec.segment);
     for (const auto& m : rec.magnetic) {
-        if (label.empty()) label = m.sensorLabel;
-        if (m.sensorLabel != label) {
+        if (!take(m)) {
             ++counts.otherSensors;
             continue;
         }
@@ -41,7 +51,7 @@ void MagneticPath::addNode(TNodeID id, const Graph& graph, const NodeStore& node
         const double f = rec.timestamp > t0
                              ? std::clamp((m.timestamp - t0) / (rec.timestamp - t0), 0.0, 1.0)
                              : 1.0;
-        sink(s0 + f * step, m.sensorPose.getRotationMatrix().asEigen() * inSensor);
+        sink(m, s0 + f * step, m.sensorPose.getRotationMatrix().asEigen() * inSensor);
     }
 }
 

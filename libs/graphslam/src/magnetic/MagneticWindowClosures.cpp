@@ -11,15 +11,16 @@ using magnetic::WindowDirection;
 
 std::optional<MagneticWindowERD::Closure> MagneticWindowERD::measureClosure(
     const Candidate& best, const std::vector<Candidate>& all, std::size_t first) const {
-    const auto& samples = track_->samples();
+    const auto& query = queried().samples();
+    const auto& samples = best.track->samples();
     const std::size_t newest = first + n_ - 1;
-    const auto qNode = static_cast<TNodeID>(samples[newest].node);
+    const auto qNode = static_cast<TNodeID>(query[newest].node);
     const int tSegment = samples[best.sample].segment;
     // Along the target's path the fit's curvature over neighbouring samples (same direction)
     // says how sharply the field places the window: chi2 = -2 log L, information = curvature / 2.
     double fitAt[2] = {NAN, NAN};
     for (const auto& k : all) {
-        if (k.direction != best.direction) continue;
+        if (k.direction != best.direction || k.track != best.track) continue;
         if (k.sample + 1 == best.sample) fitAt[0] = k.total;
         if (k.sample == best.sample + 1) fitAt[1] = k.total;
     }
@@ -33,7 +34,7 @@ std::optional<MagneticWindowERD::Closure> MagneticWindowERD::measureClosure(
     if (!std::isfinite(sigmaAlong2)) return std::nullopt;
     // The query node's place on the target's path: its travel past the newest reading, the
     // same way along (forward) or back (backward).
-    const double ahead = path_.travel[qNode] - samples[newest].s;
+    const double ahead = path_.travel[qNode] - query[newest].s;
     const double sTarget =
         samples[best.sample].s + (best.direction == WindowDirection::Forward ? ahead : -ahead);
     const auto it = std::upper_bound(path_.travel.begin(), path_.travel.end(), sTarget);
@@ -66,7 +67,7 @@ std::optional<MagneticWindowERD::Closure> MagneticWindowERD::measureClosure(
     c.positionCov = S;
     c.score = -best.fit.chi2 / (3.0 * double(n_));
     c.direction = best.direction;
-    c.sQuery = samples[newest].s;
+    c.sQuery = query[newest].s;
     c.sTarget = samples[best.sample].s;
     c.targetSegment = tSegment;
     return c;

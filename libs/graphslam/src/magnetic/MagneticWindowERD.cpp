@@ -18,10 +18,10 @@ MagneticWindowERD::MagneticWindowERD() {
 
 void MagneticWindowERD::rebuild() {
     params_.noise.step = params_.step;
-    // A window ends at every resampled reading: supernodes of the window's length, one per step.
-    track_ = std::make_unique<magnetic::SupernodeTrack>(
-        magnetic::SupernodeTrack::Params{params_.step, params_.window, params_.step}, 3);
-    n_ = track_->samplesPerSupernode();
+    sensors_.clear();
+    mirror_.clear();
+    n_ = magnetic::SupernodeTrack({params_.step, params_.window, params_.step}, 3)
+             .samplesPerSupernode();
     path_ = MagneticPath(params_.uncertainty);
 }
 
@@ -29,6 +29,7 @@ void MagneticWindowERD::configure(const mrpt::config::CConfigFileBase& ini) {
     config::IniSection s(ini, "MagneticWindowERD", config::sourceName(ini));
     Params p = params_;  // all or nothing
     p.sensorLabel = s.getString("sensor_label", p.sensorLabel);
+    p.mirrorSensors = s.getBool("mirror_sensors", p.mirrorSensors);
     p.saturation = s.getDouble("saturation", p.saturation);
     p.step = s.getDouble("resample_step", p.step);
     p.window = s.getDouble("window_length", p.window);
@@ -83,20 +84,26 @@ bool MagneticWindowERD::updateState(mrpt::obs::CActionCollection::Ptr,
 
 void MagneticWindowERD::onNode(TNodeID id) {
     const int segment = nodes_->at(id).segment;
-    path_.addNode(id, *m_graph, *nodes_, params_.sensorLabel, params_.saturation,
-                  [&](double s, const Eigen::Vector3d& b) {
-                      for (const auto& w : track_->add(s, b, id, segment)) {
-                          const double end = track_->samples()[w.last - 1].s;
-                          if (end - lastQuery_ + 1e-9 < params_.queryEvery) continue;
-                          lastQuery_ = end;
-                          query(w.first);
-                      }
-                  });
+    path_.addNode(
+        id, *m_graph, *nodes_, params_.saturation,
+        [&](const MagneticSample& m) { return takeReading(m); },
+        [&](const MagneticSample& m, double s, const Eigen::Vector3d& b) {
+            auto& track = *sensors_.at(m.sensorLabel).track;
+            const auto windows = track.add(s, b, id, segment);
+            if (m.sensorLabel != params_.sensorLabel) return;  // the mirror's: stored only
+            for (const auto& w : windows) {
+                const double end = track.samples()[w.last - 1].s;
+                if (end - lastQuery_ + 1e-9 < params_.queryEvery) continue;
+                lastQuery_ = end;
+                query(w.first);
+            }
+        });
 }
 
-Eigen::Vector2d MagneticWindowERD::positionAtSample(std::size_t i) const {
+Eigen::Vector2d MagneticWindowERD::positionAtSample(const magnetic::SupernodeTrack& track,
+                                                    std::size_t i) const {
     // A sample lies in its node's interval: between node - 1 and node, by travel.
-    const auto& sample = track_->samples()[i];
+    const auto& sample = track.samples()[i];
     const auto k = static_cast<TNodeID>(sample.node);
     const auto& b = m_graph->nodes.at(k);
     if (k == 0 || path_.segment[k - 1] != path_.segment[k] || path_.travel[k] <= path_.travel[k - 1])
@@ -106,40 +113,44 @@ Eigen::Vector2d MagneticWindowERD::positionAtSample(std::size_t i) const {
     return {a.x() + f * (b.x() - a.x()), a.y() + f * (b.y() - a.y())};
 }
 
-void MagneticWindowERD::compareAt(std::size_t c, std::size_t first, double gate2, double turnPrior,
-                                  double turnVariance, std::vector<Candidate>& out) const {
-    const auto& samples = track_->samples();
-    const double newest = samples[first + n_ - 1].s;
+void MagneticWindowERD::compareAt(const magnetic::SupernodeTrack& track, std::size_t c,
+                                  WindowDirection direction, std::size_t first, const Prior& prior,
+                                  std::vector<Candidate>& out) const {
+    const auto& samples = track.samples();
+    const auto& query = queried().samples();
     // Forward: the window ending at c; backward: the window starting at c, read in reverse.
-    if (c + 1 >= n_ && samples[c + 1 - n_].segment == samples[c].segment) {
-        Candidate k{c, WindowDirection::Forward,
-                    magnetic::compareWindows(samples, first, c + 1 - n_, n_,
-                                             WindowDirection::Forward, params_.noise, turnPrior,
-                                             turnVariance),
-                    gate2, 0};
-        k.total = k.fit.chi2 + gate2;
-        out.push_back(k);
+    std::size_t start = 0;
+    if (direction == WindowDirection::Forward) {
+        if (c + 1 < n_ || samples[c + 1 - n_].segment != samples[c].segment) return;
+        start = c + 1 - n_;
+    } else {
+        if (c + n_ > samples.size() || samples[c + n_ - 1].segment != samples[c].segment ||
+            samples[c + n_ - 1].s > query[first + n_ - 1].s - params_.minTravelGap)
+            return;
+        start = c;
     }
-    if (c + n_ <= samples.size() && samples[c + n_ - 1].segment == samples[c].segment &&
-        samples[c + n_ - 1].s <= newest - params_.minTravelGap) {
-        Candidate k{c, WindowDirection::Backward,
-                    magnetic::compareWindows(samples, first, c, n_, WindowDirection::Backward,
-                                             params_.noise, turnPrior, turnVariance),
-                    gate2, 0};
-        k.total = k.fit.chi2 + gate2;
-        out.push_back(k);
-    }
+    Candidate k;
+    k.track = &track;
+    k.sample = c;
+    k.direction = direction;
+    k.fit = magnetic::compareWindows(query, first, samples, start, n_, direction, params_.noise,
+                                     prior.turn, prior.turnVariance);
+    k.gate2 = prior.gate2;
+    k.total = k.fit.chi2 + prior.gate2;
+    out.push_back(k);
 }
 
-MagneticWindowERD::Prior MagneticWindowERD::priorAt(std::size_t c, TNodeID qNode,
+MagneticWindowERD::Prior MagneticWindowERD::priorAt(const magnetic::SupernodeTrack& track,
+                                                   std::size_t c, TNodeID qNode,
                                                    const Eigen::Vector2d& here) const {
-    const auto& samples = track_->samples();
+    const auto& samples = track.samples();
     Prior p;
     if (samples[c].segment != path_.segment[qNode]) return p;
     // Where the robot can be, and which way it faces, under the pose uncertainty relative to
     // the target. Across a kidnap the graph knows neither: everywhere, any way.
     const auto target = static_cast<TNodeID>(samples[c].node);
-    p.gate2 = path_.uncertainty.relativeGateDistance2(target, qNode, here - positionAtSample(c));
+    p.gate2 =
+        path_.uncertainty.relativeGateDistance2(target, qNode, here - positionAtSample(track, c));
     p.turn = m_graph->nodes.at(qNode).yaw() - m_graph->nodes.at(target).yaw();
     const double turnFloor = params_.turnFloorDeg * M_PI / 180;
     p.turnVariance = path_.uncertainty.covariance(qNode)(2, 2) + turnFloor * turnFloor;
@@ -149,7 +160,7 @@ MagneticWindowERD::Prior MagneticWindowERD::priorAt(std::size_t c, TNodeID qNode
 void MagneticWindowERD::query(std::size_t first) {
     const auto t0 = Clock::now();
     ++stats_.queries;
-    const auto& samples = track_->samples();
+    const auto& samples = queried().samples();
     const std::size_t newest = first + n_ - 1;
     const double dof = 3.0 * double(n_);
     Outcome out;
@@ -160,12 +171,24 @@ void MagneticWindowERD::query(std::size_t first) {
         ++stats_.flat;  // a flat field matches anywhere
     } else {
         const auto qNode = static_cast<TNodeID>(samples[newest].node);
-        const Eigen::Vector2d here = positionAtSample(newest);
-        for (std::size_t c = 0;
-             c < samples.size() && samples[c].s <= samples[newest].s - params_.minTravelGap; ++c) {
-            const Prior p = priorAt(c, qNode, here);
-            if (p.gate2 > params_.gateChi2) continue;
-            compareAt(c, first, p.gate2, p.turn, p.turnVariance, candidates);
+        const Eigen::Vector2d here = positionAtSample(queried(), newest);
+        // Every stored reading the robot left at least min_travel_gap ago, inside the gate:
+        // forward on the queried sensor's track, backward on its mirror's.
+        const auto scan = [&](const magnetic::SupernodeTrack& track, bool forward, bool backward) {
+            const auto& stored = track.samples();
+            for (std::size_t c = 0;
+                 c < stored.size() && stored[c].s <= samples[newest].s - params_.minTravelGap; ++c) {
+                const Prior p = priorAt(track, c, qNode, here);
+                if (p.gate2 > params_.gateChi2) continue;
+                if (forward) compareAt(track, c, WindowDirection::Forward, first, p, candidates);
+                if (backward) compareAt(track, c, WindowDirection::Backward, first, p, candidates);
+            }
+        };
+        if (&mirrored() == &queried()) {
+            scan(queried(), true, true);
+        } else {
+            scan(queried(), true, false);
+            scan(mirrored(), false, true);
         }
     }
     if (out.flat) {
@@ -212,7 +235,7 @@ void MagneticWindowERD::query(std::size_t first) {
 double MagneticWindowERD::placePosterior(const Candidate& best, std::vector<Candidate>& all,
                                         std::size_t first,
                                         const magnetic::WindowNullModel& null) const {
-    const auto& samples = track_->samples();
+    const auto& query = queried().samples();
     // The position prior normalized over the candidates (both directions of every sample).
     double logZ = -INFINITY;
     for (const auto& k : all) {
@@ -227,20 +250,21 @@ double MagneticWindowERD::placePosterior(const Candidate& best, std::vector<Cand
     for (auto& k : all) {
         if (k.fit.chi2 > negligible) continue;
         const auto d = magnetic::windowResiduals(
-            samples, first,
+            query, first, k.track->samples(),
             k.direction == WindowDirection::Forward ? k.sample + 1 - n_ : k.sample, n_,
             k.direction, k.fit);
         k.logWeight = null.logLikelihoodRatio(d) - 0.5 * (k.gate2 + k.fit.turnPriorChi2) - logZ;
         maxLog = std::max(maxLog, k.logWeight);
     }
-    const Eigen::Vector2d there = positionAtSample(best.sample);
-    const int segment = samples[best.sample].segment;
+    const Eigen::Vector2d there = positionAtSample(*best.track, best.sample);
+    const int segment = best.track->samples()[best.sample].segment;
     double same = 0, rest = std::exp(std::log(params_.nullOdds) - maxLog);
     for (const auto& k : all) {
         if (!std::isfinite(k.logWeight)) continue;
         const double w = std::exp(k.logWeight - maxLog);
-        const bool samePlace = samples[k.sample].segment == segment &&
-                               (positionAtSample(k.sample) - there).norm() <= params_.distinctRadius;
+        const bool samePlace =
+            k.track->samples()[k.sample].segment == segment &&
+            (positionAtSample(*k.track, k.sample) - there).norm() <= params_.distinctRadius;
         (samePlace ? same : rest) += w;
     }
     return same / (same + rest);
@@ -270,6 +294,7 @@ JsonObject MagneticWindowERD::describe() const {
         .set("turn_floor_deg", params_.turnFloorDeg);
     JsonObject stats;
     path_.describeCounts(stats)
+        .set("mirror_sensor", mirror_)
         .set("queries", stats_.queries)
         .set("flat", stats_.flat)
         .set("no_candidate", stats_.noCandidate)

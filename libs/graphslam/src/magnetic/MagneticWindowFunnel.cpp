@@ -32,7 +32,7 @@ const char* MagneticWindowERD::toString(TruthStage stage) {
 }
 
 std::optional<std::size_t> MagneticWindowERD::diagnose(std::size_t first, const Outcome& out) {
-    const auto& samples = track_->samples();
+    const auto& samples = queried().samples();
     const std::size_t newest = first + n_ - 1;
     const auto qNode = static_cast<TNodeID>(samples[newest].node);
     // The true pose of each node (the truth's sample nearest its time, within 0.1 s), and of
@@ -72,23 +72,34 @@ std::optional<std::size_t> MagneticWindowERD::diagnose(std::size_t first, const 
     const std::size_t c = *place;
     const io::TumPose* there = trueAt(static_cast<TNodeID>(samples[c].node));
     r.backward = std::abs(std::remainder(q->pose.yaw() - there->pose.yaw(), 2 * M_PI)) > M_PI / 2;
+    // Walked back, the place is on the mirror's track: its reading nearest the same travel.
+    const auto& track = r.backward ? mirrored() : queried();
+    const auto& stored = track.samples();
+    const std::size_t t = std::min<std::size_t>(
+        stored.size() - 1,
+        static_cast<std::size_t>(
+            std::lower_bound(stored.begin(), stored.end(), samples[c].s,
+                             [](const magnetic::TrackSample& a, double v) { return a.s < v; }) -
+            stored.begin()));
     const bool whole =
-        r.backward ? c + n_ <= samples.size() && samples[c + n_ - 1].segment == samples[c].segment &&
-                         samples[c + n_ - 1].s <= samples[newest].s - params_.minTravelGap
-                   : c + 1 >= n_ && samples[c + 1 - n_].segment == samples[c].segment;
-    const Prior p = priorAt(c, qNode, positionAtSample(newest));
+        r.backward ? t + n_ <= stored.size() && stored[t + n_ - 1].segment == stored[t].segment &&
+                         stored[t + n_ - 1].s <= samples[newest].s - params_.minTravelGap
+                   : t + 1 >= n_ && stored[t + 1 - n_].segment == stored[t].segment;
+    const Prior p = priorAt(track, t, qNode, positionAtSample(queried(), newest));
     r.gate2 = p.gate2;
     if (whole) {
-        r.fitChi2 = magnetic::compareWindows(samples, first, r.backward ? c : c + 1 - n_, n_,
+        r.fitChi2 = magnetic::compareWindows(samples, first, stored, r.backward ? t : t + 1 - n_,
+                                             n_,
                                              r.backward ? WindowDirection::Backward
                                                         : WindowDirection::Forward,
                                              params_.noise, p.turn, p.turnVariance)
                         .chi2;
     }
     const double fitLimit = magnetic::chiSquareQuantile(3.0 * double(n_), params_.quantile);
-    const bool bestHere = out.best && samples[out.best->sample].segment == samples[c].segment &&
-                          (positionAtSample(out.best->sample) - positionAtSample(c)).norm() <=
-                              params_.distinctRadius;
+    const bool bestHere =
+        out.best && out.best->track->samples()[out.best->sample].segment == stored[t].segment &&
+        (positionAtSample(*out.best->track, out.best->sample) - positionAtSample(track, t)).norm() <=
+            params_.distinctRadius;
     using S = TruthStage;
     r.stage = out.flat                       ? S::Flat
               : !whole                       ? S::NoWindow

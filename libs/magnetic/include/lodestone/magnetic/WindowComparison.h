@@ -36,20 +36,22 @@ struct WindowFit {
     double turnVariance{0};  ///< [rad^2] its posterior variance
 };
 
-/** Compares `n` readings of `samples` from `query` (oldest first) with `n` from `target`,
- * paired by `direction`. The horizontal components of a reading turn with the robot's
+/** Compares `n` readings of `querySamples` from `query` (oldest first) with `n` of
+ * `targetSamples` from `target` (the same track, or another magnetometer's), paired by
+ * `direction`. The horizontal components of a reading turn with the robot's
  * heading, so the target's are turned by the relative heading that fits best under the prior
  * N(`turnPrior`, `turnPriorVariance`) (an infinite variance: no prior, after a kidnap); the
  * vertical component does not turn (the turn is fitted under the white part of `noise`).
  * O(n): the offset and trend enter through the differences' sums. Samples need 3 channels. */
-WindowFit compareWindows(const std::vector<TrackSample>& samples, std::size_t query,
-                         std::size_t target, std::size_t n, WindowDirection direction,
-                         const PassNoise& noise, double turnPrior, double turnPriorVariance);
+WindowFit compareWindows(const std::vector<TrackSample>& querySamples, std::size_t query,
+                         const std::vector<TrackSample>& targetSamples, std::size_t target,
+                         std::size_t n, WindowDirection direction, const PassNoise& noise,
+                         double turnPrior, double turnPriorVariance);
 
 /** The differences of compareWindows' pairs at `fit`'s turn (n x 3, query minus turned target). */
-Eigen::MatrixX3d windowResiduals(const std::vector<TrackSample>& samples, std::size_t query,
-                                 std::size_t target, std::size_t n, WindowDirection direction,
-                                 const WindowFit& fit);
+Eigen::MatrixX3d windowResiduals(const std::vector<TrackSample>& querySamples, std::size_t query,
+                                 const std::vector<TrackSample>& targetSamples, std::size_t target,
+                                 std::size_t n, WindowDirection direction, const WindowFit& fit);
 
 /** How much likelier a window's differences are under "the same place" (each component
  * N(0, C1), C1 the PassNoise covariance, components independent) than under "two unrelated

@@ -22,6 +22,12 @@ class MagneticPath {
         std::size_t readings{0}, dropped{0}, otherSensors{0};
     };
     using ReadingSink = std::function<void(double travel, const Eigen::Vector3d& robotField)>;
+    /** Readings of any magnetometer: the reading (its label and mounting), its travel and the
+     * field in the levelled robot frame. */
+    using SensorSink = std::function<void(const MagneticSample& reading, double travel,
+                                          const Eigen::Vector3d& robotField)>;
+    /** Which readings a caller takes (the others are counted as other sensors'). */
+    using SensorFilter = std::function<bool(const MagneticSample& reading)>;
 
     explicit MagneticPath(const closure::PathUncertainty::Params& p = {}) : uncertainty(p) {}
 
@@ -33,6 +39,9 @@ class MagneticPath {
      * saturated (a component over `saturation` uT) readings are counted and skipped. */
     void addNode(TNodeID id, const Graph& graph, const NodeStore& nodes, std::string& label,
                  double saturation, const ReadingSink& sink);
+    /** The same for the readings `take` accepts, of any magnetometer. */
+    void addNode(TNodeID id, const Graph& graph, const NodeStore& nodes, double saturation,
+                 const SensorFilter& take, const SensorSink& sink);
 
     /** A loop closure placed node `query` with `positionCov` in the frame of a node facing
      * `targetYaw` and `yawVariance`: the uncertainty pinned there, in the map frame. */

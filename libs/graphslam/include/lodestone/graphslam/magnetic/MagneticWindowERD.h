@@ -7,6 +7,7 @@
 #include <lodestone/magnetic/WindowComparison.h>
 
 #include <deque>
+#include <map>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -43,7 +44,11 @@ namespace lodestone::graphslam {
 class MagneticWindowERD : public EdgeDecider {
   public:
     struct Params {
-        std::string sensorLabel;   ///< only this magnetometer ("": the first one seen)
+        std::string sensorLabel;   ///< the magnetometer queried ("": the first one seen)
+        /** Walked back, a magnetometer mounted off the robot's centre line passes where its
+         * mirror image (the same mounting, the other side) passed on the way out: backward
+         * windows are compared with that sensor's readings when the robot carries one. */
+        bool mirrorSensors{true};
         double saturation{1000.0};  ///< [uT] a component this large is a saturated reading
         double step{0.05};          ///< [m] readings resampled by travel
         double window{1.5};  ///< [m] of path per window (Kok & Solin: ~1 s of walking; README)
@@ -119,6 +124,7 @@ class MagneticWindowERD : public EdgeDecider {
   private:
     /** The best fit of one stored sample as the query's newest reading's place. */
     struct Candidate {
+        const magnetic::SupernodeTrack* track{nullptr};  ///< whose readings `sample` indexes
         std::size_t sample{0};
         magnetic::WindowDirection direction{magnetic::WindowDirection::Forward};
         magnetic::WindowFit fit;
@@ -140,13 +146,16 @@ class MagneticWindowERD : public EdgeDecider {
     void rebuild();
     void onNode(TNodeID id);
     void query(std::size_t first);
-    Prior priorAt(std::size_t c, TNodeID qNode, const Eigen::Vector2d& here) const;
+    Prior priorAt(const magnetic::SupernodeTrack& track, std::size_t c, TNodeID qNode,
+                  const Eigen::Vector2d& here) const;
     /** The truth's stage for the query ending at `first` + n - 1 (MagneticWindowFunnel.cpp). */
     std::optional<std::size_t> diagnose(std::size_t first, const Outcome& out);
     JsonObject describeTruth() const;
-    /** Both directions' fits of stored sample `c` (as many as its windows allow). */
-    void compareAt(std::size_t c, std::size_t first, double gate2, double turnPrior,
-                   double turnVariance, std::vector<Candidate>& out) const;
+    /** The fit of stored sample `c` of `track` as the place of the query's newest reading,
+     * `direction`, if its window is whole there. */
+    void compareAt(const magnetic::SupernodeTrack& track, std::size_t c,
+                   magnetic::WindowDirection direction, std::size_t first, const Prior& prior,
+                   std::vector<Candidate>& out) const;
     /** The posterior of the best candidate's place against every other place and against
      * the null (no earlier place), candidates' logWeight filled in. */
     double placePosterior(const Candidate& best, std::vector<Candidate>& all, std::size_t first,
@@ -170,11 +179,21 @@ class MagneticWindowERD : public EdgeDecider {
     /** Commits `c` now, or when confirmed (Params::confirm); true when it made an edge. */
     bool confirm(const Closure& c);
     bool commit(const Closure& c);
-    Eigen::Vector2d positionAtSample(std::size_t i) const;
+    Eigen::Vector2d positionAtSample(const magnetic::SupernodeTrack& track, std::size_t i) const;
+    /** Readings to keep: the queried sensor's and its mirror's (MagneticWindowSensors.cpp). */
+    bool takeReading(const MagneticSample& reading);
+    const magnetic::SupernodeTrack& queried() const;
+    /** The track backward windows are compared with: the mirror's, else the queried one. */
+    const magnetic::SupernodeTrack& mirrored() const;
 
     Params params_;
     std::size_t n_{0};  // samples per window (rebuild)
-    std::unique_ptr<magnetic::SupernodeTrack> track_;
+    struct Sensor {
+        std::unique_ptr<magnetic::SupernodeTrack> track;
+        Eigen::Vector3d position;  ///< on the robot [m]
+    };
+    std::map<std::string, Sensor> sensors_;  // the queried one and its mirror
+    std::string mirror_;                     // the mirror's label ("": none)
     MagneticPath path_;  // travel, segment, pose uncertainty per node
     TNodeID seen_{0};
     double lastQuery_{-1e18}, lastClosure_{-1e18};  // [m] travel
