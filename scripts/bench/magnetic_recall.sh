@@ -22,3 +22,46 @@ command -v taskset > /dev/null && pin=(taskset -c 0)
 # (the optimizer logs its rejections on stdout: kept out of the table)
 "${pin[@]}" "$root/build/bench/bench_magnetic_recall" "$root/../shared/data/magnetic" "$out" "$seeds" \
     "${inis[@]}" 2> /dev/null | grep -v "^\["
+
+# A simulated robot (two magnetometers 0.12 m either side of its centre line, wheels, RGB-D at
+# 320x240 / 15 Hz) driving corridor_shuttle.ini's plain corridor back and forth, each seed
+# simulated to disk and run with slam.ini (its magnetic closer: MagneticGpERD), with slam.ini's
+# magnetic closer replaced by MagneticWindowERD (magnetic_window.ini's section), and with both;
+# lodestone-eval closures counts the passes by direction.
+sim_seeds=${SIM_SEEDS:-3}
+sim="$root/build/apps/lodestone-sim/lodestone-sim"
+slam="$root/build/apps/lodestone-slam/lodestone-slam"
+evaluate="$root/build/apps/lodestone-eval/lodestone-eval"
+windowed="$out/slam_window.ini"
+awk '/^\[MagneticWindowERD\]/{on=1} /^\[/{if(!/^\[MagneticWindowERD\]/)on=0} on' \
+    "$root/config_ini/magnetic_window.ini" > "$out/window_section.ini"
+sed 's/^children = OrbSubmapERD MagneticGpERD /children = OrbSubmapERD MagneticWindowERD /' \
+    "$root/config_ini/slam.ini" | awk -v sec="$out/window_section.ini" '
+    /^\[MagneticGpERD\]/{skip=1; while ((getline line < sec) > 0) print line; next}
+    /^\[/{skip=0} !skip' > "$windowed"
+both="$out/slam_both.ini"
+sed 's/^children = OrbSubmapERD MagneticGpERD /children = OrbSubmapERD MagneticGpERD MagneticWindowERD /' \
+    "$root/config_ini/slam.ini" | awk -v sec="$out/window_section.ini" '
+    /^\[CeresGSO\]/{while ((getline line < sec) > 0) print line}
+    {print}' > "$both"
+echo
+echo "#### corridor_shuttle.ini (simulated robot, two magnetometers; seeds 1-$sim_seeds)"
+echo
+echo "| seed | INI | magnetic closures: right / wrong | same direction: passes, recall | opposite direction: passes, recall | ATE [m] |"
+echo "|---|---|---|---|---|---|"
+for seed in $(seq 1 "$sim_seeds"); do
+    "$sim" -c "$root/config_ini/corridor_shuttle.ini" --camera 320x240@15 -s "$seed" \
+        -o "$out/shuttle_$seed.rawlog" > /dev/null
+    for ini in "$root/config_ini/slam.ini" "$windowed" "$both"; do
+        name=$(basename "$ini")
+        run="$out/shuttle_${seed}_$name"
+        ate=$("$slam" --rawlog "$out/shuttle_$seed.rawlog" --ground-truth "$out/shuttle_$seed.gt.tum" \
+            --config "$ini" --out "$run" 2> /dev/null | sed -n 's/^ATE RMSE \([0-9.]*\) m.*/\1/p')
+        "$evaluate" closures "$run" --ground-truth "$out/shuttle_$seed.gt.tum" |
+            awk -F'|' -v seed="$seed" -v ini="$name" -v ate="$ate" '/^\| Magnetic/ {
+                split($13, same, ","); split($14, opp, ",");
+                printf "| %s | %s | %d / %d | %d passes, %.2f | %d passes, %.2f | %s |\n",
+                    seed, ini, $4, $5, same[1], same[2], opp[1], opp[2], ate }'
+    done
+    rm -rf "$out"/shuttle_"$seed"*
+done
