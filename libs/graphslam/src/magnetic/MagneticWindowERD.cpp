@@ -190,37 +190,7 @@ void MagneticWindowERD::query(std::size_t first) {
             scan(queried(), true, false);
             scan(mirrored(), false, true);
         }
-    }
-    if (out.flat) {
-    } else if (candidates.empty()) {
-        ++stats_.noCandidate;
-    } else {
-        out.best = *std::min_element(
-            candidates.begin(), candidates.end(),
-            [](const Candidate& a, const Candidate& b) { return a.total < b.total; });
-        if (out.best->fit.chi2 > magnetic::chiSquareQuantile(dof, params_.quantile)) {
-            ++stats_.noFit;
-        } else {
-            // The null's field amplitude is this window's own: its spread about its mean, the
-            // reading noise (half the difference's variance) taken out. A stretch that varies
-            // little is no strong evidence when it matches another that varies little.
-            const double s2 = params_.noise.sigma * params_.noise.sigma;
-            const double spread2 = excitation * s2 / (dof - 3) - 0.5 * s2;
-            const magnetic::WindowNullModel null(n_, params_.noise,
-                                                 std::sqrt(std::max(spread2, 1e-6)),
-                                                 params_.lengthScale);
-            out.posterior = placePosterior(*out.best, candidates, first, null);
-            if (out.posterior < params_.minPosterior) {
-                ++stats_.ambiguous;
-            } else {
-                ++stats_.accepted;
-                if (auto c = measureClosure(*out.best, candidates, first)) {
-                    out.closed = confirm(*c);
-                } else {
-                    ++stats_.unmeasured;
-                }
-            }
-        }
+        decide(first, excitation, candidates, out);
     }
     if (truth_) {
         const auto record = diagnose(first, out);
@@ -230,6 +200,40 @@ void MagneticWindowERD::query(std::size_t first) {
             pending_.back().truthRecord = record;
     }
     stats_.queryMs.push_back(msSince(t0));
+}
+
+void MagneticWindowERD::decide(std::size_t first, double excitation,
+                               std::vector<Candidate>& candidates, Outcome& out) {
+    const double dof = 3.0 * double(n_);
+    if (candidates.empty()) {
+        ++stats_.noCandidate;
+        return;
+    }
+    out.best = *std::min_element(
+        candidates.begin(), candidates.end(),
+        [](const Candidate& a, const Candidate& b) { return a.total < b.total; });
+    if (out.best->fit.chi2 > magnetic::chiSquareQuantile(dof, params_.quantile)) {
+        ++stats_.noFit;
+        return;
+    }
+    // The null's field amplitude is this window's own: its spread about its mean, the reading
+    // noise (half the difference's variance) taken out. A stretch that varies little is no
+    // strong evidence when it matches another that varies little.
+    const double s2 = params_.noise.sigma * params_.noise.sigma;
+    const double spread2 = excitation * s2 / (dof - 3) - 0.5 * s2;
+    const magnetic::WindowNullModel null(n_, params_.noise, std::sqrt(std::max(spread2, 1e-6)),
+                                         params_.lengthScale);
+    out.posterior = placePosterior(*out.best, candidates, first, null);
+    if (out.posterior < params_.minPosterior) {
+        ++stats_.ambiguous;
+        return;
+    }
+    ++stats_.accepted;
+    if (auto c = measureClosure(*out.best, candidates, first)) {
+        out.closed = confirm(*c);
+    } else {
+        ++stats_.unmeasured;
+    }
 }
 
 double MagneticWindowERD::placePosterior(const Candidate& best, std::vector<Candidate>& all,

@@ -146,6 +146,9 @@ class MagneticWindowERD : public EdgeDecider {
     void rebuild();
     void onNode(TNodeID id);
     void query(std::size_t first);
+    /** The tests on a query's candidates (fit, posterior), then its closure. */
+    void decide(std::size_t first, double excitation, std::vector<Candidate>& candidates,
+                Outcome& out);
     Prior priorAt(const magnetic::SupernodeTrack& track, std::size_t c, TNodeID qNode,
                   const Eigen::Vector2d& here) const;
     /** The truth's stage for the query ending at `first` + n - 1 (MagneticWindowFunnel.cpp). */
