@@ -5,7 +5,7 @@
 # synthetic loop and a synthetic corridor walked back and forth. Each recording is imported with
 # the drift model for seeds 1..N and run with each INI; a markdown table, a row per recording
 # and INI (bench/bench_magnetic_recall.cpp says what each column counts).
-# Usage: scripts/bench/magnetic_recall.sh [SEEDS] [INI ...]
+# Usage: scripts/bench/magnetic_recall.sh [SEEDS] [INI ...]   (SIM_SEEDS=N: corridor_shuttle seeds, 3)
 #   (default: 10 seeds; magnetic_only.ini, the sequence matcher with GP correction, against
 #   magnetic_window.ini, the window method; a few minutes)
 set -euo pipefail
@@ -47,7 +47,7 @@ sed 's/^children = OrbSubmapERD MagneticGpERD /children = OrbSubmapERD MagneticG
 echo
 echo "#### corridor_shuttle.ini (simulated robot, two magnetometers; seeds 1-$sim_seeds)"
 echo
-echo "| seed | INI | magnetic closures: right / wrong | same direction: passes, recall | opposite direction: passes, recall | ATE [m] |"
+echo "| seed | INI: magnetic closer | its closures: right / wrong | same direction: passes, recall | opposite direction: passes, recall | ATE [m] |"
 echo "|---|---|---|---|---|---|"
 for seed in $(seq 1 "$sim_seeds"); do
     "$sim" -c "$root/config_ini/corridor_shuttle.ini" --camera 320x240@15 -s "$seed" \
@@ -60,8 +60,9 @@ for seed in $(seq 1 "$sim_seeds"); do
         "$evaluate" closures "$run" --ground-truth "$out/shuttle_$seed.gt.tum" |
             awk -F'|' -v seed="$seed" -v ini="$name" -v ate="$ate" '/^\| Magnetic/ {
                 split($13, same, ","); split($14, opp, ",");
-                printf "| %s | %s | %d / %d | %d passes, %.2f | %d passes, %.2f | %s |\n",
-                    seed, ini, $4, $5, same[1], same[2], opp[1], opp[2], ate }'
+                gsub(/ /, "", $2);
+                printf "| %s | %s: %s | %d / %d | %d passes, %.2f | %d passes, %.2f | %s |\n",
+                    seed, ini, $2, $4, $5, same[1], same[2], opp[1], opp[2], ate }'
     done
     rm -rf "$out"/shuttle_"$seed"*
 done
