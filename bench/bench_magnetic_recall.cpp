@@ -10,20 +10,20 @@
 // wrong closures (> 0.5 m), ATE median / worst, real-time factor. Table 2, for deciders that
 // report a truth funnel (MagneticWindowERD): every pass missed, by the furthest stage its true
 // place reached in any query inside it; how often the truth lay inside the position gate.
-#include "magnetic_recordings.h"
-
 #include <lodestone/eval/ClosureEval.h>
 #include <lodestone/io/MagneticRecordingImport.h>
 #include <lodestone/io/TumTrajectory.h>
 #include <lodestone/obs/registerAllClasses.h>
 #include <lodestone/slamapp/SlamRun.h>
-#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <nlohmann/json.hpp>
+
+#include "magnetic_recordings.h"
 
 using namespace lodestone;
 
@@ -31,7 +31,9 @@ namespace {
 
 double median(std::vector<double> v) {
     std::sort(v.begin(), v.end());
-    return v.empty() ? NAN : v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+    return v.empty()      ? NAN
+           : v.size() % 2 ? v[v.size() / 2]
+                          : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
 }
 
 std::string fraction(std::size_t found, std::size_t all) {
@@ -67,7 +69,8 @@ bool readFunnel(const std::string& reportPath, std::vector<std::pair<double, int
         const auto& f = child["truth_funnel"];
         for (std::size_t i = 0; i < f["query_node"].size(); ++i)
             queries.emplace_back(f["query_node"][i].get<double>(), f["stage"][i].get<int>());
-        insideGate = f["truth_inside_gate"].is_number() ? f["truth_inside_gate"].get<double>() : NAN;
+        insideGate =
+            f["truth_inside_gate"].is_number() ? f["truth_inside_gate"].get<double>() : NAN;
         return true;
     }
     return false;
@@ -78,7 +81,8 @@ bool judgeRun(const slamapp::SlamRunOptions& o, Row& row) {
     const auto truth = io::readTumTrajectory(o.groundTruth);
     const auto nodes = io::readTumTrajectory(o.outDir + "/trajectory.tum");
     const auto passes = eval::revisitPasses(nodes, truth);
-    const auto qs = eval::evaluateClosures(eval::readClosureLog(o.outDir + "/closures.csv"), nodes, truth);
+    const auto qs =
+        eval::evaluateClosures(eval::readClosureLog(o.outDir + "/closures.csv"), nodes, truth);
     std::vector<bool> found(passes.size(), false);
     for (const auto& q : qs) {
         row.closures += q.proposals;
@@ -136,17 +140,19 @@ int main(int argc, char** argv) {
         }
     }
     if (argc < 5 || inis.empty()) {
-        std::cerr << "usage: bench_magnetic_recall DATA_DIR OUT_DIR SEEDS INI [INI ...] [--only NAME]\n";
+        std::cerr
+            << "usage: bench_magnetic_recall DATA_DIR OUT_DIR SEEDS INI [INI ...] [--only NAME]\n";
         return 2;
     }
     const std::string data = argv[1], out = argv[2];
     const int seeds = std::atoi(argv[3]);
     registerAllClasses();
     std::vector<std::pair<std::string, Row>> rows;
-    std::printf("| recording | INI | same-direction passes found | opposite-direction found | "
-                "worst seed's recall: same / opposite | precision | closures | wrong (> 0.5 m) | "
-                "ATE median / worst [m] | real-time factor |\n"
-                "|---|---|---|---|---|---|---|---|---|---|\n");
+    std::printf(
+        "| recording | INI | same-direction passes found | opposite-direction found | "
+        "worst seed's recall: same / opposite | precision | closures | wrong (> 0.5 m) | "
+        "ATE median / worst [m] | real-time factor |\n"
+        "|---|---|---|---|---|---|---|---|---|---|\n");
     for (const auto& rec : benchRecordings(data)) {
         if (!only.empty() && rec.name.find(only) == std::string::npos) continue;
         const auto recording = rec.read();
@@ -166,9 +172,10 @@ int main(int argc, char** argv) {
                 judgeRun(run.options, row);
             }
             std::printf("| %s | %s | %s | %s | %s / %s | %s | %zu | %zu | %.3f / %.3f | %.0fx |\n",
-                        rec.name.c_str(), ini.c_str(), fraction(row.found[0], row.passes[0]).c_str(),
-                        fraction(row.found[1], row.passes[1]).c_str(), worstOf(row.worst[0]).c_str(),
-                        worstOf(row.worst[1]).c_str(),
+                        rec.name.c_str(), ini.c_str(),
+                        fraction(row.found[0], row.passes[0]).c_str(),
+                        fraction(row.found[1], row.passes[1]).c_str(),
+                        worstOf(row.worst[0]).c_str(), worstOf(row.worst[1]).c_str(),
                         row.judged ? worstOf(double(row.right) / double(row.judged)).c_str() : "-",
                         row.closures, row.wrong, median(row.ate),
                         *std::max_element(row.ate.begin(), row.ate.end()), median(row.realtime));
@@ -176,8 +183,9 @@ int main(int argc, char** argv) {
             rows.emplace_back(rec.name + " | " + ini, row);
         }
     }
-    std::printf("\nPasses missed, by the furthest stage their true place reached (same / opposite "
-                "direction, all seeds):\n\n| recording | INI | no query |");
+    std::printf(
+        "\nPasses missed, by the furthest stage their true place reached (same / opposite "
+        "direction, all seeds):\n\n| recording | INI | no query |");
     for (const char* s : kStages) std::printf(" %s |", s);
     std::printf(" truth inside the gate: mean / worst seed |\n|---|---|---|");
     for (std::size_t k = 0; k < std::size(kStages); ++k) std::printf("---|");
@@ -201,7 +209,8 @@ int main(int argc, char** argv) {
             worst = std::min(worst, v);
             ++n;
         }
-        std::printf(" %s / %s |\n", n ? worstOf(sum / double(n)).c_str() : "-", worstOf(worst).c_str());
+        std::printf(" %s / %s |\n", n ? worstOf(sum / double(n)).c_str() : "-",
+                    worstOf(worst).c_str());
     }
     return 0;
 }

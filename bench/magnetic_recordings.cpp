@@ -3,7 +3,6 @@
 #include <lodestone/io/MagneticRecordingImport.h>
 
 #include <Eigen/Core>
-
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -98,7 +97,8 @@ io::MagneticRecording syntheticCorridorWalk() {
         // Turn on the spot at the corridor's end: half a turn over 1 s.
         const double target = heading + (pass == 0 ? 0.0 : M_PI);
         for (int k = 1; pass > 0 && k <= 10; ++k, t += 0.1)
-            addSample(rec, t, {east ? 0.0 : length, y}, heading + (target - heading) * k / 10, field);
+            addSample(rec, t, {east ? 0.0 : length, y}, heading + (target - heading) * k / 10,
+                      field);
         heading = target;
         for (double s = 0; s < length; s += 0.12, t += 0.1)
             addSample(rec, t, {east ? s : length - s, y}, heading, field);

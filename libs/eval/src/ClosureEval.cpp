@@ -66,7 +66,6 @@ std::vector<RevisitPass> revisitPasses(const std::vector<io::TumPose>& trajector
     return passes;
 }
 
-
 std::vector<ReportedClosure> readClosureLog(const std::string& path) {
     {
         std::ifstream in(path);
@@ -173,7 +172,8 @@ std::string formatClosureQuality(const std::vector<MatcherQuality>& qs,
                                  const ClosureEvalOptions& o) {
     std::string out =
         "| matcher | proposed | right | wrong | precision | error median / max m | kept (wrong) | "
-        "hypotheses (wrong) | passes | recall | recall at 100 % precision | same direction: passes, "
+        "hypotheses (wrong) | passes | recall | recall at 100 % precision | same direction: "
+        "passes, "
         "recall at 100 % | opposite direction: passes, recall at 100 % | score threshold |\n"
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     char line[768];

@@ -42,9 +42,8 @@ WindowFit compareWindows(const std::vector<TrackSample>& querySamples, std::size
     // Near theta* the field term is (K - 2M)/s2 + (M/s2)(theta - theta*)^2: information M/s2,
     // combined with the prior's 1/variance (the prior wrapped next to theta*).
     const double fieldInfo = M / s2;
-    const double priorInfo = std::isfinite(turnPriorVariance) && turnPriorVariance > 0
-                                 ? 1.0 / turnPriorVariance
-                                 : 0.0;
+    const double priorInfo =
+        std::isfinite(turnPriorVariance) && turnPriorVariance > 0 ? 1.0 / turnPriorVariance : 0.0;
     const double theta0 = thetaStar + std::remainder(-turnPrior - thetaStar, 2 * M_PI);
     WindowFit fit;
     const double info = fieldInfo + priorInfo;
@@ -143,7 +142,8 @@ double windowExcitation(const std::vector<TrackSample>& samples, std::size_t fir
 }
 
 double chiSquareQuantile(double dof, double p) {
-    if (!(dof > 0) || !(p > 0 && p < 1)) throw std::invalid_argument("chiSquareQuantile: bad input");
+    if (!(dof > 0) || !(p > 0 && p < 1))
+        throw std::invalid_argument("chiSquareQuantile: bad input");
     // The standard normal quantile, by bisection on the normal CDF (exact to 1e-12).
     double lo = -40, hi = 40;
     for (int i = 0; i < 200 && hi - lo > 1e-12; ++i) {

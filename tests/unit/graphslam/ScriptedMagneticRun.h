@@ -5,8 +5,8 @@
 #include <lodestone/graphslam/CeresGSO.h>
 #include <lodestone/graphslam/CompositeERD.h>
 #include <lodestone/graphslam/MagneticGpERD.h>
-#include <lodestone/graphslam/magnetic/MagneticWindowERD.h>
 #include <lodestone/graphslam/SlamEngine.h>
+#include <lodestone/graphslam/magnetic/MagneticWindowERD.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/obs/CObservationComment.h>
 

@@ -194,8 +194,8 @@ Verdict judgeProposals(const graphslam::SlamEngine& engine,
         ++v.closures;
         const auto& m = c.constraint.mean;
         const auto implied = truth[c.from] + mrpt::poses::CPose2D(m.x(), m.y(), m.yaw());
-        v.right += std::hypot(implied.x() - truth[c.to].x(), implied.y() - truth[c.to].y()) <=
-                   tolerance;
+        v.right +=
+            std::hypot(implied.x() - truth[c.to].x(), implied.y() - truth[c.to].y()) <= tolerance;
         v.toDecoy += std::abs(truth[c.from].y() - truth[c.to].y()) > 0.6;
     }
     return v;
@@ -206,7 +206,8 @@ Verdict judgeProposals(const graphslam::SlamEngine& engine,
 Verdict runWindow(const Decoy& decoy, graphslam::MagneticWindowERD::Stats* stats = nullptr) {
     auto sc = script(decoy);
     const auto r = test::runMagneticScript<graphslam::MagneticWindowERD>(
-        std::move(sc.steps), std::move(sc.records), "[MagneticWindowERD]\ngate_heading_drift = 0\n");
+        std::move(sc.steps), std::move(sc.records),
+        "[MagneticWindowERD]\ngate_heading_drift = 0\n");
     if (stats) *stats = r.erd->stats();
     return judgeProposals(*r.engine, sc.truth);
 }
@@ -253,7 +254,6 @@ TEST(MagneticWindowERD, AFieldNeverSeenBeforeGivesNoClosure) {
     d.freshThirdPass = true;
     EXPECT_EQ(runWindow(d).closures, 0u);
 }
-
 
 TEST(PathUncertainty, MatchesMonteCarloOfTheOdometryModel) {
     // A straight drive of 200 steps of 0.1 m with per-step noise and a heading drift per metre.

@@ -20,7 +20,8 @@ class FloorField {
         std::mt19937 rng(seed);
         std::uniform_real_distribution<double> x(-6, 26), y(-2, 7), a(-amplitude, amplitude),
             w(0.2, 0.4);
-        for (int k = 0; k < 3 * 32 * 9; ++k) bumps_.push_back({{x(rng), y(rng)}, {a(rng), a(rng), a(rng)}, w(rng)});
+        for (int k = 0; k < 3 * 32 * 9; ++k)
+            bumps_.push_back({{x(rng), y(rng)}, {a(rng), a(rng), a(rng)}, w(rng)});
     }
     /** What a magnetometer at `p` facing `yaw` reads, in the levelled robot frame. */
     mrpt::math::TVector3D reading(const Eigen::Vector2d& p, double yaw) const {
@@ -101,8 +102,8 @@ Walk walk(const std::vector<Eigen::Vector2d>& corners, const FloorField& field,
     for (std::size_t k = 0; k < w.truth.size(); ++k)
         truth->push_back({double(k), mrpt::poses::CPose3D(w.truth[k])});
     auto r = test::runMagneticScript<graphslam::MagneticWindowERD>(
-        std::move(steps), std::move(records), "[MagneticWindowERD]\ngate_heading_drift = 0\n" + extraIni,
-        truth);
+        std::move(steps), std::move(records),
+        "[MagneticWindowERD]\ngate_heading_drift = 0\n" + extraIni, truth);
     w.stats = r.erd->stats();
     w.funnel = r.erd->truthQueries();
     w.engine = std::move(r.engine);
@@ -145,7 +146,7 @@ TEST(MagneticWindowERD, ACorridorWalkedBackIsRecognisedTheOtherWayRound) {
     ASSERT_GT(e.size(), 5u);
     for (const auto& c : e) {
         EXPECT_LT(c.position, 0.2);
-        EXPECT_GT(c.trueTurn, M_PI - 0.1);   // a node walked the other way ...
+        EXPECT_GT(c.trueTurn, M_PI - 0.1);     // a node walked the other way ...
         EXPECT_LT(c.heading, 5 * M_PI / 180);  // ... and the closure says so
     }
     // The funnel against the truth: every revisiting query is walked back, its true place

@@ -37,6 +37,14 @@ void PathUncertainty::addNode(TNodeID id, const Constraint* edge, double previou
         s.previousYaw = previousYaw;
         s.stepCovariance = planarCovariance(*edge);
     }
+    Prefix pre;
+    if (!prefix_.empty()) {
+        pre = prefix_.back();
+        pre.weighted += pre.s * s.delta;
+        pre.s += s.length;
+        pre.p += s.delta;
+    }
+    prefix_.push_back(pre);
     steps_.push_back(s);
     sigma_.emplace_back();
     reference_.push_back(id);
@@ -93,15 +101,36 @@ double PathUncertainty::gateDistance2(TNodeID id, const Eigen::Vector2d& d) cons
 
 double PathUncertainty::relativeGateDistance2(TNodeID target, TNodeID query,
                                               const Eigen::Vector2d& d) const {
-    const Eigen::Matrix2d St = sigma_.at(target).topLeftCorner<2, 2>();
-    const Eigen::Matrix2d Sq = sigma_.at(query).topLeftCorner<2, 2>();
+    const Matrix4& Sa = sigma_.at(target);
+    const Matrix4& Sb = sigma_.at(query);
     Eigen::Matrix2d S;
     if (reference_.at(query) <= target && target <= query) {
-        const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(Sq - St);
-        S = eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).asDiagonal() *
-            eig.eigenvectors().transpose();
+        // e_b = Phi e_a + w along the chain; the offset's error e_b,xy - e_a,xy has covariance
+        // Sigma_b,xy - Sigma_a,xy - A Sigma_a E' - E Sigma_a A', with Phi = E + A on the
+        // position rows: A carries a's heading and drift errors over the path between.
+        const Prefix& a = prefix_[target];
+        const Prefix& b = prefix_[query];
+        const Eigen::Vector2d dp = b.p - a.p;
+        const Eigen::Vector2d swung = (b.weighted - a.weighted) - a.s * dp;
+        Eigen::Matrix<double, 2, 4> A = Eigen::Matrix<double, 2, 4>::Zero();
+        A(0, 2) = -dp.y();
+        A(1, 2) = dp.x();
+        A(0, 3) = -swung.y();
+        A(1, 3) = swung.x();
+        const Eigen::Matrix2d cross = A * Sa.leftCols<2>();  // A Sigma_a E'
+        S = Sb.topLeftCorner<2, 2>() - Sa.topLeftCorner<2, 2>() - cross - cross.transpose();
+        // Second order: a heading error dpsi also pulls the far end back along the lever by
+        // dpsi^2 / 2 times its length - along the axis the first order leaves thinnest (a
+        // curved path's error is a banana). Its mean and spread, with dpsi ~ N(0, sigma^2):
+        // (sigma^2 L / 2)^2 + sigma^4 L^2 / 2 along the lever.
+        const double L = dp.norm();
+        if (L > 1e-9) {
+            const double v = Sb(2, 2) * Sb(2, 2) * L * L * 0.75;
+            const Eigen::Vector2d u = dp / L;
+            S += v * u * u.transpose();
+        }
     } else {
-        S = Sq + St;
+        S = Sb.topLeftCorner<2, 2>() + Sa.topLeftCorner<2, 2>();
     }
     S += params_.floor * params_.floor * Eigen::Matrix2d::Identity();
     return d.dot(S.ldlt().solve(d));

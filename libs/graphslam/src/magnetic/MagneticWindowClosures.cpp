@@ -24,9 +24,11 @@ std::optional<MagneticWindowERD::Closure> MagneticWindowERD::measureClosure(
         if (k.sample + 1 == best.sample) fitAt[0] = k.total;
         if (k.sample == best.sample + 1) fitAt[1] = k.total;
     }
-    double sigmaAlong2 = params_.sigmaAlongFloor * params_.sigmaAlongFloor + params_.step * params_.step / 12;
+    double sigmaAlong2 =
+        params_.sigmaAlongFloor * params_.sigmaAlongFloor + params_.step * params_.step / 12;
     if (std::isfinite(fitAt[0]) && std::isfinite(fitAt[1])) {
-        const double curvature = (fitAt[0] - 2 * best.total + fitAt[1]) / (params_.step * params_.step);
+        const double curvature =
+            (fitAt[0] - 2 * best.total + fitAt[1]) / (params_.step * params_.step);
         sigmaAlong2 += curvature > 0 ? 2.0 / curvature : INFINITY;
     } else {
         sigmaAlong2 += params_.step * params_.step;
@@ -54,8 +56,8 @@ std::optional<MagneticWindowERD::Closure> MagneticWindowERD::measureClosure(
     const Eigen::Vector2d u =
         len > 1e-6 ? Eigen::Vector2d(d.x() / len, d.y() / len) : Eigen::Vector2d(1, 0);
     const Eigen::Matrix2d P = u * u.transpose();
-    const Eigen::Matrix2d S =
-        sigmaAlong2 * P + params_.sigmaCross * params_.sigmaCross * (Eigen::Matrix2d::Identity() - P);
+    const Eigen::Matrix2d S = sigmaAlong2 * P + params_.sigmaCross * params_.sigmaCross *
+                                                    (Eigen::Matrix2d::Identity() - P);
     z.cov.setZero();
     for (int r = 0; r < 2; ++r)
         for (int c = 0; c < 2; ++c) z.cov(r, c) = S(r, c);
@@ -87,7 +89,8 @@ bool MagneticWindowERD::agree(const Closure& earlier, const Closure& later) cons
 bool MagneticWindowERD::confirm(const Closure& c) {
     if (!params_.confirm) return commit(c);
     // Continuing a confirmed match: no new evidence needed.
-    if (confirmed_ && c.sQuery - confirmed_->sQuery <= 2 * params_.window && agree(*confirmed_, c)) {
+    if (confirmed_ && c.sQuery - confirmed_->sQuery <= 2 * params_.window &&
+        agree(*confirmed_, c)) {
         confirmed_ = c;
         return commit(c);
     }

@@ -65,7 +65,8 @@ void MagneticWindowERD::configure(const mrpt::config::CConfigFileBase& ini) {
     if (!(p.uncertainty.headingBias >= 0)) s.fail("gate_heading_drift", "must be >= 0");
     if (!(p.uncertainty.floor > 0)) s.fail("gate_floor", "must be > 0");
     if (!(p.quantile > 0.5 && p.quantile < 1)) s.fail("test_quantile", "must be in (0.5, 1)");
-    if (!(p.minPosterior > 0.5 && p.minPosterior < 1)) s.fail("min_posterior", "must be in (0.5, 1)");
+    if (!(p.minPosterior > 0.5 && p.minPosterior < 1))
+        s.fail("min_posterior", "must be in (0.5, 1)");
     if (!(p.distinctRadius > 0)) s.fail("distinct_radius", "must be > 0");
     if (!(p.closureEvery >= 0)) s.fail("closure_every", "must be >= 0");
     if (!(p.sigmaAlongFloor > 0) || !(p.sigmaCross > 0) || !(p.turnFloorDeg >= 0))
@@ -106,10 +107,12 @@ Eigen::Vector2d MagneticWindowERD::positionAtSample(const magnetic::SupernodeTra
     const auto& sample = track.samples()[i];
     const auto k = static_cast<TNodeID>(sample.node);
     const auto& b = m_graph->nodes.at(k);
-    if (k == 0 || path_.segment[k - 1] != path_.segment[k] || path_.travel[k] <= path_.travel[k - 1])
+    if (k == 0 || path_.segment[k - 1] != path_.segment[k] ||
+        path_.travel[k] <= path_.travel[k - 1])
         return {b.x(), b.y()};
     const auto& a = m_graph->nodes.at(k - 1);
-    const double f = std::clamp((sample.s - path_.travel[k - 1]) / (path_.travel[k] - path_.travel[k - 1]), 0.0, 1.0);
+    const double f = std::clamp(
+        (sample.s - path_.travel[k - 1]) / (path_.travel[k] - path_.travel[k - 1]), 0.0, 1.0);
     return {a.x() + f * (b.x() - a.x()), a.y() + f * (b.y() - a.y())};
 }
 
@@ -141,8 +144,8 @@ void MagneticWindowERD::compareAt(const magnetic::SupernodeTrack& track, std::si
 }
 
 MagneticWindowERD::Prior MagneticWindowERD::priorAt(const magnetic::SupernodeTrack& track,
-                                                   std::size_t c, TNodeID qNode,
-                                                   const Eigen::Vector2d& here) const {
+                                                    std::size_t c, TNodeID qNode,
+                                                    const Eigen::Vector2d& here) const {
     const auto& samples = track.samples();
     Prior p;
     if (samples[c].segment != path_.segment[qNode]) return p;
@@ -177,7 +180,8 @@ void MagneticWindowERD::query(std::size_t first) {
         const auto scan = [&](const magnetic::SupernodeTrack& track, bool forward, bool backward) {
             const auto& stored = track.samples();
             for (std::size_t c = 0;
-                 c < stored.size() && stored[c].s <= samples[newest].s - params_.minTravelGap; ++c) {
+                 c < stored.size() && stored[c].s <= samples[newest].s - params_.minTravelGap;
+                 ++c) {
                 const Prior p = priorAt(track, c, qNode, here);
                 if (p.gate2 > params_.gateChi2) continue;
                 if (forward) compareAt(track, c, WindowDirection::Forward, first, p, candidates);
@@ -209,9 +213,9 @@ void MagneticWindowERD::decide(std::size_t first, double excitation,
         ++stats_.noCandidate;
         return;
     }
-    out.best = *std::min_element(
-        candidates.begin(), candidates.end(),
-        [](const Candidate& a, const Candidate& b) { return a.total < b.total; });
+    out.best =
+        *std::min_element(candidates.begin(), candidates.end(),
+                          [](const Candidate& a, const Candidate& b) { return a.total < b.total; });
     if (out.best->fit.chi2 > magnetic::chiSquareQuantile(dof, params_.quantile)) {
         ++stats_.noFit;
         return;
@@ -237,8 +241,8 @@ void MagneticWindowERD::decide(std::size_t first, double excitation,
 }
 
 double MagneticWindowERD::placePosterior(const Candidate& best, std::vector<Candidate>& all,
-                                        std::size_t first,
-                                        const magnetic::WindowNullModel& null) const {
+                                         std::size_t first,
+                                         const magnetic::WindowNullModel& null) const {
     const auto& query = queried().samples();
     // The position prior normalized over the candidates (both directions of every sample).
     double logZ = -INFINITY;
@@ -255,8 +259,8 @@ double MagneticWindowERD::placePosterior(const Candidate& best, std::vector<Cand
         if (k.fit.chi2 > negligible) continue;
         const auto d = magnetic::windowResiduals(
             query, first, k.track->samples(),
-            k.direction == WindowDirection::Forward ? k.sample + 1 - n_ : k.sample, n_,
-            k.direction, k.fit);
+            k.direction == WindowDirection::Forward ? k.sample + 1 - n_ : k.sample, n_, k.direction,
+            k.fit);
         k.logWeight = null.logLikelihoodRatio(d) - 0.5 * (k.gate2 + k.fit.turnPriorChi2) - logZ;
         maxLog = std::max(maxLog, k.logWeight);
     }

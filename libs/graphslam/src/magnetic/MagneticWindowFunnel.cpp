@@ -37,7 +37,9 @@ std::optional<std::size_t> MagneticWindowERD::diagnose(std::size_t first, const 
     const auto qNode = static_cast<TNodeID>(samples[newest].node);
     // The true pose of each node (the truth's sample nearest its time, within 0.1 s), and of
     // each reading between its node and the previous one, by travel (as positionAtSample).
-    const auto trueAt = [&](TNodeID id) { return io::poseNearest(*truth_, nodes_->at(id).timestamp, 0.1); };
+    const auto trueAt = [&](TNodeID id) {
+        return io::poseNearest(*truth_, nodes_->at(id).timestamp, 0.1);
+    };
     const auto trueAtSample = [&](std::size_t i) -> std::optional<Eigen::Vector2d> {
         const auto k = static_cast<TNodeID>(samples[i].node);
         const io::TumPose* b = trueAt(k);
@@ -88,27 +90,26 @@ std::optional<std::size_t> MagneticWindowERD::diagnose(std::size_t first, const 
     const Prior p = priorAt(track, t, qNode, positionAtSample(queried(), newest));
     r.gate2 = p.gate2;
     if (whole) {
-        r.fitChi2 = magnetic::compareWindows(samples, first, stored, r.backward ? t : t + 1 - n_,
-                                             n_,
-                                             r.backward ? WindowDirection::Backward
-                                                        : WindowDirection::Forward,
-                                             params_.noise, p.turn, p.turnVariance)
+        r.fitChi2 = magnetic::compareWindows(
+                        samples, first, stored, r.backward ? t : t + 1 - n_, n_,
+                        r.backward ? WindowDirection::Backward : WindowDirection::Forward,
+                        params_.noise, p.turn, p.turnVariance)
                         .chi2;
     }
     const double fitLimit = magnetic::chiSquareQuantile(3.0 * double(n_), params_.quantile);
     const bool bestHere =
         out.best && out.best->track->samples()[out.best->sample].segment == stored[t].segment &&
-        (positionAtSample(*out.best->track, out.best->sample) - positionAtSample(track, t)).norm() <=
-            params_.distinctRadius;
+        (positionAtSample(*out.best->track, out.best->sample) - positionAtSample(track, t))
+                .norm() <= params_.distinctRadius;
     using S = TruthStage;
-    r.stage = out.flat                       ? S::Flat
-              : !whole                       ? S::NoWindow
-              : p.gate2 > params_.gateChi2   ? S::OutsideGate
-              : r.fitChi2 > fitLimit         ? S::NoFit
-              : !bestHere                    ? S::LostToOther
+    r.stage = out.flat                                   ? S::Flat
+              : !whole                                   ? S::NoWindow
+              : p.gate2 > params_.gateChi2               ? S::OutsideGate
+              : r.fitChi2 > fitLimit                     ? S::NoFit
+              : !bestHere                                ? S::LostToOther
               : !(out.posterior >= params_.minPosterior) ? S::Ambiguous
-              : out.closed                   ? S::Closed
-                                             : S::Accepted;
+              : out.closed                               ? S::Closed
+                                                         : S::Accepted;
     truthQueries_.push_back(r);
     return truthQueries_.size() - 1;
 }

@@ -23,14 +23,14 @@ struct ReportedClosure {
 std::vector<ReportedClosure> readClosureLog(const std::string& path);
 
 struct ClosureEvalOptions {
-    double radius{0.5};                  ///< [m] a detection is right within this of the truth
+    double radius{0.5};  ///< [m] a detection is right within this of the truth
     /** [rad] a revisit faces the same way as the earlier visit within this, or the opposite way
      * within this (a corridor walked back); in between it crosses and is not a pass. */
     double revisitYaw{45 * M_PI / 180};
-    double minGap{5.0};                  ///< [m] of true travel between a place and its revisit
-    double minPassLength{1.0};           ///< [m] shorter revisits are not counted as passes
-    double pieceLength{2.0};             ///< [m] longer revisits are cut into passes this long
-    double maxDt{0.02};                  ///< [s] timestamp association with the truth
+    double minGap{5.0};         ///< [m] of true travel between a place and its revisit
+    double minPassLength{1.0};  ///< [m] shorter revisits are not counted as passes
+    double pieceLength{2.0};    ///< [m] longer revisits are cut into passes this long
+    double maxDt{0.02};         ///< [s] timestamp association with the truth
 };
 
 /** Which way a revisit pass runs relative to the earlier visit it repeats. A node that repeats
@@ -71,7 +71,7 @@ struct MatcherQuality {
     std::size_t passesAt100{0};     ///< with a right detection scoring above every wrong one
     PassRecall byDirection[2];      ///< the same, by PassDirection
     std::vector<std::size_t> detectedPasses;  ///< their indices in revisitPasses(), ascending
-    double threshold{NAN};       ///< the highest wrong score (none wrong: NaN)
+    double threshold{NAN};                    ///< the highest wrong score (none wrong: NaN)
     double recall() const { return passes ? double(passesDetected) / double(passes) : NAN; }
     double recallAt100() const { return passes ? double(passesAt100) / double(passes) : NAN; }
     double precision() const { return judged ? double(right) / double(judged) : NAN; }

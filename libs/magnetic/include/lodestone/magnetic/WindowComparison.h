@@ -19,10 +19,10 @@ enum class WindowDirection { Forward, Backward };
  * `trendSigma` per metre (a hand-held device's height and tilt, a sensor's slow drift: smooth
  * differences, which white noise alone would count again at every reading). */
 struct PassNoise {
-    double sigma{1.0};       ///< [uT]
-    double biasSigma{0};     ///< [uT]
-    double trendSigma{0};    ///< [uT/m]
-    double step{0.05};       ///< [m] between a window's readings
+    double sigma{1.0};     ///< [uT]
+    double biasSigma{0};   ///< [uT]
+    double trendSigma{0};  ///< [uT/m]
+    double step{0.05};     ///< [m] between a window's readings
 };
 
 /** One query window against one target window of levelled robot-frame readings (x forward,
@@ -32,8 +32,8 @@ struct WindowFit {
      * the best turn, plus the turn's prior term ((turn - prior)^2 / variance). */
     double chi2{INFINITY};
     double turnPriorChi2{0};  ///< the turn's prior term alone
-    double turn{0};          ///< [rad] the query's heading minus the target's, from the field
-    double turnVariance{0};  ///< [rad^2] its posterior variance
+    double turn{0};           ///< [rad] the query's heading minus the target's, from the field
+    double turnVariance{0};   ///< [rad^2] its posterior variance
 };
 
 /** Compares `n` readings of `querySamples` from `query` (oldest first) with `n` of

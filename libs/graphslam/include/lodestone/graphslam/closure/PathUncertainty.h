@@ -44,10 +44,12 @@ class PathUncertainty {
     double gateDistance2(TNodeID id, const Eigen::Vector2d& d) const;
     /** Squared Mahalanobis distance of the offset `d` of `query` from the earlier node
      * `target` under their relative uncertainty: where `target` lies on the chain since the
-     * place `query` is known from (its last pin or segment start), the growth between the two
-     * (Sigma_query - Sigma_target, made positive semi-definite): a place a few metres back on
-     * the same unbroken path is not "anywhere the robot may have drifted"; otherwise both
-     * uncertainties added. Plus floor^2 I, as gateDistance2. */
+     * place `query` is known from (its last pin or segment start), the covariance of the error
+     * of their offset - what the odometry between them added, plus the target's heading and
+     * drift errors swinging the path between them (exact for the linear model, from prefix
+     * sums: O(1)); a place a few metres back on the same unbroken path is not "anywhere the
+     * robot may have drifted". Otherwise both uncertainties added. Plus floor^2 I, as
+     * gateDistance2. */
     double relativeGateDistance2(TNodeID target, TNodeID query, const Eigen::Vector2d& d) const;
     std::size_t size() const { return steps_.size(); }
     const Params& params() const { return params_; }
@@ -69,6 +71,13 @@ class PathUncertainty {
     std::vector<Step> steps_;
     std::vector<Matrix4> sigma_;
     std::vector<TNodeID> reference_;  // per node: its last pin or segment start
+    /** Per node, summed over the steps so far: travel, map-frame position, and the steps'
+     * map-frame components weighted by the travel before them (what the drift swings). */
+    struct Prefix {
+        double s{0};
+        Eigen::Vector2d p{Eigen::Vector2d::Zero()}, weighted{Eigen::Vector2d::Zero()};
+    };
+    std::vector<Prefix> prefix_;
     std::vector<bool> pinned_;
 };
 

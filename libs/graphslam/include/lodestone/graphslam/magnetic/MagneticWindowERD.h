@@ -44,15 +44,15 @@ namespace lodestone::graphslam {
 class MagneticWindowERD : public EdgeDecider {
   public:
     struct Params {
-        std::string sensorLabel;   ///< the magnetometer queried ("": the first one seen)
+        std::string sensorLabel;  ///< the magnetometer queried ("": the first one seen)
         /** Walked back, a magnetometer mounted off the robot's centre line passes where its
          * mirror image (the same mounting, the other side) passed on the way out: backward
          * windows are compared with that sensor's readings when the robot carries one. */
         bool mirrorSensors{true};
         double saturation{1000.0};  ///< [uT] a component this large is a saturated reading
         double step{0.05};          ///< [m] readings resampled by travel
-        double window{1.5};  ///< [m] of path per window (Kok & Solin: ~1 s of walking; README)
-        double queryEvery{0.1};     ///< [m] of travel between queries
+        double window{1.5};      ///< [m] of path per window (Kok & Solin: ~1 s of walking; README)
+        double queryEvery{0.1};  ///< [m] of travel between queries
         /** How the readings of one place differ between two passes (magnetic::PassNoise):
          * white noise of `window_sigma` [uT] per component, plus over a window an offset of
          * `window_bias_sigma` [uT] and a trend of `window_trend_sigma` [uT/m]. (`step` is
@@ -63,10 +63,10 @@ class MagneticWindowERD : public EdgeDecider {
          * hypothesis every candidate must beat. */
         double lengthScale{0.28};
         double nullOdds{1.0};  ///< prior odds of "no earlier place" against "one of the candidates"
-        double minTravelGap{4.0};    ///< [m] targets the robot left at least this long ago
-        double gateChi2{11.83};      ///< 2 dof, 99.73 %
+        double minTravelGap{4.0};  ///< [m] targets the robot left at least this long ago
+        double gateChi2{11.83};    ///< 2 dof, 99.73 %
         closure::PathUncertainty::Params uncertainty;
-        double quantile{0.9973};     ///< of the excitation and fit tests
+        double quantile{0.9973};  ///< of the excitation and fit tests
         double minPosterior{0.9973};
         double distinctRadius{0.5};  ///< [m]
         double closureEvery{0.5};    ///< [m] of query travel between closures
@@ -128,8 +128,8 @@ class MagneticWindowERD : public EdgeDecider {
         std::size_t sample{0};
         magnetic::WindowDirection direction{magnetic::WindowDirection::Forward};
         magnetic::WindowFit fit;
-        double gate2{0};   ///< position prior's squared Mahalanobis distance
-        double total{0};   ///< fit.chi2 + gate2
+        double gate2{0};              ///< position prior's squared Mahalanobis distance
+        double total{0};              ///< fit.chi2 + gate2
         double logWeight{-INFINITY};  ///< log of its posterior weight (unnormalized)
     };
     /** A candidate's prior: the gate's squared Mahalanobis distance, the graph's relative
@@ -197,11 +197,11 @@ class MagneticWindowERD : public EdgeDecider {
     };
     std::map<std::string, Sensor> sensors_;  // the queried one and its mirror
     std::string mirror_;                     // the mirror's label ("": none)
-    MagneticPath path_;  // travel, segment, pose uncertainty per node
+    MagneticPath path_;                      // travel, segment, pose uncertainty per node
     TNodeID seen_{0};
     double lastQuery_{-1e18}, lastClosure_{-1e18};  // [m] travel
     Stats stats_;
-    std::deque<Closure> pending_;      // accepted, waiting for confirmation
+    std::deque<Closure> pending_;       // accepted, waiting for confirmation
     std::optional<Closure> confirmed_;  // the last closure of a confirmed match
     std::vector<TruthQuery> truthQueries_;
 };
