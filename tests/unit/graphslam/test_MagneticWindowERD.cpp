@@ -50,26 +50,46 @@ struct Walk {
     std::vector<graphslam::MagneticWindowERD::TruthQuery> funnel;
 };
 
-/** Walks the polyline `corners` at 0.1 m per node, ten readings per node, odometry exact but
- * claiming the noise of a good one; turns on the spot at each corner. */
 /** A magnetometer on the robot: its label and how far left of the centre line it sits. */
 struct Mount {
     std::string label;
     double left{0};
 };
 
+/** Walks the polyline `corners` at 0.1 m per node, ten readings per node, odometry exact but
+ * claiming the noise of a good one; turns on the spot at each corner. Leg `carried` (if any)
+ * is a kidnap: the robot is put down at its end, facing along the next leg, in a new segment,
+ * the odometry edge across it "anywhere". */
 Walk walk(const std::vector<Eigen::Vector2d>& corners, const FloorField& field,
-          const std::string& extraIni = "", const std::vector<Mount>& mounts = {{"MAG", 0}}) {
+          const std::string& extraIni = "", const std::vector<Mount>& mounts = {{"MAG", 0}},
+          int carried = -1) {
     Walk w;
     std::vector<graphslam::NodeRecord> records;
+    std::vector<bool> kidnapped;  // per node: the first after a kidnap
     double yaw = 0;
+    int segment = 0;
     for (std::size_t i = 0; i + 1 < corners.size(); ++i) {
         const Eigen::Vector2d d = corners[i + 1] - corners[i];
+        const bool carry = static_cast<int>(i) == carried;
+        if (carry) {
+            // Put down at the leg's end, facing the next leg.
+            const Eigen::Vector2d next = corners[i + 2] - corners[i + 1];
+            yaw += std::remainder(std::atan2(next.y(), next.x()) - yaw, 2 * M_PI);
+            graphslam::NodeRecord rec;
+            rec.timestamp = static_cast<double>(records.size());
+            rec.segment = ++segment;
+            records.push_back(rec);
+            kidnapped.push_back(true);
+            w.truth.emplace_back(corners[i + 1].x(), corners[i + 1].y(), yaw);
+            continue;
+        }
         yaw += std::remainder(std::atan2(d.y(), d.x()) - yaw, 2 * M_PI);
         const int nodes = static_cast<int>(std::lround(d.norm() / 0.1));
         for (int k = (i == 0 ? 0 : 1); k <= nodes; ++k) {
             graphslam::NodeRecord rec;
             rec.timestamp = static_cast<double>(records.size());
+            rec.segment = segment;
+            kidnapped.push_back(false);
             for (int back = 9; back >= 0; --back) {
                 const double f = (k - back / 10.0) / nodes;
                 const Eigen::Vector2d at = corners[i] + std::max(f, 0.0) * d;
@@ -91,11 +111,15 @@ Walk walk(const std::vector<Eigen::Vector2d>& corners, const FloorField& field,
     std::vector<test::ScriptedNRD::Step> steps;
     for (std::size_t i = 1; i < w.truth.size(); ++i) {
         mrpt::poses::CPosePDFGaussian z;
-        z.mean = w.truth[i] - w.truth[i - 1];
         z.cov.setZero();
-        z.cov(0, 0) = z.cov(1, 1) = 2e-4;
-        z.cov(2, 2) = 2e-6;
-        steps.push_back({graphslam::planarConstraint(z), 0});
+        if (kidnapped[i]) {
+            z.cov(0, 0) = z.cov(1, 1) = z.cov(2, 2) = 100.0 * 100.0;  // anywhere
+        } else {
+            z.mean = w.truth[i] - w.truth[i - 1];
+            z.cov(0, 0) = z.cov(1, 1) = 2e-4;
+            z.cov(2, 2) = 2e-6;
+        }
+        steps.push_back({graphslam::planarConstraint(z), records[i].segment});
     }
     // The truth for the diagnostics: node k at time k.
     auto truth = std::make_shared<std::vector<io::TumPose>>();
@@ -204,4 +228,25 @@ TEST(MagneticWindowERD, WalkedBackTheMirrorImageSensorReadsTheSameLine) {
     for (const auto& c : errors(mirrored)) EXPECT_LT(c.position, 0.2);
     EXPECT_LT(alone.stats.backward, mirrored.stats.backward / 2);
     for (const auto& c : errors(alone)) EXPECT_LT(c.position, 0.5);  // (and never wrong)
+}
+
+TEST(MagneticWindowERD, AfterAKidnapTheCorridorIsRecognisedWalkedTheOtherWay) {
+    // East along the corridor; carried back to x = 17 and put down facing west; west along it.
+    // The new segment knows neither where it is nor which way it faces: every stored window is
+    // a candidate, at any turn.
+    const FloorField field(15);
+    const auto w = walk({{0, 0}, {20, 0}, {17, 0}, {2, 0}}, field, "", {{"MAG", 0}}, 1);
+    std::size_t across = 0;
+    for (const auto& p : w.engine->proposals()) {
+        const auto& c = p.closure;
+        if (c.from >= 201 || c.to < 201) continue;  // segment 0 (nodes 0-200) to segment 1
+        ++across;
+        const auto& m = c.constraint.mean;
+        const auto implied = w.truth[c.from] + mrpt::poses::CPose2D(m.x(), m.y(), m.yaw());
+        EXPECT_LT(std::hypot(implied.x() - w.truth[c.to].x(), implied.y() - w.truth[c.to].y()),
+                  0.2);
+        EXPECT_LT(std::abs(std::remainder(implied.phi() - w.truth[c.to].phi(), 2 * M_PI)), 0.1);
+    }
+    EXPECT_GT(across, 3u);
+    EXPECT_GT(w.stats.backward, 3u);
 }
