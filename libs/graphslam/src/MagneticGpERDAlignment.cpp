@@ -112,12 +112,8 @@ void MagneticGpERD::addPathEdges(const magnetic::BundleMatch& b, std::size_t qBe
         const auto& d = e->second.mean;
         const mrpt::poses::CPose2D mean(frac * d.x(), frac * d.y(), frac * d.yaw());
         // Along the target's path: the GP's precision; across it and in heading: loose.
-        const double len = std::hypot(d.x(), d.y());
-        const Eigen::Vector2d u =
-            len > 1e-6 ? Eigen::Vector2d(d.x() / len, d.y() / len) : Eigen::Vector2d(1, 0);
-        const Eigen::Matrix2d P = u * u.transpose();
-        const Eigen::Matrix2d S = sigmaAlong2 * P + params_.sigmaCross * params_.sigmaCross *
-                                                        (Eigen::Matrix2d::Identity() - P);
+        const Eigen::Matrix2d S =
+            alongAcross(d, sigmaAlong2, params_.sigmaCross * params_.sigmaCross);
         addEdge(k, qn, mean, S, params_.sigmaYaw * params_.sigmaYaw, rec);
     }
 }

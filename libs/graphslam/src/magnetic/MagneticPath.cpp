@@ -70,6 +70,14 @@ JsonObject& MagneticPath::describeCounts(JsonObject& stats) const {
         .set("other_sensor_readings", counts.otherSensors);
 }
 
+Eigen::Matrix2d alongAcross(const mrpt::poses::CPose3D& step, double along2, double across2) {
+    const double len = std::hypot(step.x(), step.y());
+    const Eigen::Vector2d u =
+        len > 1e-6 ? Eigen::Vector2d(step.x() / len, step.y() / len) : Eigen::Vector2d(1, 0);
+    const Eigen::Matrix2d P = u * u.transpose();
+    return along2 * P + across2 * (Eigen::Matrix2d::Identity() - P);
+}
+
 JsonObject& describeQueryTimes(JsonObject& stats, const std::vector<double>& queryMs) {
     double total = 0, worst = 0;
     for (double ms : queryMs) {

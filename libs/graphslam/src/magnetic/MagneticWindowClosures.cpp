@@ -52,12 +52,7 @@ std::optional<MagneticWindowERD::Closure> MagneticWindowERD::measureClosure(
     const double turnSigma = params_.turnFloorDeg * M_PI / 180;
     mrpt::poses::CPosePDFGaussian z;
     z.mean = mrpt::poses::CPose2D(frac * d.x(), frac * d.y(), frac * d.yaw() + best.fit.turn);
-    const double len = std::hypot(d.x(), d.y());
-    const Eigen::Vector2d u =
-        len > 1e-6 ? Eigen::Vector2d(d.x() / len, d.y() / len) : Eigen::Vector2d(1, 0);
-    const Eigen::Matrix2d P = u * u.transpose();
-    const Eigen::Matrix2d S = sigmaAlong2 * P + params_.sigmaCross * params_.sigmaCross *
-                                                    (Eigen::Matrix2d::Identity() - P);
+    const Eigen::Matrix2d S = alongAcross(d, sigmaAlong2, params_.sigmaCross * params_.sigmaCross);
     z.cov.setZero();
     for (int r = 0; r < 2; ++r)
         for (int c = 0; c < 2; ++c) z.cov(r, c) = S(r, c);

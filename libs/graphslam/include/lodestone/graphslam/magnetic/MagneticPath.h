@@ -57,6 +57,11 @@ class MagneticPath {
     Counts counts;
 };
 
+/** The covariance of a place on a path whose step is `step` (the step's own frame): variance
+ * `along2` along it, `across2` across it (a sequence of the field places a node along the
+ * path it matched, loosely across). */
+Eigen::Matrix2d alongAcross(const mrpt::poses::CPose3D& step, double along2, double across2);
+
 /** query_ms_mean and query_ms_max of per-query times [ms] into report.json's stats. */
 JsonObject& describeQueryTimes(JsonObject& stats, const std::vector<double>& queryMs);
 
