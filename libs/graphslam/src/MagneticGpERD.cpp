@@ -161,6 +161,7 @@ void MagneticGpERD::query(const magnetic::Supernode& q) {
                          track_->supernodes()[*previous_supernode_].segment == q.segment;
     previous_supernode_ = q.id;
     std::vector<magnetic::SupernodeMatch> matches;
+    Trace trace;
     const TNodeID qNode = static_cast<TNodeID>(samples[q.last - 1].node);
     const double qTravel = samples[q.first].s;
     // Supernodes join the index once the robot is min_travel_gap past them: the nearest ones
@@ -172,9 +173,11 @@ void MagneticGpERD::query(const magnetic::Supernode& q) {
     }
     if (q.spread < params_.minSpread) {
         ++stats_.flatSupernodes;
+        trace.flat = true;
     } else {
         const auto here = positionOf(qNode);
         for (const std::size_t id : index_->nearest(q, params_.candidates)) {
+            if (truth_) trace.shortlist.push_back(id);
             const auto& t = track_->supernodes()[id];
             // Where the robot can be: the two supernodes' ends inside the gate of the pose
             // uncertainty. Across segments the graph's positions are not yet comparable
@@ -200,6 +203,7 @@ void MagneticGpERD::query(const magnetic::Supernode& q) {
         // Several places: the same place seen on several earlier passes lies together (fine);
         // look-alike places do not - the likelier by the GP wins, if clearly.
         const auto places = groupByPlace(bundles);
+        if (truth_) trace.places = places;
         // Every place is scored on the same query readings (the shortest window), so that
         // their likelihoods compare.
         std::size_t qBegin = 0;
@@ -220,19 +224,26 @@ void MagneticGpERD::query(const magnetic::Supernode& q) {
         }
         if (!best) {
             ++stats_.gpRejected;
+            trace.outcome = Trace::Outcome::GpRejected;
         } else if ((best->shift.logLikelihood - runnerUp) /
                        std::max(1.0, best->shift.normalizedRms * best->shift.normalizedRms) <
                    params_.ambiguityLogRatio) {
             // (a fit worse than the GP's noise model - normalized RMS over 1 - makes every
             // likelihood difference less telling: the ratio is deflated by that dispersion)
             ++stats_.ambiguous;
+            trace.outcome = Trace::Outcome::Ambiguous;
         } else {
             if (places.size() > 1) ++stats_.resolved;
+            const std::size_t edges = stats_.edges;
             align(places[bestPlace], *best);
+            trace.outcome = Trace::Outcome::Aligned;
+            trace.chosen = bestPlace;
+            trace.edges = stats_.edges > edges;
         }
     }
     if (params_.fieldMap.enabled) matchFieldMap(q);
     stats_.queryMs.push_back(msSince(t0));
+    if (truth_) diagnose(q, trace);  // (after the timing: diagnostics are not the decider's cost)
 }
 
 std::vector<std::vector<magnetic::BundleMatch>> MagneticGpERD::groupByPlace(
@@ -308,7 +319,17 @@ JsonObject MagneticGpERD::describe() const {
         .set("map_too_loose", stats_.mapTooLoose)
         .set("map_accepted", stats_.mapAccepted);
     describeQueryTimes(stats, stats_.queryMs);
-    return JsonObject().set("class", getClassName()).set("params", params).set("stats", stats);
+    JsonObject out;
+    out.set("class", getClassName()).set("params", params).set("stats", stats);
+    if (truth_) {
+        std::vector<std::string> names;
+        for (int k = 0; k <= static_cast<int>(TruthStage::Aligned); ++k)
+            names.push_back(toString(static_cast<TruthStage>(k)));
+        out.set("truth_funnel", describeFunnel(funnel_, names,
+                                               static_cast<int>(TruthStage::NotShortlisted),
+                                               params_.gateChi2));
+    }
+    return out;
 }
 
 }  // namespace lodestone::graphslam

@@ -3,6 +3,7 @@
 #include <lodestone/graphslam/EdgeDecider.h>
 #include <lodestone/graphslam/closure/PathUncertainty.h>
 #include <lodestone/graphslam/magnetic/MagneticPath.h>
+#include <lodestone/graphslam/magnetic/TruthFunnel.h>
 #include <lodestone/magnetic/BundleMatcher.h>
 #include <lodestone/magnetic/FieldFeatures.h>
 #include <lodestone/magnetic/FieldMapSearch.h>
@@ -133,12 +134,40 @@ class MagneticGpERD : public EdgeDecider {
 
     const std::vector<Record>& records() const { return records_; }
     const Stats& stats() const { return stats_; }
+
+    /** With the run's true trajectory (SlamComponent::setDiagnosticTruth): for every new
+     * supernode whose end truly revisits an earlier place, the stage that place's supernode
+     * reached (MagneticGpERDFunnel.cpp); `stage` indexes these. */
+    enum class TruthStage {
+        Flat,            ///< the query supernode was flat (min_spread)
+        Reverse,         ///< the place was walked the other way: no code path compares that
+        NotShortlisted,  ///< not among the KD-tree's `candidates` nearest in field space
+        OutsideGate,     ///< outside the position gate
+        CostTooHigh,     ///< eq. (2) cost over max_cost
+        NoBundle,        ///< no bundle ends there (min_chain consistent matches)
+        GpRejected,      ///< the GP alignment did not fit
+        Ambiguous,       ///< another place as likely
+        LostToOther,     ///< another place's bundle was chosen
+        Aligned          ///< aligned there, edges made
+    };
+    static const char* toString(TruthStage stage);
+    const std::vector<FunnelRecord>& funnel() const { return funnel_; }
     const magnetic::SupernodeTrack& track() const { return *track_; }
 
   private:
     void rebuild();
     void onNode(TNodeID id);
     void query(const magnetic::Supernode& q);
+    /** What a query came to, for the diagnostics (only kept with a diagnostic truth). */
+    struct Trace {
+        bool flat{false};
+        std::vector<std::size_t> shortlist;  ///< the KD-tree's, before the gate
+        std::vector<std::vector<magnetic::BundleMatch>> places;
+        enum class Outcome { None, GpRejected, Ambiguous, Aligned } outcome{Outcome::None};
+        std::size_t chosen{0};  ///< the place aligned (Aligned)
+        bool edges{false};
+    };
+    void diagnose(const magnetic::Supernode& q, const Trace& trace);
     /** Query samples [qBegin, end of the bundle) slid along its target's path (eq. 3). */
     struct PathFit {
         std::size_t qBegin{0}, qEnd{0};  ///< query samples [qBegin, qEnd)
@@ -186,6 +215,7 @@ class MagneticGpERD : public EdgeDecider {
     double lastMapSearch_{-1e18};  // [m] travel at the last field-map search
     std::vector<Record> records_;
     Stats stats_;
+    std::vector<FunnelRecord> funnel_;
 };
 
 }  // namespace lodestone::graphslam
