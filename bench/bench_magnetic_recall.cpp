@@ -43,9 +43,7 @@ std::string fraction(std::size_t found, std::size_t all) {
     return b;
 }
 
-// MagneticWindowERD::TruthStage, in order, and a pass no query looked at.
-const char* const kStages[] = {"flat",          "no_window", "outside_gate", "no_fit",
-                               "lost_to_other", "ambiguous", "accepted",     "closed"};
+// A pass no query of the decider's looked at (its stages are numbered from 0).
 constexpr int kNoQuery = -1;
 
 struct Row {
@@ -54,13 +52,14 @@ struct Row {
     std::vector<double> ate, realtime;
     bool funnel{false};
     std::map<int, std::size_t> missedBy[2];  // furthest stage -> missed passes, each direction
+    std::vector<std::string> stageNames;     // the decider's, by stage number
     std::vector<double> insideGate;          // per seed: share of true places inside the gate
 };
 
 /** The truth funnel of the first edge decider in report.json that has one: per revisiting
- * query, its node and its stage. */
+ * query, its node and its stage; the stages' names. */
 bool readFunnel(const std::string& reportPath, std::vector<std::pair<double, int>>& queries,
-                double& insideGate) {
+                std::vector<std::string>& stageNames, double& insideGate) {
     std::ifstream in(reportPath);
     const auto report = nlohmann::json::parse(in);
     const auto& erd = report["engine"]["edge_decider"];
@@ -69,6 +68,9 @@ bool readFunnel(const std::string& reportPath, std::vector<std::pair<double, int
         const auto& f = child["truth_funnel"];
         for (std::size_t i = 0; i < f["query_node"].size(); ++i)
             queries.emplace_back(f["query_node"][i].get<double>(), f["stage"][i].get<int>());
+        stageNames.assign(f["stage_names"].size(), "");
+        for (const auto& [k, name] : f["stage_names"].items())
+            stageNames.at(std::stoul(k)) = name.get<std::string>();
         insideGate =
             f["truth_inside_gate"].is_number() ? f["truth_inside_gate"].get<double>() : NAN;
         return true;
@@ -99,7 +101,7 @@ bool judgeRun(const slamapp::SlamRunOptions& o, Row& row) {
     }
     std::vector<std::pair<double, int>> queries;
     double inside = NAN;
-    if (readFunnel(o.outDir + "/report.json", queries, inside)) {
+    if (readFunnel(o.outDir + "/report.json", queries, row.stageNames, inside)) {
         row.funnel = true;
         row.insideGate.push_back(inside);
         for (std::size_t p = 0; p < passes.size(); ++p) {
@@ -184,23 +186,25 @@ int main(int argc, char** argv) {
         }
     }
     std::printf(
-        "\nPasses missed, by the furthest stage their true place reached (same / opposite "
-        "direction, all seeds):\n\n| recording | INI | no query |");
-    for (const char* s : kStages) std::printf(" %s |", s);
-    std::printf(" truth inside the gate: mean / worst seed |\n|---|---|---|");
-    for (std::size_t k = 0; k < std::size(kStages); ++k) std::printf("---|");
-    std::printf("---|\n");
+        "\nPasses missed, by the furthest stage their true place reached in the decider "
+        "(same / opposite direction, all seeds; stages with none left out):\n\n"
+        "| recording | INI | passes missed, by stage | truth inside the gate: mean / worst "
+        "seed |\n|---|---|---|---|\n");
     for (const auto& [name, row] : rows) {
         if (!row.funnel) continue;
-        const auto cell = [&](int stage) {
-            const auto count = [&](int d) {
+        std::string cells;
+        for (int stage = kNoQuery; stage < int(row.stageNames.size()); ++stage) {
+            std::size_t count[2] = {0, 0};
+            for (int d = 0; d < 2; ++d) {
                 const auto it = row.missedBy[d].find(stage);
-                return it == row.missedBy[d].end() ? std::size_t{0} : it->second;
-            };
-            std::printf(" %zu / %zu |", count(0), count(1));
-        };
-        std::printf("| %s |", name.c_str());
-        for (int stage = kNoQuery; stage < int(std::size(kStages)); ++stage) cell(stage);
+                if (it != row.missedBy[d].end()) count[d] = it->second;
+            }
+            if (count[0] + count[1] == 0) continue;
+            cells += (cells.empty() ? "" : ", ") +
+                     (stage == kNoQuery ? std::string("no query") : row.stageNames[stage]) + " " +
+                     std::to_string(count[0]) + " / " + std::to_string(count[1]);
+        }
+        std::printf("| %s | %s |", name.c_str(), cells.empty() ? "none" : cells.c_str());
         double sum = 0, worst = INFINITY;
         std::size_t n = 0;
         for (double v : row.insideGate) {
