@@ -2,7 +2,9 @@
 // read in reverse, the horizontal field turned by half a turn) and a pass 1 m beside an
 // earlier one (a different field: never "the same place").
 #include <gtest/gtest.h>
+#include <lodestone/config/IniSection.h>
 #include <lodestone/graphslam/magnetic/MagneticWindowERD.h>
+#include <mrpt/config/CConfigFileMemory.h>
 
 #include <random>
 
@@ -249,4 +251,35 @@ TEST(MagneticWindowERD, AfterAKidnapTheCorridorIsRecognisedWalkedTheOtherWay) {
     }
     EXPECT_GT(across, 3u);
     EXPECT_GT(w.stats.backward, 3u);
+}
+
+TEST(MagneticWindowERD, ABadIniNamesTheKey) {
+    const auto errorOf = [](const std::string& body) -> std::string {
+        graphslam::MagneticWindowERD erd;
+        try {
+            erd.configure(mrpt::config::CConfigFileMemory("[MagneticWindowERD]\n" + body));
+        } catch (const config::ConfigError& e) {
+            return e.what();
+        }
+        return "no error";
+    };
+    for (const auto& [body, key] : std::vector<std::pair<std::string, std::string>>{
+             {"window_lenght = 1.5\n", "window_lenght"},
+             {"window_length = 0.1\n", "window_length"},
+             {"window_sigma = 0\n", "window_sigma"},
+             {"window_bias_sigma = -1\n", "window_bias_sigma"},
+             {"min_posterior = 1.5\n", "min_posterior"},
+             {"min_travel_gap = 1\n", "min_travel_gap"},
+             {"confirm = perhaps\n", "confirm"},
+             {"window_sigma = nan\n", "window_sigma"}}) {
+        const auto e = errorOf(body);
+        EXPECT_NE(e.find(key), std::string::npos) << body << " -> " << e;
+        EXPECT_NE(e.find("MagneticWindowERD"), std::string::npos) << e;
+    }
+    // All or nothing: a rejected INI leaves the defaults.
+    graphslam::MagneticWindowERD erd;
+    EXPECT_THROW(erd.configure(mrpt::config::CConfigFileMemory(
+                     "[MagneticWindowERD]\nwindow_length = 2.0\nwindow_sigma = -1\n")),
+                 config::ConfigError);
+    EXPECT_DOUBLE_EQ(erd.params().window, 1.5);
 }
