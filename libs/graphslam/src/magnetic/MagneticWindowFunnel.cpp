@@ -53,6 +53,7 @@ std::optional<std::size_t> MagneticWindowERD::diagnose(std::size_t first, const 
     // Walked back, the place is on the mirror's track: its reading nearest the same travel.
     const auto& track = r.backward ? mirrored() : queried();
     const auto& stored = track.samples();
+    if (stored.empty()) return std::nullopt;  // (a mirror that has no reading yet)
     const std::size_t t = std::min<std::size_t>(
         stored.size() - 1,
         static_cast<std::size_t>(
