@@ -20,6 +20,7 @@ void MagneticWindowERD::rebuild() {
     params_.noise.step = params_.step;
     sensors_.clear();
     mirror_.clear();
+    poses_.clear();
     n_ = magnetic::SupernodeTrack({params_.step, params_.window, params_.step}, 3)
              .samplesPerSupernode();
     path_ = MagneticPath(params_.uncertainty);
@@ -85,6 +86,8 @@ bool MagneticWindowERD::updateState(mrpt::obs::CActionCollection::Ptr,
 
 void MagneticWindowERD::onNode(TNodeID id) {
     const int segment = nodes_->at(id).segment;
+    // (the graph's nodes are never erased: their addresses hold, their values follow the solves)
+    poses_.push_back(&m_graph->nodes.at(id));
     path_.addNode(
         id, *m_graph, *nodes_, params_.saturation,
         [&](const MagneticSample& m) { return takeReading(m); },
@@ -106,11 +109,11 @@ Eigen::Vector2d MagneticWindowERD::positionAtSample(const magnetic::SupernodeTra
     // A sample lies in its node's interval: between node - 1 and node, by travel.
     const auto& sample = track.samples()[i];
     const auto k = static_cast<TNodeID>(sample.node);
-    const auto& b = m_graph->nodes.at(k);
+    const auto& b = *poses_[k];
     if (k == 0 || path_.segment[k - 1] != path_.segment[k] ||
         path_.travel[k] <= path_.travel[k - 1])
         return {b.x(), b.y()};
-    const auto& a = m_graph->nodes.at(k - 1);
+    const auto& a = *poses_[k - 1];
     const double f = std::clamp(
         (sample.s - path_.travel[k - 1]) / (path_.travel[k] - path_.travel[k - 1]), 0.0, 1.0);
     return {a.x() + f * (b.x() - a.x()), a.y() + f * (b.y() - a.y())};
@@ -154,7 +157,7 @@ MagneticWindowERD::Prior MagneticWindowERD::priorAt(const magnetic::SupernodeTra
     const auto target = static_cast<TNodeID>(samples[c].node);
     p.gate2 =
         path_.uncertainty.relativeGateDistance2(target, qNode, here - positionAtSample(track, c));
-    p.turn = m_graph->nodes.at(qNode).yaw() - m_graph->nodes.at(target).yaw();
+    p.turn = poses_[qNode]->yaw() - poses_[target]->yaw();
     const double turnFloor = params_.turnFloorDeg * M_PI / 180;
     p.turnVariance = path_.uncertainty.covariance(qNode)(2, 2) + turnFloor * turnFloor;
     return p;

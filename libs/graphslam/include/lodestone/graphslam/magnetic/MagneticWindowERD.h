@@ -198,6 +198,7 @@ class MagneticWindowERD : public EdgeDecider {
     std::map<std::string, Sensor> sensors_;  // the queried one and its mirror
     std::string mirror_;                     // the mirror's label ("": none)
     MagneticPath path_;                      // travel, segment, pose uncertainty per node
+    std::vector<const Graph::global_pose_t*> poses_;  // per node, in the graph
     TNodeID seen_{0};
     double lastQuery_{-1e18}, lastClosure_{-1e18};  // [m] travel
     Stats stats_;
