@@ -7,7 +7,6 @@
 #include <gtest/gtest.h>
 #include <lodestone/graphslam/MagneticGpERD.h>
 #include <lodestone/graphslam/SlamEngine.h>
-#include <lodestone/graphslam/closure/PathUncertainty.h>
 
 #include <random>
 
@@ -253,57 +252,6 @@ TEST(MagneticWindowERD, AFieldNeverSeenBeforeGivesNoClosure) {
     d.separation = 20;
     d.freshThirdPass = true;
     EXPECT_EQ(runWindow(d).closures, 0u);
-}
-
-TEST(PathUncertainty, MatchesMonteCarloOfTheOdometryModel) {
-    // A straight drive of 200 steps of 0.1 m with per-step noise and a heading drift per metre.
-    graphslam::closure::PathUncertainty::Params p;
-    p.headingBias = 0.0005;
-    graphslam::closure::PathUncertainty u(p);
-    mrpt::poses::CPosePDFGaussian z;
-    z.mean = mrpt::poses::CPose2D(0.1, 0, 0);
-    z.cov.setZero();
-    z.cov(0, 0) = 4e-6;
-    z.cov(1, 1) = 1e-6;
-    z.cov(2, 2) = 2e-6;
-    const auto edge = graphslam::planarConstraint(z);
-    const int steps = 200;
-    u.addNode(0, nullptr, 0);
-    for (int k = 1; k <= steps; ++k) u.addNode(static_cast<graphslam::TNodeID>(k), &edge, 0);
-
-    std::mt19937 rng(7);
-    std::normal_distribution<double> g(0, 1);
-    const int samples = 4000;
-    Eigen::MatrixXd end(samples, 3);
-    for (int s = 0; s < samples; ++s) {
-        const double bias = p.headingBias * g(rng);
-        double x = 0, y = 0, th = 0;
-        for (int k = 0; k < steps; ++k) {
-            const double dx = 0.1 + std::sqrt(4e-6) * g(rng), dy = 1e-3 * g(rng);
-            x += std::cos(th) * dx - std::sin(th) * dy;
-            y += std::sin(th) * dx + std::cos(th) * dy;
-            th += std::sqrt(2e-6) * g(rng) + bias * 0.1;
-        }
-        end.row(s) << x, y, th;
-    }
-    const Eigen::RowVector3d mean = end.colwise().mean();
-    const Eigen::MatrixXd c = end.rowwise() - mean;
-    const Eigen::Matrix3d mc = (c.transpose() * c) / (samples - 1);
-    const Eigen::Matrix3d model = u.covariance(steps);
-    for (int i : {0, 1, 2}) EXPECT_NEAR(model(i, i), mc(i, i), 0.1 * mc(i, i)) << i;
-    EXPECT_NEAR(model(1, 2), mc(1, 2), 0.1 * std::abs(mc(1, 2)));
-
-    // A closure pins a node: it and the nodes after it start again from its covariance.
-    u.pin(150, Eigen::Matrix3d::Identity() * 1e-6);
-    EXPECT_LT(u.covariance(150)(1, 1), 2e-6);
-    EXPECT_LT(u.covariance(steps)(1, 1), 0.1 * model(1, 1));
-    // The gate: 3 sigma across the path plus the floor.
-    const double sy = std::sqrt(u.covariance(steps)(1, 1) + p.floor * p.floor);
-    EXPECT_LT(u.gateDistance2(steps, Eigen::Vector2d(0, 3.0 * sy)), 9.5);
-    EXPECT_GT(u.gateDistance2(steps, Eigen::Vector2d(0, 3.0 * sy)), 8.5);
-    // A new segment starts certain.
-    u.addNode(steps + 1, nullptr, 0);
-    EXPECT_LT((u.covariance(steps + 1).topLeftCorner<2, 2>().norm()), 1e-12);
 }
 
 TEST(MagneticGpERD, ALookAlikeOutsideTheGateIsNotMatchedNorMakesTheTrueOneAmbiguous) {
