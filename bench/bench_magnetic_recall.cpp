@@ -11,6 +11,7 @@
 // report a truth funnel (MagneticWindowERD): every pass missed, by the furthest stage its true
 // place reached in any query inside it; how often the truth lay inside the position gate.
 #include <lodestone/eval/ClosureEval.h>
+#include <lodestone/eval/ClosureFunnel.h>
 #include <lodestone/io/MagneticRecordingImport.h>
 #include <lodestone/io/TumTrajectory.h>
 #include <lodestone/obs/registerAllClasses.h>
@@ -21,7 +22,6 @@
 #include <fstream>
 #include <iostream>
 #include <map>
-#include <nlohmann/json.hpp>
 
 #include "magnetic_recordings.h"
 
@@ -56,28 +56,6 @@ struct Row {
     std::vector<double> insideGate;          // per seed: share of true places inside the gate
 };
 
-/** The truth funnel of the first edge decider in report.json that has one: per revisiting
- * query, its node and its stage; the stages' names. */
-bool readFunnel(const std::string& reportPath, std::vector<std::pair<double, int>>& queries,
-                std::vector<std::string>& stageNames, double& insideGate) {
-    std::ifstream in(reportPath);
-    const auto report = nlohmann::json::parse(in);
-    const auto& erd = report["engine"]["edge_decider"];
-    for (const auto& child : erd.value("children", nlohmann::json::array({erd}))) {
-        if (!child.contains("truth_funnel")) continue;
-        const auto& f = child["truth_funnel"];
-        for (std::size_t i = 0; i < f["query_node"].size(); ++i)
-            queries.emplace_back(f["query_node"][i].get<double>(), f["stage"][i].get<int>());
-        stageNames.assign(f["stage_names"].size(), "");
-        for (const auto& [k, name] : f["stage_names"].items())
-            stageNames.at(std::stoul(k)) = name.get<std::string>();
-        insideGate =
-            f["truth_inside_gate"].is_number() ? f["truth_inside_gate"].get<double>() : NAN;
-        return true;
-    }
-    return false;
-}
-
 /** One seed's run judged into `row`; false (with the message on stderr) if it failed. */
 bool judgeRun(const slamapp::SlamRunOptions& o, Row& row) {
     const auto truth = io::readTumTrajectory(o.groundTruth);
@@ -99,20 +77,15 @@ bool judgeRun(const slamapp::SlamRunOptions& o, Row& row) {
         ++all[d];
         hit[d] += found[p];
     }
-    std::vector<std::pair<double, int>> queries;
-    double inside = NAN;
-    if (readFunnel(o.outDir + "/report.json", queries, row.stageNames, inside)) {
+    // The closer's recall funnel (the first in report.json: these runs have one closer).
+    const auto funnels = eval::readClosureFunnels(o.outDir + "/report.json", passes, qs);
+    if (!funnels.empty()) {
+        const auto& f = funnels.front();
         row.funnel = true;
-        row.insideGate.push_back(inside);
-        for (std::size_t p = 0; p < passes.size(); ++p) {
-            if (found[p]) continue;
-            int furthest = kNoQuery;
-            for (const auto& [node, stage] : queries) {
-                if (node >= double(passes[p].first) && node <= double(passes[p].last))
-                    furthest = std::max(furthest, stage);
-            }
-            ++row.missedBy[static_cast<int>(passes[p].direction)][furthest];
-        }
+        row.stageNames = f.stageNames;
+        row.insideGate.push_back(f.truthInsideGate);
+        for (int d = 0; d < 2; ++d)
+            for (const auto& [stage, count] : f.missedBy[d]) row.missedBy[d][stage] += count;
     }
     for (int d = 0; d < 2; ++d) {
         row.passes[d] += all[d];

@@ -1,5 +1,6 @@
 #include <lodestone/config/CommandLine.h>
 #include <lodestone/eval/ClosureEval.h>
+#include <lodestone/eval/ClosureFunnel.h>
 #include <lodestone/eval/EvalApp.h>
 #include <lodestone/eval/RelocationEval.h>
 #include <lodestone/eval/TrajectoryPlot.h>
@@ -46,7 +47,19 @@ int runClosureEval(const std::string& dir, std::string truthPath, double maxDt, 
         ClosureEvalOptions options;
         options.maxDt = maxDt;
         options.radius = radius;
-        out << formatClosureQuality(evaluateClosures(closures, trajectory, truth, options), options);
+        const auto qualities = evaluateClosures(closures, trajectory, truth, options);
+        out << formatClosureQuality(qualities, options);
+        // The closers' recall funnels, when the run reported them (it had ground truth).
+        const std::string report = dir + "/report.json";
+        if (std::ifstream(report)) {
+            const auto funnels =
+                readClosureFunnels(report, revisitPasses(trajectory, truth, options), qualities);
+            if (!funnels.empty()) {
+                out << "\nRecall funnel: every revisit pass a matcher missed, by the furthest "
+                       "stage its true place reached in it\n\n"
+                    << formatClosureFunnels(funnels);
+            }
+        }
     } catch (const std::exception& e) {
         err << "lodestone-eval: error: " << e.what() << "\n";
         return 1;

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 #include <lodestone/eval/ClosureEval.h>
+#include <lodestone/eval/ClosureFunnel.h>
 
 #include <cmath>
 #include <cstdio>
@@ -181,4 +182,67 @@ TEST(ClosureEval, PassesWalkedBackAreCountedApart) {
     EXPECT_TRUE(b.first <= 250 && 250 <= b.last && b.direction == eval::PassDirection::Same);
     const auto table = eval::formatClosureQuality(q, {});
     EXPECT_NE(table.find("| 5, 0.000 | 4, 0.000 |"), std::string::npos) << table;
+}
+
+TEST(ClosureEval, TheFunnelNamesTheStageThatLostEachMissedPass) {
+    // Walked east, back west and east again (as above); matcher "A" finds two passes.
+    std::vector<io::TumPose> truth;
+    int t = 0;
+    for (int leg = 0; leg < 3; ++leg) {
+        for (int k = 0; k < 100; ++k, ++t) {
+            const bool west = leg == 1;
+            truth.push_back({double(t), mrpt::poses::CPose3D(west ? 10.0 - 0.1 * k : 0.1 * k, 0, 0,
+                                                             west ? M_PI : 0, 0, 0)});
+        }
+    }
+    eval::ReportedClosure right;
+    right.fromNode = 30;
+    right.toNode = 170;
+    right.fromTime = 30;
+    right.toTime = 170;
+    right.source = "A";
+    right.measured = truth[170].pose - truth[30].pose;
+    const auto qualities = eval::evaluateClosures({right}, truth, truth);
+    const auto passes = eval::revisitPasses(truth, truth);
+    ASSERT_EQ(qualities[0].detectedPasses.size(), 1u);
+    const std::size_t found = qualities[0].detectedPasses[0];
+    // The decider's funnel: a query in the first missed pass reached stage 1 ("no_fit") and
+    // a later one in it stage 0; one in the found pass (not counted); none elsewhere.
+    std::size_t missedWithQuery = found == 0 ? 1 : 0;
+    const auto node = [&](std::size_t p, std::size_t k) { return passes[p].first + k; };
+    const std::string path = ::testing::TempDir() + "funnel_report.json";
+    {
+        std::ofstream f(path);
+        f << "{\"engine\": {\"edge_decider\": {\"class\": \"CompositeERD\", \"children\": ["
+          << "{\"class\": \"B\"}, {\"class\": \"A\", \"truth_funnel\": {"
+          << "\"stage_names\": {\"0\": \"flat\", \"1\": \"no_fit\"}, \"truth_inside_gate\": 0.5, "
+          << "\"query_node\": [" << node(missedWithQuery, 0) << ", " << node(missedWithQuery, 1)
+          << ", " << node(found, 0) << "], \"stage\": [1, 0, 0]}}]}}}";
+    }
+    const auto funnels = eval::readClosureFunnels(path, passes, qualities);
+    ASSERT_EQ(funnels.size(), 1u);
+    const auto& f = funnels[0];
+    EXPECT_EQ(f.decider, "A");
+    EXPECT_EQ(f.passes, passes.size());
+    EXPECT_EQ(f.missed, passes.size() - 1);
+    const int dir = static_cast<int>(passes[missedWithQuery].direction);
+    EXPECT_EQ(f.missedBy[dir].at(1), 1u);  // the furthest stage of its queries
+    EXPECT_EQ(f.missedBy[dir].count(0), 0u);
+    std::size_t noQuery = 0;
+    for (int d = 0; d < 2; ++d) noQuery += f.missedBy[d].count(-1) ? f.missedBy[d].at(-1) : 0;
+    EXPECT_EQ(noQuery, passes.size() - 2);
+    EXPECT_DOUBLE_EQ(f.truthInsideGate, 0.5);
+    const auto table = eval::formatClosureFunnels(funnels);
+    EXPECT_NE(table.find("no_fit"), std::string::npos) << table;
+    // A damaged report names its file.
+    {
+        std::ofstream f(path);
+        f << "{ not json";
+    }
+    try {
+        eval::readClosureFunnels(path, passes, qualities);
+        FAIL() << "no error";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+    }
 }
