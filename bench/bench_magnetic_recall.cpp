@@ -43,17 +43,13 @@ std::string fraction(std::size_t found, std::size_t all) {
     return b;
 }
 
-// A pass no query of the decider's looked at (its stages are numbered from 0).
-constexpr int kNoQuery = -1;
-
 struct Row {
     std::size_t passes[2]{0, 0}, found[2]{0, 0}, right{0}, judged{0}, wrong{0}, closures{0};
     double worst[2]{INFINITY, INFINITY};  // the worst seed's recall, each direction
     std::vector<double> ate, realtime;
     bool funnel{false};
-    std::map<int, std::size_t> missedBy[2];  // furthest stage -> missed passes, each direction
-    std::vector<std::string> stageNames;     // the decider's, by stage number
-    std::vector<double> insideGate;          // per seed: share of true places inside the gate
+    eval::ClosureFunnel missed;      // over all seeds: passes missed by furthest stage
+    std::vector<double> insideGate;  // per seed: share of true places inside the gate
 };
 
 /** One seed's run judged into `row`; false (with the message on stderr) if it failed. */
@@ -82,10 +78,10 @@ bool judgeRun(const slamapp::SlamRunOptions& o, Row& row) {
     if (!funnels.empty()) {
         const auto& f = funnels.front();
         row.funnel = true;
-        row.stageNames = f.stageNames;
+        row.missed.stageNames = f.stageNames;
         row.insideGate.push_back(f.truthInsideGate);
         for (int d = 0; d < 2; ++d)
-            for (const auto& [stage, count] : f.missedBy[d]) row.missedBy[d][stage] += count;
+            for (const auto& [stage, count] : f.missedBy[d]) row.missed.missedBy[d][stage] += count;
     }
     for (int d = 0; d < 2; ++d) {
         row.passes[d] += all[d];
@@ -165,19 +161,7 @@ int main(int argc, char** argv) {
         "seed |\n|---|---|---|---|\n");
     for (const auto& [name, row] : rows) {
         if (!row.funnel) continue;
-        std::string cells;
-        for (int stage = kNoQuery; stage < int(row.stageNames.size()); ++stage) {
-            std::size_t count[2] = {0, 0};
-            for (int d = 0; d < 2; ++d) {
-                const auto it = row.missedBy[d].find(stage);
-                if (it != row.missedBy[d].end()) count[d] = it->second;
-            }
-            if (count[0] + count[1] == 0) continue;
-            cells += (cells.empty() ? "" : ", ") +
-                     (stage == kNoQuery ? std::string("no query") : row.stageNames[stage]) + " " +
-                     std::to_string(count[0]) + " / " + std::to_string(count[1]);
-        }
-        std::printf("| %s | %s |", name.c_str(), cells.empty() ? "none" : cells.c_str());
+        std::printf("| %s | %s |", name.c_str(), eval::missedByStage(row.missed).c_str());
         double sum = 0, worst = INFINITY;
         std::size_t n = 0;
         for (double v : row.insideGate) {

@@ -59,27 +59,31 @@ std::vector<ClosureFunnel> readClosureFunnels(const std::string& reportPath,
     return out;
 }
 
+std::string missedByStage(const ClosureFunnel& f) {
+    std::string cells;
+    for (int stage = -1; stage < int(f.stageNames.size()); ++stage) {
+        std::size_t count[2] = {0, 0};
+        for (int d = 0; d < 2; ++d) {
+            const auto it = f.missedBy[d].find(stage);
+            if (it != f.missedBy[d].end()) count[d] = it->second;
+        }
+        if (count[0] + count[1] == 0) continue;
+        cells += (cells.empty() ? "" : ", ") +
+                 (stage < 0 ? std::string("no query") : f.stageNames[std::size_t(stage)]) + " " +
+                 std::to_string(count[0]) + " / " + std::to_string(count[1]);
+    }
+    return cells.empty() ? "none" : cells;
+}
+
 std::string formatClosureFunnels(const std::vector<ClosureFunnel>& funnels) {
     std::string out =
         "| matcher | passes missed / all | missed, by the furthest stage their true place reached "
         "(same / opposite direction) | truth inside the gate |\n|---|---|---|---|\n";
     char line[64];
     for (const auto& f : funnels) {
-        std::string cells;
-        for (int stage = -1; stage < int(f.stageNames.size()); ++stage) {
-            std::size_t count[2] = {0, 0};
-            for (int d = 0; d < 2; ++d) {
-                const auto it = f.missedBy[d].find(stage);
-                if (it != f.missedBy[d].end()) count[d] = it->second;
-            }
-            if (count[0] + count[1] == 0) continue;
-            cells += (cells.empty() ? "" : ", ") +
-                     (stage < 0 ? std::string("no query") : f.stageNames[std::size_t(stage)]) +
-                     " " + std::to_string(count[0]) + " / " + std::to_string(count[1]);
-        }
         std::snprintf(line, sizeof line, "%.3f", f.truthInsideGate);
         out += "| " + f.decider + " | " + std::to_string(f.missed) + " / " +
-               std::to_string(f.passes) + " | " + (cells.empty() ? "none" : cells) + " | " +
+               std::to_string(f.passes) + " | " + missedByStage(f) + " | " +
                (std::isnan(f.truthInsideGate) ? std::string("-") : std::string(line)) + " |\n";
     }
     return out;

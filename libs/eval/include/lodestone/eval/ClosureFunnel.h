@@ -29,6 +29,9 @@ std::vector<ClosureFunnel> readClosureFunnels(const std::string& reportPath,
                                               const std::vector<RevisitPass>& passes,
                                               const std::vector<MatcherQuality>& qualities);
 
+/** "stage same / opposite, ..." over the stages with a missed pass ("none" when none was). */
+std::string missedByStage(const ClosureFunnel& funnel);
+
 /** A markdown table, a row per decider: passes missed by stage (same / opposite direction). */
 std::string formatClosureFunnels(const std::vector<ClosureFunnel>& funnels);
 
