@@ -51,6 +51,21 @@ struct TwoLaps {
     }
 };
 
+/** A 10 m corridor walked east, back west, and east again, a node every 0.1 m (node k at
+ * time k). */
+std::vector<io::TumPose> corridorThereBackAndThere() {
+    std::vector<io::TumPose> truth;
+    int t = 0;
+    for (int leg = 0; leg < 3; ++leg) {
+        for (int k = 0; k < 100; ++k, ++t) {
+            const bool west = leg == 1;
+            const double x = west ? 10.0 - 0.1 * k : 0.1 * k;
+            truth.push_back({double(t), mrpt::poses::CPose3D(x, 0, 0, west ? M_PI : 0, 0, 0)});
+        }
+    }
+    return truth;
+}
+
 }  // namespace
 
 TEST(ClosureEval, RevisitPassesAndRecallAtFullPrecision) {
@@ -130,16 +145,7 @@ TEST(ClosureEval, AMalformedLogNamesFileAndLine) {
 }
 
 TEST(ClosureEval, PassesWalkedBackAreCountedApart) {
-    // A 10 m corridor walked east, back west, and east again, a node every 0.1 m.
-    std::vector<io::TumPose> truth;
-    int t = 0;
-    for (int leg = 0; leg < 3; ++leg) {
-        for (int k = 0; k < 100; ++k, ++t) {
-            const bool west = leg == 1;
-            const double x = west ? 10.0 - 0.1 * k : 0.1 * k;
-            truth.push_back({double(t), mrpt::poses::CPose3D(x, 0, 0, west ? M_PI : 0, 0, 0)});
-        }
-    }
+    const auto truth = corridorThereBackAndThere();
     const auto closure = [&](int from, int to, double error) {
         eval::ReportedClosure c;
         c.fromNode = from;
@@ -185,16 +191,8 @@ TEST(ClosureEval, PassesWalkedBackAreCountedApart) {
 }
 
 TEST(ClosureEval, TheFunnelNamesTheStageThatLostEachMissedPass) {
-    // Walked east, back west and east again (as above); matcher "A" finds two passes.
-    std::vector<io::TumPose> truth;
-    int t = 0;
-    for (int leg = 0; leg < 3; ++leg) {
-        for (int k = 0; k < 100; ++k, ++t) {
-            const bool west = leg == 1;
-            truth.push_back({double(t), mrpt::poses::CPose3D(west ? 10.0 - 0.1 * k : 0.1 * k, 0, 0,
-                                                             west ? M_PI : 0, 0, 0)});
-        }
-    }
+    // Walked east, back west and east again; matcher "A" finds one pass.
+    const auto truth = corridorThereBackAndThere();
     eval::ReportedClosure right;
     right.fromNode = 30;
     right.toNode = 170;
