@@ -1,6 +1,7 @@
 // MagneticWindowERD on scripted walks through a 2-D field: a corridor walked back (the window
-// read in reverse, the horizontal field turned by half a turn) and a pass 1 m beside an
-// earlier one (a different field: never "the same place").
+// read in reverse, the horizontal field turned by half a turn), passes 0.2, 0.6 and 1 m beside
+// an earlier one (the first much the same field, found; the others a different field: never
+// "the same place").
 #include <gtest/gtest.h>
 #include <lodestone/config/IniSection.h>
 #include <lodestone/graphslam/magnetic/MagneticWindowERD.h>
@@ -198,9 +199,31 @@ TEST(MagneticWindowERD, AFlatCorridorIsReportedFlatAndNeverClosed) {
 TEST(MagneticWindowERD, APassOneMetreBesideAnEarlierOneIsNotTheSamePlace) {
     const FloorField field(12);
     // East along y = 0, round by the north, east again along y = 1.
-    const auto w = walk({{0, 0}, {20, 0}, {20, 5}, {-3, 5}, {-3, 1}, {20, 1}}, field);
-    for (const auto& c : errors(w)) EXPECT_LT(c.position, 0.5);
-    EXPECT_GT(w.stats.queries, 100u);
+    for (const char* ini : {"", "pass_displacement = false\n"}) {
+        const auto w = walk({{0, 0}, {20, 0}, {20, 5}, {-3, 5}, {-3, 1}, {20, 1}}, field, ini);
+        for (const auto& c : errors(w)) EXPECT_LT(c.position, 0.5);
+        EXPECT_GT(w.stats.queries, 100u);
+    }
+}
+
+TEST(MagneticWindowERD, APassBesideIsWeighedByItsDistance) {
+    // East along y = 0, round by the north, east again along y = delta. The field's anomalies
+    // are 0.2-0.4 m wide: 0.2 m beside it is much the same field, 0.6 m beside another.
+    const FloorField field(12);
+    const auto beside = [&](double delta, const std::string& ini) {
+        return walk({{0, 0}, {20, 0}, {20, 5}, {-3, 5}, {-3, delta}, {20, delta}}, field, ini);
+    };
+    // Weighing the passes' distance finds the pass 0.2 m beside; "the same line" alone
+    // (pass_displacement = false) all but loses it. Every closure places the robot within
+    // distinct_radius.
+    const auto near = beside(0.2, "");
+    const auto sameLine = beside(0.2, "pass_displacement = false\n");
+    EXPECT_GT(near.stats.edges, 10u);
+    EXPECT_LT(sameLine.stats.edges, 3u);
+    for (const auto& c : errors(near)) EXPECT_LT(c.position, 0.5);
+    // 0.6 m beside: never the same place, either way.
+    EXPECT_EQ(beside(0.6, "").stats.edges, 0u);
+    EXPECT_EQ(beside(0.6, "pass_displacement = false\n").stats.edges, 0u);
 }
 
 TEST(MagneticWindowERD, ConfirmedClosuresWaitForASecondIndependentWindow) {

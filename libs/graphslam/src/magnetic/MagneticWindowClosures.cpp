@@ -34,6 +34,22 @@ std::optional<MagneticWindowERD::Closure> MagneticWindowERD::measureClosure(
         sigmaAlong2 += params_.step * params_.step;
     }
     if (!std::isfinite(sigmaAlong2)) return std::nullopt;
+    const double sigmaCross2 = params_.sigmaCross * params_.sigmaCross;
+    if (params_.passDisplacement) {
+        // Two passes beside each other place the robot off along the path too, in proportion
+        // to their distance (which the closure does not estimate: its across sigma stays the
+        // platform's sigma_cross - the field's own posterior of the distance, 0.03 m, held
+        // 0.22 m RMS of error on Kok's eight; README). In a turn the arcs differ in length by
+        // the distance times the turn, and the fit, aligning the windows' middles, is off by
+        // half of that (nearRadius). Anywhere, the stretch that best aligns two lines of an
+        // isotropic field moves by the distance times the ratio of its cross- to along-path
+        // gradients summed over the window: to first order of variance (sum of the kernel's
+        // correlations) / (3 n) per unit distance squared.
+        const std::size_t start =
+            best.direction == WindowDirection::Forward ? best.sample + 1 - n_ : best.sample;
+        const double turn = windowTurn(*best.track, start);
+        sigmaAlong2 += sigmaCross2 * (turn * turn / 4 + correlatedSamples_ / (3.0 * double(n_)));
+    }
     // The query node's place on the target's path: its travel past the newest reading, the
     // same way along (forward) or back (backward).
     const double ahead = path_.travel[qNode] - query[newest].s;
@@ -52,7 +68,7 @@ std::optional<MagneticWindowERD::Closure> MagneticWindowERD::measureClosure(
     const double turnSigma = params_.turnFloorDeg * M_PI / 180;
     mrpt::poses::CPosePDFGaussian z;
     z.mean = mrpt::poses::CPose2D(frac * d.x(), frac * d.y(), frac * d.yaw() + best.fit.turn);
-    const Eigen::Matrix2d S = alongAcross(d, sigmaAlong2, params_.sigmaCross * params_.sigmaCross);
+    const Eigen::Matrix2d S = alongAcross(d, sigmaAlong2, sigmaCross2);
     z.cov.setZero();
     for (int r = 0; r < 2; ++r)
         for (int c = 0; c < 2; ++c) z.cov(r, c) = S(r, c);

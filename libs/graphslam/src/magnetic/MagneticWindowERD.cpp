@@ -24,6 +24,11 @@ void MagneticWindowERD::rebuild() {
     n_ = magnetic::SupernodeTrack({params_.step, params_.window, params_.step}, 3)
              .samplesPerSupernode();
     path_ = MagneticPath(params_.uncertainty);
+    correlatedSamples_ = 0;  // the kernel's correlations summed over a window's offsets
+    for (int j = 1 - int(n_); j < int(n_); ++j) {
+        const double r = j * params_.step / params_.lengthScale;
+        correlatedSamples_ += std::exp(-0.5 * r * r);
+    }
 }
 
 void MagneticWindowERD::configure(const mrpt::config::CConfigFileBase& ini) {
@@ -49,6 +54,7 @@ void MagneticWindowERD::configure(const mrpt::config::CConfigFileBase& ini) {
     p.distinctRadius = s.getDouble("distinct_radius", p.distinctRadius);
     p.closureEvery = s.getDouble("closure_every", p.closureEvery);
     p.confirm = s.getBool("confirm", p.confirm);
+    p.passDisplacement = s.getBool("pass_displacement", p.passDisplacement);
     p.sigmaAlongFloor = s.getDouble("sigma_along_floor", p.sigmaAlongFloor);
     p.sigmaCross = s.getDouble("sigma_cross", p.sigmaCross);
     p.turnFloorDeg = s.getDouble("turn_floor_deg", p.turnFloorDeg);
@@ -119,6 +125,19 @@ Eigen::Vector2d MagneticWindowERD::positionAtSample(const magnetic::SupernodeTra
     return {a.x() + f * (b.x() - a.x()), a.y() + f * (b.y() - a.y())};
 }
 
+double MagneticWindowERD::yawAtSample(const magnetic::SupernodeTrack& track, std::size_t i) const {
+    const auto& sample = track.samples()[i];
+    const auto k = static_cast<TNodeID>(sample.node);
+    const double b = poses_[k]->yaw();
+    if (k == 0 || path_.segment[k - 1] != path_.segment[k] ||
+        path_.travel[k] <= path_.travel[k - 1])
+        return b;
+    const double a = poses_[k - 1]->yaw();
+    const double f = std::clamp(
+        (sample.s - path_.travel[k - 1]) / (path_.travel[k] - path_.travel[k - 1]), 0.0, 1.0);
+    return a + f * std::remainder(b - a, 2 * M_PI);
+}
+
 void MagneticWindowERD::compareAt(const magnetic::SupernodeTrack& track, std::size_t c,
                                   WindowDirection direction, std::size_t first, const Prior& prior,
                                   std::vector<Candidate>& out) const {
@@ -143,6 +162,7 @@ void MagneticWindowERD::compareAt(const magnetic::SupernodeTrack& track, std::si
                                      prior.turn, prior.turnVariance);
     k.gate2 = prior.gate2;
     k.total = k.fit.chi2 + prior.gate2;
+    k.fitStat = k.fit.chi2;
     out.push_back(k);
 }
 
@@ -211,26 +231,31 @@ void MagneticWindowERD::query(std::size_t first) {
 
 void MagneticWindowERD::decide(std::size_t first, double excitation,
                                std::vector<Candidate>& candidates, Outcome& out) {
-    const double dof = 3.0 * double(n_);
     if (candidates.empty()) {
         ++stats_.noCandidate;
         return;
     }
+    const double spread = windowSpread(excitation);
+    if (params_.passDisplacement) {
+        // Each frame adds its own artefact to the field's spread - the robot frame a turn's
+        // turning of the earth's field, the map frame the graph's heading errors (a corner's
+        // turn spread over the node interval): the smaller is the closer bound.
+        out.displacement.emplace(n_, params_.noise, std::min(spread, mapFrameSpread(first)),
+                                 params_.lengthScale, params_.sigmaCross, params_.distinctRadius);
+        weighDisplaced(candidates, first, *out.displacement);
+    }
     out.best =
         *std::min_element(candidates.begin(), candidates.end(),
                           [](const Candidate& a, const Candidate& b) { return a.total < b.total; });
-    if (out.best->fit.chi2 > magnetic::chiSquareQuantile(dof, params_.quantile)) {
+    if (out.best->fitStat > magnetic::chiSquareQuantile(3.0 * double(n_), params_.quantile)) {
         ++stats_.noFit;
         return;
     }
-    // The null's field amplitude is this window's own: its spread about its mean, the reading
-    // noise (half the difference's variance) taken out. A stretch that varies little is no
-    // strong evidence when it matches another that varies little.
-    const double s2 = params_.noise.sigma * params_.noise.sigma;
-    const double spread2 = excitation * s2 / (dof - 3) - 0.5 * s2;
-    const magnetic::WindowNullModel null(n_, params_.noise, std::sqrt(std::max(spread2, 1e-6)),
-                                         params_.lengthScale);
-    out.posterior = placePosterior(*out.best, candidates, first, null);
+    if (!params_.passDisplacement) {
+        const magnetic::WindowNullModel null(n_, params_.noise, spread, params_.lengthScale);
+        weighSameLine(*out.best, candidates, first, null);
+    }
+    out.posterior = placePosterior(*out.best, candidates);
     if (out.posterior < params_.minPosterior) {
         ++stats_.ambiguous;
         return;
@@ -243,34 +268,108 @@ void MagneticWindowERD::decide(std::size_t first, double excitation,
     }
 }
 
-double MagneticWindowERD::placePosterior(const Candidate& best, std::vector<Candidate>& all,
-                                         std::size_t first,
-                                         const magnetic::WindowNullModel& null) const {
-    const auto& query = queried().samples();
+double MagneticWindowERD::windowSpread(double excitation) const {
+    // The window's spread about its mean, the reading noise (half the difference's variance)
+    // taken out. A stretch that varies little is no strong evidence when it matches another
+    // that varies little.
+    const double dof = 3.0 * double(n_);
+    const double s2 = params_.noise.sigma * params_.noise.sigma;
+    const double spread2 = excitation * s2 / (dof - 3) - 0.5 * s2;
+    return std::sqrt(std::max(spread2, 1e-6));
+}
+
+double MagneticWindowERD::mapFrameSpread(std::size_t first) const {
+    const auto& samples = queried().samples();
+    std::vector<Eigen::Vector3d> b(n_);
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (std::size_t k = 0; k < n_; ++k) {
+        const Eigen::Vector3d v = samples[first + k].value.head<3>().cast<double>();
+        const double yaw = yawAtSample(queried(), first + k), c = std::cos(yaw), s = std::sin(yaw);
+        b[k] = {c * v.x() - s * v.y(), s * v.x() + c * v.y(), v.z()};
+        mean += b[k];
+    }
+    mean /= double(n_);
+    double sum = 0;
+    for (const auto& v : b) sum += (v - mean).squaredNorm();
+    const double s2 = params_.noise.sigma * params_.noise.sigma;
+    const double spread2 = sum / (3.0 * double(n_) - 3) - 0.5 * s2;
+    return std::sqrt(std::max(spread2, 1e-6));
+}
+
+double MagneticWindowERD::logPriorNormalizer(const std::vector<Candidate>& all) {
     // The position prior normalized over the candidates (both directions of every sample).
     double logZ = -INFINITY;
     for (const auto& k : all) {
         const double v = -0.5 * k.gate2;
         logZ = std::max(logZ, v) + std::log1p(std::exp(-std::abs(logZ - v)));
     }
+    return logZ;
+}
+
+double MagneticWindowERD::windowTurn(const magnetic::SupernodeTrack& track,
+                                     std::size_t start) const {
+    const auto& samples = track.samples();
+    return std::remainder(
+        poses_[samples[start + n_ - 1].node]->yaw() - poses_[samples[start].node]->yaw(), 2 * M_PI);
+}
+
+double MagneticWindowERD::nearRadius(double turn) const {
+    return params_.distinctRadius / std::sqrt(1 + turn * turn / 4);
+}
+
+Eigen::MatrixX3d MagneticWindowERD::residuals(const Candidate& k, std::size_t first) const {
+    return magnetic::windowResiduals(
+        queried().samples(), first, k.track->samples(),
+        k.direction == WindowDirection::Forward ? k.sample + 1 - n_ : k.sample, n_, k.direction,
+        k.fit);
+}
+
+void MagneticWindowERD::weighSameLine(const Candidate& best, std::vector<Candidate>& all,
+                                      std::size_t first,
+                                      const magnetic::WindowNullModel& null) const {
+    const double logZ = logPriorNormalizer(all);
     // A candidate that fits worse than this beyond the fit test weighs nothing next to one
     // that passes it: its likelihood ratio is not worth computing.
     const double negligible =
         magnetic::chiSquareQuantile(3.0 * double(n_), 1 - 1e-12) + best.fit.chi2;
-    double maxLog = std::log(params_.nullOdds);
     for (auto& k : all) {
         if (k.fit.chi2 > negligible) continue;
-        const auto d = magnetic::windowResiduals(
-            query, first, k.track->samples(),
-            k.direction == WindowDirection::Forward ? k.sample + 1 - n_ : k.sample, n_, k.direction,
-            k.fit);
-        k.logWeight = null.logLikelihoodRatio(d) - 0.5 * (k.gate2 + k.fit.turnPriorChi2) - logZ;
-        maxLog = std::max(maxLog, k.logWeight);
+        k.logWeight = null.logLikelihoodRatio(residuals(k, first)) -
+                      0.5 * (k.gate2 + k.fit.turnPriorChi2) - logZ;
     }
+}
+
+void MagneticWindowERD::weighDisplaced(std::vector<Candidate>& all, std::size_t first,
+                                       const magnetic::WindowDisplacementModel& model) const {
+    const double logZ = logPriorNormalizer(all);
+    // A candidate whose differences fail the fit test by this much even at distinct_radius
+    // apart weighs nothing (its weight as a pass further beside is left out with it).
+    const double hopeless = magnetic::chiSquareQuantile(3.0 * double(n_), 1 - 1e-12);
+    for (auto& k : all) {
+        k.fitStat = model.chi2LowerBound(k.fit.chi2 - k.fit.turnPriorChi2, params_.distinctRadius);
+        k.total = INFINITY;
+        if (k.fitStat > hopeless) continue;
+        const std::size_t start =
+            k.direction == WindowDirection::Forward ? k.sample + 1 - n_ : k.sample;
+        const auto e = model.evidence(residuals(k, first), nearRadius(windowTurn(*k.track, start)));
+        const double prior = -0.5 * (k.gate2 + k.fit.turnPriorChi2) - logZ;
+        k.logWeight = e.logNear + prior;
+        k.logFar = e.logFar + prior;
+        k.nearDelta2 = e.nearDelta2;
+        k.fitStat = e.chi2AtRadius;
+        k.total = -2 * k.logWeight;
+    }
+}
+
+double MagneticWindowERD::placePosterior(const Candidate& best,
+                                         const std::vector<Candidate>& all) const {
+    double maxLog = std::log(params_.nullOdds);
+    for (const auto& k : all) maxLog = std::max({maxLog, k.logWeight, k.logFar});
     const Eigen::Vector2d there = positionAtSample(*best.track, best.sample);
     const int segment = best.track->samples()[best.sample].segment;
     double same = 0, rest = std::exp(std::log(params_.nullOdds) - maxLog);
     for (const auto& k : all) {
+        if (std::isfinite(k.logFar)) rest += std::exp(k.logFar - maxLog);
         if (!std::isfinite(k.logWeight)) continue;
         const double w = std::exp(k.logWeight - maxLog);
         const bool samePlace =
@@ -301,6 +400,7 @@ JsonObject MagneticWindowERD::describe() const {
         .set("distinct_radius", params_.distinctRadius)
         .set("closure_every", params_.closureEvery)
         .set("confirm", params_.confirm)
+        .set("pass_displacement", params_.passDisplacement)
         .set("sigma_cross", params_.sigmaCross)
         .set("turn_floor_deg", params_.turnFloorDeg);
     JsonObject stats;

@@ -67,26 +67,41 @@ std::optional<std::size_t> MagneticWindowERD::diagnose(std::size_t first, const 
     const Prior p = priorAt(track, t, qNode, positionAtSample(queried(), newest));
     r.gate2 = p.gate2;
     if (whole) {
-        r.fitChi2 = magnetic::compareWindows(
-                        samples, first, stored, r.backward ? t : t + 1 - n_, n_,
-                        r.backward ? WindowDirection::Backward : WindowDirection::Forward,
-                        params_.noise, p.turn, p.turnVariance)
-                        .chi2;
+        const std::size_t start = r.backward ? t : t + 1 - n_;
+        const auto direction = r.backward ? WindowDirection::Backward : WindowDirection::Forward;
+        const auto fit = magnetic::compareWindows(samples, first, stored, start, n_, direction,
+                                                  params_.noise, p.turn, p.turnVariance);
+        // (the statistic the fit test takes: with pass_displacement, at distinct_radius apart)
+        r.fitChi2 = out.displacement
+                        ? out.displacement
+                              ->evidence(magnetic::windowResiduals(samples, first, stored, start,
+                                                                   n_, direction, fit),
+                                         nearRadius(windowTurn(track, start)))
+                              .chi2AtRadius
+                        : fit.chi2;
     }
     const double fitLimit = magnetic::chiSquareQuantile(3.0 * double(n_), params_.quantile);
     const bool bestHere =
         out.best && out.best->track->samples()[out.best->sample].segment == stored[t].segment &&
         (positionAtSample(*out.best->track, out.best->sample) - positionAtSample(track, t))
                 .norm() <= params_.distinctRadius;
+    // Where the decision fell near the truth, its tests are the truth's (even when the true
+    // sample itself has no whole window); elsewhere, the truth's own window, gate and fit say
+    // why it lost.
     using S = TruthStage;
-    r.stage = out.flat                                   ? S::Flat
-              : !whole                                   ? S::NoWindow
-              : p.gate2 > params_.gateChi2               ? S::OutsideGate
-              : r.fitChi2 > fitLimit                     ? S::NoFit
-              : !bestHere                                ? S::LostToOther
-              : !(out.posterior >= params_.minPosterior) ? S::Ambiguous
-              : out.closed                               ? S::Closed
+    if (out.flat) {
+        r.stage = S::Flat;
+    } else if (bestHere) {
+        r.stage = !std::isfinite(out.posterior)          ? S::NoFit
+                  : out.posterior < params_.minPosterior ? S::Ambiguous
+                  : out.closed                           ? S::Closed
                                                          : S::Accepted;
+    } else {
+        r.stage = !whole                       ? S::NoWindow
+                  : p.gate2 > params_.gateChi2 ? S::OutsideGate
+                  : r.fitChi2 > fitLimit       ? S::NoFit
+                                               : S::LostToOther;
+    }
     truthQueries_.push_back(r);
     return truthQueries_.size() - 1;
 }

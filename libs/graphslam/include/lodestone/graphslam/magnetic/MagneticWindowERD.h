@@ -5,6 +5,7 @@
 #include <lodestone/graphslam/magnetic/MagneticPath.h>
 #include <lodestone/magnetic/SupernodeTrack.h>
 #include <lodestone/magnetic/WindowComparison.h>
+#include <lodestone/magnetic/WindowDisplacement.h>
 
 #include <deque>
 #include <map>
@@ -75,6 +76,14 @@ class MagneticWindowERD : public EdgeDecider {
          * robot consistently (within distinct_radius); after that the match continues with
          * every agreeing window. A chance look-alike seldom repeats on the next stretch. */
         bool confirm{false};
+        /** Two passes of one place run beside each other by a distance whose prior is
+         * half-normal with `sigma_cross`; the field says how far
+         * (magnetic::WindowDisplacementModel). A place is the same when the passes ran close
+         * enough to place the robot within `distinct_radius` (nearRadius): the fit test takes
+         * the differences at that distance, a candidate further apart counts against its
+         * place, and the closure's across-track sigma is the distance's posterior. false: the
+         * same place means the same line (C1 alone), the across-track sigma is `sigma_cross`. */
+        bool passDisplacement{true};
         double sigmaAlongFloor{0.03};  ///< [m]
         double sigmaCross{0.20};       ///< [m]
         double turnFloorDeg{2.0};      ///< [deg] added to the field's turn sigma
@@ -128,9 +137,14 @@ class MagneticWindowERD : public EdgeDecider {
         std::size_t sample{0};
         magnetic::WindowDirection direction{magnetic::WindowDirection::Forward};
         magnetic::WindowFit fit;
-        double gate2{0};              ///< position prior's squared Mahalanobis distance
-        double total{0};              ///< fit.chi2 + gate2
-        double logWeight{-INFINITY};  ///< log of its posterior weight (unnormalized)
+        double gate2{0};  ///< position prior's squared Mahalanobis distance
+        /** -2 log of its weight up to a constant: the best candidate has the least. Same line:
+         * fit.chi2 + gate2; with pass_displacement: -2 (logNear + position and turn prior). */
+        double total{0};
+        double fitStat{0};  ///< the fit test's chi-square (fit.chi2, or at distinct_radius apart)
+        double logWeight{-INFINITY};  ///< log of its posterior weight: its place within reach
+        double logFar{-INFINITY};     ///< ... and its place beside, passed further apart
+        double nearDelta2{0};         ///< [m^2] the passes' squared distance, posterior
     };
     /** A candidate's prior: the gate's squared Mahalanobis distance, the graph's relative
      * heading and its variance (across a kidnap: 0, 0, infinite). */
@@ -142,6 +156,7 @@ class MagneticWindowERD : public EdgeDecider {
         bool flat{false}, closed{false};
         std::optional<Candidate> best;
         double posterior{NAN};
+        std::optional<magnetic::WindowDisplacementModel> displacement;  ///< pass_displacement
     };
     void rebuild();
     void onNode(TNodeID id);
@@ -159,10 +174,32 @@ class MagneticWindowERD : public EdgeDecider {
     void compareAt(const magnetic::SupernodeTrack& track, std::size_t c,
                    magnetic::WindowDirection direction, std::size_t first, const Prior& prior,
                    std::vector<Candidate>& out) const;
-    /** The posterior of the best candidate's place against every other place and against
-     * the null (no earlier place), candidates' logWeight filled in. */
-    double placePosterior(const Candidate& best, std::vector<Candidate>& all, std::size_t first,
-                          const magnetic::WindowNullModel& null) const;
+    /** The field's spread in the query window, the reading noise taken out (from its
+     * excitation): the amplitude of the null and displacement models. */
+    double windowSpread(double excitation) const;
+    /** The same in the map's frame (each reading's horizontal part turned by the graph's
+     * heading there): the field's own variation over the window, without the turning of the
+     * robot-frame components that a turn in a uniform field shows. */
+    double mapFrameSpread(std::size_t first) const;
+    /** log of the position prior's normalizer over the candidates. */
+    static double logPriorNormalizer(const std::vector<Candidate>& all);
+    /** With pass_displacement: every candidate's weight near and far, its total and fitStat. */
+    void weighDisplaced(std::vector<Candidate>& all, std::size_t first,
+                        const magnetic::WindowDisplacementModel& model) const;
+    /** [rad] how far the robot turned over a window of `track` from `start` (graph poses). */
+    double windowTurn(const magnetic::SupernodeTrack& track, std::size_t start) const;
+    /** The passes' distance that places the robot within distinct_radius: in a turn `turn` the
+     * passes' arcs differ in length by the distance times the turn, and the fit, aligning the
+     * windows' middles, places the newest reading off along the path by half of that. */
+    double nearRadius(double turn) const;
+    /** A candidate's differences (query minus turned target). */
+    Eigen::MatrixX3d residuals(const Candidate& k, std::size_t first) const;
+    /** Same line: every plausible candidate's weight against the null (logWeight). */
+    void weighSameLine(const Candidate& best, std::vector<Candidate>& all, std::size_t first,
+                       const magnetic::WindowNullModel& null) const;
+    /** The posterior of the best candidate's place (candidates within distinct_radius of it,
+     * passed within reach) against every other place, passes further apart, and the null. */
+    double placePosterior(const Candidate& best, const std::vector<Candidate>& all) const;
     /** An accepted window's closure, measured (MagneticWindowClosures.cpp). */
     struct Closure {
         TNodeID target{0}, query{0};
@@ -183,6 +220,7 @@ class MagneticWindowERD : public EdgeDecider {
     bool confirm(const Closure& c);
     bool commit(const Closure& c);
     Eigen::Vector2d positionAtSample(const magnetic::SupernodeTrack& track, std::size_t i) const;
+    double yawAtSample(const magnetic::SupernodeTrack& track, std::size_t i) const;
     /** Readings to keep: the queried sensor's and its mirror's (MagneticWindowSensors.cpp). */
     bool takeReading(const MagneticSample& reading);
     const magnetic::SupernodeTrack& queried() const;
@@ -190,14 +228,15 @@ class MagneticWindowERD : public EdgeDecider {
     const magnetic::SupernodeTrack& mirrored() const;
 
     Params params_;
-    std::size_t n_{0};  // samples per window (rebuild)
+    std::size_t n_{0};             // samples per window (rebuild)
+    double correlatedSamples_{0};  // sum of the field kernel's correlations over a window (rebuild)
     struct Sensor {
         std::unique_ptr<magnetic::SupernodeTrack> track;
         Eigen::Vector3d position;  ///< on the robot [m]
     };
-    std::map<std::string, Sensor> sensors_;  // the queried one and its mirror
-    std::string mirror_;                     // the mirror's label ("": none)
-    MagneticPath path_;                      // travel, segment, pose uncertainty per node
+    std::map<std::string, Sensor> sensors_;           // the queried one and its mirror
+    std::string mirror_;                              // the mirror's label ("": none)
+    MagneticPath path_;                               // travel, segment, pose uncertainty per node
     std::vector<const Graph::global_pose_t*> poses_;  // per node, in the graph
     TNodeID seen_{0};
     double lastQuery_{-1e18}, lastClosure_{-1e18};  // [m] travel
