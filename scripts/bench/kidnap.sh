@@ -11,7 +11,7 @@
 # Then one summary line per run.
 #
 # Usage: scripts/bench/kidnap.sh [--qvga] [--variants N] [--jobs J] [--no-wheel-drop]
-#                                [SCENARIO.ini ...]
+#                                [--config SLAM.ini] [SCENARIO.ini ...]
 #   default scenario: config_ini/paper_kidnap.ini (830 s of 640x480 data: about ten minutes)
 #   --qvga           the camera at 320x240 / 15 Hz (about three times faster)
 #   --variants N     also N variants of each scenario: other simulator seeds, put-downs drawn
@@ -19,9 +19,11 @@
 #                    long plain sides), lift times moved by up to 15 s - the held-out kind
 #   --jobs J         runs at once (each pinned to a core of its own when taskset exists)
 #   --no-wheel-drop  no wheel-drop sensor: the kidnap detectors of [kidnap_detection] instead
+#   --config INI     the SLAM configuration (default config_ini/slam.ini; scripts/bench/
+#                    window_inis.sh writes slam.ini with the window closer, or both closers)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
-qvga=0 variants=0 jobs=1 nowheel=0
+qvga=0 variants=0 jobs=1 nowheel=0 config="$root/config_ini/slam.ini"
 scenarios=()
 while [ $# -gt 0 ]; do
     case "$1" in
@@ -29,6 +31,7 @@ while [ $# -gt 0 ]; do
         --variants) variants=$2; shift ;;
         --jobs) jobs=$2; shift ;;
         --no-wheel-drop) nowheel=1 ;;
+        --config) config=$(cd "$(dirname "$2")" && pwd)/$(basename "$2"); shift ;;
         -*) echo "kidnap.sh: unknown option $1" >&2; exit 2 ;;
         *) scenarios+=("$1") ;;
     esac
@@ -41,12 +44,12 @@ evaluate="$root/build/apps/lodestone-eval/lodestone-eval"
 out="${LODESTONE_BENCH_OUT:-$root/out/bench_kidnap}"
 mkdir -p "$out"
 
-config="$root/config_ini/slam.ini"
 if [ $nowheel = 1 ]; then
+    base=$config
     config="$out/slam_no_wheel_drop.ini"
     sed -e 's/^kidnap_wheel_drop *=.*/kidnap_wheel_drop = false/' \
         -e '/^\[kidnap_detection\]/,/^\[/{s/^motion *=.*/motion = true/;s/^magnetic *=.*/magnetic = true/}' \
-        "$root/config_ini/slam.ini" > "$config"
+        "$base" > "$config"
     grep -q '^kidnap_wheel_drop = false' "$config" ||
         { echo "kidnap.sh: slam.ini has no kidnap_wheel_drop line to switch off" >&2; exit 1; }
 fi

@@ -32,18 +32,7 @@ sim_seeds=${SIM_SEEDS:-3}
 sim="$root/build/apps/lodestone-sim/lodestone-sim"
 slam="$root/build/apps/lodestone-slam/lodestone-slam"
 evaluate="$root/build/apps/lodestone-eval/lodestone-eval"
-windowed="$out/slam_window.ini"
-awk '/^\[MagneticWindowERD\]/{on=1} /^\[/{if(!/^\[MagneticWindowERD\]/)on=0} on' \
-    "$root/config_ini/magnetic_window.ini" > "$out/window_section.ini"
-sed 's/^children = OrbSubmapERD MagneticGpERD /children = OrbSubmapERD MagneticWindowERD /' \
-    "$root/config_ini/slam.ini" | awk -v sec="$out/window_section.ini" '
-    /^\[MagneticGpERD\]/{skip=1; while ((getline line < sec) > 0) print line; next}
-    /^\[/{skip=0} !skip' > "$windowed"
-both="$out/slam_both.ini"
-sed 's/^children = OrbSubmapERD MagneticGpERD /children = OrbSubmapERD MagneticGpERD MagneticWindowERD /' \
-    "$root/config_ini/slam.ini" | awk -v sec="$out/window_section.ini" '
-    /^\[CeresGSO\]/{while ((getline line < sec) > 0) print line}
-    {print}' > "$both"
+"$root/scripts/bench/window_inis.sh" "$out"
 echo
 echo "#### corridor_shuttle.ini (simulated robot, two magnetometers; seeds 1-$sim_seeds)"
 echo
@@ -52,13 +41,14 @@ echo "|---|---|---|---|---|---|"
 for seed in $(seq 1 "$sim_seeds"); do
     "$sim" -c "$root/config_ini/corridor_shuttle.ini" --camera 320x240@15 -s "$seed" \
         -o "$out/shuttle_$seed.rawlog" > /dev/null
-    for ini in "$root/config_ini/slam.ini" "$windowed" "$both"; do
+    for ini in "$root/config_ini/slam.ini" "$out/slam_window.ini" "$out/slam_both.ini"; do
         name=$(basename "$ini")
         run="$out/shuttle_${seed}_$name"
         ate=$("$slam" --rawlog "$out/shuttle_$seed.rawlog" --ground-truth "$out/shuttle_$seed.gt.tum" \
             --config "$ini" --out "$run" 2> /dev/null | sed -n 's/^ATE RMSE \([0-9.]*\) m.*/\1/p')
         "$evaluate" closures "$run" --ground-truth "$out/shuttle_$seed.gt.tum" |
-            awk -F'|' -v seed="$seed" -v ini="$name" -v ate="$ate" '/^\| Magnetic/ {
+            awk -F'|' -v seed="$seed" -v ini="$name" -v ate="$ate" '/^Recall funnel/ { exit }
+                /^\| Magnetic/ {
                 split($13, same, ","); split($14, opp, ",");
                 gsub(/ /, "", $2);
                 printf "| %s | %s: %s | %d / %d | %d passes, %.2f | %d passes, %.2f | %s |\n",

@@ -52,7 +52,7 @@ class MagneticWindowERD : public EdgeDecider {
         bool mirrorSensors{true};
         double saturation{1000.0};  ///< [uT] a component this large is a saturated reading
         double step{0.05};          ///< [m] readings resampled by travel
-        double window{1.5};      ///< [m] of path per window (Kok & Solin: ~1 s of walking; README)
+        double window{2.0};      ///< [m] of path per window (Kok & Solin: ~1 s of walking; README)
         double queryEvery{0.1};  ///< [m] of travel between queries
         /** How the readings of one place differ between two passes (magnetic::PassNoise):
          * white noise of `window_sigma` [uT] per component, plus over a window an offset of
