@@ -8,14 +8,10 @@
 
 namespace lodestone::magnetic {
 
-WindowDisplacementModel::WindowDisplacementModel(std::size_t n, const PassNoise& noise,
-                                                 double sigmaF, double lengthScale,
-                                                 double priorSigma, double radius)
-    : sigmaF2_(sigmaF * sigmaF), lengthScale_(lengthScale), radius_(radius) {
-    if (n < 2 || !(lengthScale > 0) || !(sigmaF >= 0))
+WindowDisplacementModel::Basis::Basis(std::size_t n, const PassNoise& noise, double lengthScale)
+    : lengthScale(lengthScale) {
+    if (n < 2 || !(lengthScale > 0))
         throw std::invalid_argument("WindowDisplacementModel: bad window or kernel");
-    if (!(priorSigma > 0) || !(radius > 0))
-        throw std::invalid_argument("WindowDisplacementModel: prior sigma and radius must be > 0");
     const auto m = static_cast<Eigen::Index>(n);
     Eigen::MatrixXd K(m, m);
     for (Eigen::Index i = 0; i < m; ++i) {
@@ -28,8 +24,24 @@ WindowDisplacementModel::WindowDisplacementModel(std::size_t n, const PassNoise&
     const Eigen::LLT<Eigen::MatrixXd> llt(passNoiseCovariance(n, noise));
     const Eigen::MatrixXd Linv = llt.matrixL().solve(Eigen::MatrixXd::Identity(m, m));
     const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(Linv * K * Linv.transpose());
-    eigenvalues_ = eig.eigenvalues().cwiseMax(0.0);
-    toEigenbasis_ = eig.eigenvectors().transpose() * Linv;
+    eigenvalues = eig.eigenvalues().cwiseMax(0.0);
+    toEigenbasis = eig.eigenvectors().transpose() * Linv;
+}
+
+WindowDisplacementModel::WindowDisplacementModel(std::size_t n, const PassNoise& noise,
+                                                 double sigmaF, double lengthScale,
+                                                 double priorSigma, double radius)
+    : WindowDisplacementModel(std::make_shared<Basis>(n, noise, lengthScale), sigmaF, priorSigma,
+                              radius) {}
+
+WindowDisplacementModel::WindowDisplacementModel(std::shared_ptr<const Basis> basis, double sigmaF,
+                                                 double priorSigma, double radius)
+    : basis_(std::move(basis)), sigmaF2_(sigmaF * sigmaF), radius_(radius) {
+    if (!basis_ || !(sigmaF >= 0))
+        throw std::invalid_argument("WindowDisplacementModel: no basis, or a negative amplitude");
+    if (!(priorSigma > 0) || !(radius > 0))
+        throw std::invalid_argument("WindowDisplacementModel: prior sigma and radius must be > 0");
+    const auto m = basis_->eigenvalues.size();
 
     // The half-normal prior's bins of radius / 10, out to where its mass is gone; each bin's
     // likelihood taken at its middle. One more column: unrelated places.
@@ -52,21 +64,22 @@ WindowDisplacementModel::WindowDisplacementModel(std::size_t n, const PassNoise&
 
 double WindowDisplacementModel::amplitude(double delta) const {
     if (std::isinf(delta)) return 2 * sigmaF2_;
-    const double r = delta / lengthScale_;
+    const double r = delta / basis_->lengthScale;
     return 2 * sigmaF2_ * -std::expm1(-0.5 * r * r);
 }
 
 Eigen::VectorXd WindowDisplacementModel::inverseFactors(double delta) const {
-    return (1.0 + amplitude(delta) * eigenvalues_.array()).inverse().matrix();
+    return (1.0 + amplitude(delta) * basis_->eigenvalues.array()).inverse().matrix();
 }
 
 double WindowDisplacementModel::logDeterminantTerm(double delta) const {
     // Three independent components; C1's determinant is common to every delta and left out.
-    return -1.5 * (1.0 + amplitude(delta) * eigenvalues_.array()).log().sum();
+    return -1.5 * (1.0 + amplitude(delta) * basis_->eigenvalues.array()).log().sum();
 }
 
 Eigen::VectorXd WindowDisplacementModel::projected(const Eigen::MatrixX3d& d) const {
-    return (toEigenbasis_ * d).rowwise().squaredNorm();
+    // (lazily: at this size the general product's packing costs more than the product)
+    return basis_->toEigenbasis.lazyProduct(d).rowwise().squaredNorm();
 }
 
 double WindowDisplacementModel::logRatio(const Eigen::VectorXd& p2, double delta) const {
@@ -85,7 +98,7 @@ double WindowDisplacementModel::chi2(const Eigen::MatrixX3d& d, double delta) co
 }
 
 double WindowDisplacementModel::chi2LowerBound(double whiteChi2, double delta) const {
-    const double largest = eigenvalues_.size() ? eigenvalues_.maxCoeff() : 0.0;
+    const double largest = basis_->eigenvalues.size() ? basis_->eigenvalues.maxCoeff() : 0.0;
     return whiteChi2 / (1.0 + amplitude(delta) * largest);
 }
 

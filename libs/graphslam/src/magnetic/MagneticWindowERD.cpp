@@ -24,6 +24,8 @@ void MagneticWindowERD::rebuild() {
     n_ = magnetic::SupernodeTrack({params_.step, params_.window, params_.step}, 3)
              .samplesPerSupernode();
     path_ = MagneticPath(params_.uncertainty);
+    basis_ = std::make_shared<const magnetic::WindowDisplacementModel::Basis>(n_, params_.noise,
+                                                                              params_.lengthScale);
     correlatedSamples_ = 0;  // the kernel's correlations summed over a window's offsets
     for (int j = 1 - int(n_); j < int(n_); ++j) {
         const double r = j * params_.step / params_.lengthScale;
@@ -160,6 +162,7 @@ void MagneticWindowERD::compareAt(const magnetic::SupernodeTrack& track, std::si
     k.direction = direction;
     k.fit = magnetic::compareWindows(query, first, samples, start, n_, direction, params_.noise,
                                      prior.turn, prior.turnVariance);
+    k.position = prior.position;
     k.gate2 = prior.gate2;
     k.total = k.fit.chi2 + prior.gate2;
     k.fitStat = k.fit.chi2;
@@ -171,12 +174,12 @@ MagneticWindowERD::Prior MagneticWindowERD::priorAt(const magnetic::SupernodeTra
                                                     const Eigen::Vector2d& here) const {
     const auto& samples = track.samples();
     Prior p;
+    p.position = positionAtSample(track, c);
     if (samples[c].segment != path_.segment[qNode]) return p;
     // Where the robot can be, and which way it faces, under the pose uncertainty relative to
     // the target. Across a kidnap the graph knows neither: everywhere, any way.
     const auto target = static_cast<TNodeID>(samples[c].node);
-    p.gate2 =
-        path_.uncertainty.relativeGateDistance2(target, qNode, here - positionAtSample(track, c));
+    p.gate2 = path_.uncertainty.relativeGateDistance2(target, qNode, here - p.position);
     p.turn = poses_[qNode]->yaw() - poses_[target]->yaw();
     const double turnFloor = params_.turnFloorDeg * M_PI / 180;
     p.turnVariance = path_.uncertainty.covariance(qNode)(2, 2) + turnFloor * turnFloor;
@@ -240,8 +243,8 @@ void MagneticWindowERD::decide(std::size_t first, double excitation,
         // Each frame adds its own artefact to the field's spread - the robot frame a turn's
         // turning of the earth's field, the map frame the graph's heading errors (a corner's
         // turn spread over the node interval): the smaller is the closer bound.
-        out.displacement.emplace(n_, params_.noise, std::min(spread, mapFrameSpread(first)),
-                                 params_.lengthScale, params_.sigmaCross, params_.distinctRadius);
+        out.displacement.emplace(basis_, std::min(spread, mapFrameSpread(first)),
+                                 params_.sigmaCross, params_.distinctRadius);
         weighDisplaced(candidates, first, *out.displacement);
     }
     out.best =
@@ -365,16 +368,15 @@ double MagneticWindowERD::placePosterior(const Candidate& best,
                                          const std::vector<Candidate>& all) const {
     double maxLog = std::log(params_.nullOdds);
     for (const auto& k : all) maxLog = std::max({maxLog, k.logWeight, k.logFar});
-    const Eigen::Vector2d there = positionAtSample(*best.track, best.sample);
+
     const int segment = best.track->samples()[best.sample].segment;
     double same = 0, rest = std::exp(std::log(params_.nullOdds) - maxLog);
     for (const auto& k : all) {
         if (std::isfinite(k.logFar)) rest += std::exp(k.logFar - maxLog);
         if (!std::isfinite(k.logWeight)) continue;
         const double w = std::exp(k.logWeight - maxLog);
-        const bool samePlace =
-            k.track->samples()[k.sample].segment == segment &&
-            (positionAtSample(*k.track, k.sample) - there).norm() <= params_.distinctRadius;
+        const bool samePlace = k.track->samples()[k.sample].segment == segment &&
+                               (k.position - best.position).norm() <= params_.distinctRadius;
         (samePlace ? same : rest) += w;
     }
     return same / (same + rest);

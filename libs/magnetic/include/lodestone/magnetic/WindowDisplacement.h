@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <memory>
 
 namespace lodestone::magnetic {
 
@@ -24,6 +25,17 @@ namespace lodestone::magnetic {
  * projection and O(n) per bin. */
 class WindowDisplacementModel {
   public:
+    /** The part that depends on the window alone (its length, noise and the kernel's length
+     * scale, not the field's amplitude): C1 = L L', L^-1 K L^-T = U diag U'. Built once for
+     * every window of one length. */
+    struct Basis {
+        Basis(std::size_t n, const PassNoise& noise, double lengthScale);
+        Eigen::MatrixXd toEigenbasis;  ///< U' L^-1
+        Eigen::VectorXd eigenvalues;
+        double lengthScale{1};
+    };
+    WindowDisplacementModel(std::shared_ptr<const Basis> basis, double sigmaF, double priorSigma,
+                            double radius);
     WindowDisplacementModel(std::size_t n, const PassNoise& noise, double sigmaF,
                             double lengthScale, double priorSigma, double radius);
 
@@ -57,9 +69,8 @@ class WindowDisplacementModel {
     double logDeterminantTerm(double delta) const;
     double logRatio(const Eigen::VectorXd& p2, double delta) const;
 
-    Eigen::MatrixXd toEigenbasis_;  ///< U' L^-1, with C1 = L L' and L^-1 K L^-T = U diag U'
-    Eigen::VectorXd eigenvalues_;
-    double sigmaF2_{0}, lengthScale_{1}, radius_{1};
+    std::shared_ptr<const Basis> basis_;
+    double sigmaF2_{0}, radius_{1};
     // The prior's bins: columns of inverse factors at each bin's middle (then unrelated
     // places), and per bin log(mass) + its log-determinant term.
     int bins_{0}, nearBins_{10};

@@ -137,7 +137,8 @@ class MagneticWindowERD : public EdgeDecider {
         std::size_t sample{0};
         magnetic::WindowDirection direction{magnetic::WindowDirection::Forward};
         magnetic::WindowFit fit;
-        double gate2{0};  ///< position prior's squared Mahalanobis distance
+        Eigen::Vector2d position{0, 0};  ///< the sample's place in the graph
+        double gate2{0};                 ///< position prior's squared Mahalanobis distance
         /** -2 log of its weight up to a constant: the best candidate has the least. Same line:
          * fit.chi2 + gate2; with pass_displacement: -2 (logNear + position and turn prior). */
         double total{0};
@@ -149,6 +150,7 @@ class MagneticWindowERD : public EdgeDecider {
     /** A candidate's prior: the gate's squared Mahalanobis distance, the graph's relative
      * heading and its variance (across a kidnap: 0, 0, infinite). */
     struct Prior {
+        Eigen::Vector2d position{0, 0};  ///< the target sample's place in the graph
         double gate2{0}, turn{0}, turnVariance{INFINITY};
     };
     /** What a query came to, for the diagnostics. */
@@ -228,7 +230,9 @@ class MagneticWindowERD : public EdgeDecider {
     const magnetic::SupernodeTrack& mirrored() const;
 
     Params params_;
-    std::size_t n_{0};             // samples per window (rebuild)
+    std::size_t n_{0};  // samples per window (rebuild)
+    // what the displacement model keeps for every window of n_ samples (rebuild)
+    std::shared_ptr<const magnetic::WindowDisplacementModel::Basis> basis_;
     double correlatedSamples_{0};  // sum of the field kernel's correlations over a window (rebuild)
     struct Sensor {
         std::unique_ptr<magnetic::SupernodeTrack> track;
