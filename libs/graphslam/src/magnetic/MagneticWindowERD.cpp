@@ -112,32 +112,34 @@ void MagneticWindowERD::onNode(TNodeID id) {
         });
 }
 
+std::optional<double> MagneticWindowERD::intervalFraction(TNodeID k, double s) const {
+    if (k == 0 || path_.segment[k - 1] != path_.segment[k] ||
+        path_.travel[k] <= path_.travel[k - 1])
+        return std::nullopt;
+    return std::clamp((s - path_.travel[k - 1]) / (path_.travel[k] - path_.travel[k - 1]), 0.0,
+                      1.0);
+}
+
 Eigen::Vector2d MagneticWindowERD::positionAtSample(const magnetic::SupernodeTrack& track,
                                                     std::size_t i) const {
     // A sample lies in its node's interval: between node - 1 and node, by travel.
     const auto& sample = track.samples()[i];
     const auto k = static_cast<TNodeID>(sample.node);
     const auto& b = *poses_[k];
-    if (k == 0 || path_.segment[k - 1] != path_.segment[k] ||
-        path_.travel[k] <= path_.travel[k - 1])
-        return {b.x(), b.y()};
+    const auto f = intervalFraction(k, sample.s);
+    if (!f) return {b.x(), b.y()};
     const auto& a = *poses_[k - 1];
-    const double f = std::clamp(
-        (sample.s - path_.travel[k - 1]) / (path_.travel[k] - path_.travel[k - 1]), 0.0, 1.0);
-    return {a.x() + f * (b.x() - a.x()), a.y() + f * (b.y() - a.y())};
+    return {a.x() + *f * (b.x() - a.x()), a.y() + *f * (b.y() - a.y())};
 }
 
 double MagneticWindowERD::yawAtSample(const magnetic::SupernodeTrack& track, std::size_t i) const {
     const auto& sample = track.samples()[i];
     const auto k = static_cast<TNodeID>(sample.node);
     const double b = poses_[k]->yaw();
-    if (k == 0 || path_.segment[k - 1] != path_.segment[k] ||
-        path_.travel[k] <= path_.travel[k - 1])
-        return b;
+    const auto f = intervalFraction(k, sample.s);
+    if (!f) return b;
     const double a = poses_[k - 1]->yaw();
-    const double f = std::clamp(
-        (sample.s - path_.travel[k - 1]) / (path_.travel[k] - path_.travel[k - 1]), 0.0, 1.0);
-    return a + f * std::remainder(b - a, 2 * M_PI);
+    return a + *f * std::remainder(b - a, 2 * M_PI);
 }
 
 void MagneticWindowERD::compareAt(const magnetic::SupernodeTrack& track, std::size_t c,

@@ -29,19 +29,24 @@ namespace lodestone::graphslam {
  *   - gate: a target is a candidate only where the robot can be (chi-square, 2 dof, of the
  *     pose uncertainty relative to the target: closure::PathUncertainty::relativeGateDistance2;
  *     across a kidnap, everywhere);
- *   - fit: the best candidate's differences must be noise (chi-square, 3n dof);
+ *   - distance (pass_displacement): how far beside the earlier pass this one ran, weighed by
+ *     magnetic::WindowDisplacementModel - near (close enough to place the robot within
+ *     `distinct_radius`) or beside it;
+ *   - fit: the best candidate's differences must be noise (chi-square, 3n dof; with
+ *     pass_displacement, at the near distance);
  *   - distinct: the posterior of the best place (candidates within `distinct_radius` of it
- *     are the same place, on any earlier pass) against every other candidate in the gate and
- *     against the null hypothesis - no earlier place: the window differs from each candidate
- *     as two unrelated stretches of a field as lively as this window's do
- *     (magnetic::WindowNullModel with the window's own spread) - must reach
+ *     are the same place, on any earlier pass, passed near) against every other candidate in
+ *     the gate, every pass beside, and the null hypothesis - no earlier place: the window
+ *     differs from each candidate as two unrelated stretches of a field as lively as this
+ *     window's do (the window's own spread) - must reach
  *     `min_posterior`. Each candidate's weight is its likelihood ratio over the null times its
  *     position prior normalized over the candidates, so a wide gate (many places to be
  *     fooled by) asks for more evidence. A look-alike elsewhere, a field too smooth to say
  *     where along the path, or too little field for the gate's size leaves it undecided.
  * An accepted window gives one node-to-node edge: the query node on the target's path,
  * its heading turned by the field's relative heading, along-track sigma from the fit's
- * curvature, across-track `sigma_cross`. INI section [MagneticWindowERD]. */
+ * curvature (and what the passes' distance does to it), across-track `sigma_cross`. INI
+ * section [MagneticWindowERD]. */
 class MagneticWindowERD : public EdgeDecider {
   public:
     struct Params {
@@ -222,7 +227,11 @@ class MagneticWindowERD : public EdgeDecider {
     bool confirm(const Closure& c);
     bool commit(const Closure& c);
     Eigen::Vector2d positionAtSample(const magnetic::SupernodeTrack& track, std::size_t i) const;
+    /** The graph's heading at a sample (interpolated in its node's interval). */
     double yawAtSample(const magnetic::SupernodeTrack& track, std::size_t i) const;
+    /** Where travel `s` lies in node k's interval (0 at node k - 1, 1 at k); none for a node
+     * with no interval (a segment's first). */
+    std::optional<double> intervalFraction(TNodeID k, double s) const;
     /** Readings to keep: the queried sensor's and its mirror's (MagneticWindowSensors.cpp). */
     bool takeReading(const MagneticSample& reading);
     const magnetic::SupernodeTrack& queried() const;
