@@ -104,11 +104,16 @@ double WindowDisplacementModel::chi2LowerBound(double whiteChi2, double delta) c
 
 WindowDisplacementModel::Evidence WindowDisplacementModel::evidence(const Eigen::MatrixX3d& d,
                                                                     double nearRadius) const {
+    return evidenceProjected(basis_->toEigenbasis.lazyProduct(d), nearRadius);
+}
+
+WindowDisplacementModel::Evidence WindowDisplacementModel::evidenceProjected(
+    const Eigen::MatrixX3d& projectedD, double nearRadius) const {
     const int nearBins = std::clamp(
         static_cast<int>(std::floor(nearRadius / radius_ * nearBins_ + 1e-9)), 1, nearBins_);
     const double h = radius_ / nearBins_;
     // Every bin's quadratic form in one product.
-    const Eigen::VectorXd p2 = projected(d);
+    const Eigen::VectorXd p2 = projectedD.rowwise().squaredNorm();
     const Eigen::VectorXd q = binFactors_.transpose() * p2;
     const double unrelated = -0.5 * q[bins_] + unrelatedLogDeterminant_;
     const Eigen::ArrayXd logTerms =

@@ -24,6 +24,7 @@ void MagneticWindowERD::rebuild() {
     n_ = magnetic::SupernodeTrack({params_.step, params_.window, params_.step}, 3)
              .samplesPerSupernode();
     path_ = MagneticPath(params_.uncertainty);
+    projectedTargets_.clear();
     basis_ = std::make_shared<const magnetic::WindowDisplacementModel::Basis>(n_, params_.noise,
                                                                               params_.lengthScale);
     correlatedSamples_ = 0;  // the kernel's correlations summed over a window's offsets
@@ -350,13 +351,15 @@ void MagneticWindowERD::weighDisplaced(std::vector<Candidate>& all, std::size_t 
     // A candidate whose differences fail the fit test by this much even at distinct_radius
     // apart weighs nothing (its weight as a pass further beside is left out with it).
     const double hopeless = magnetic::chiSquareQuantile(3.0 * double(n_), 1 - 1e-12);
+    const Eigen::MatrixX3d queryProjected = projectedWindow(queried(), first, false);
     for (auto& k : all) {
         k.fitStat = model.chi2LowerBound(k.fit.chi2 - k.fit.turnPriorChi2, params_.distinctRadius);
         k.total = INFINITY;
         if (k.fitStat > hopeless) continue;
         const std::size_t start =
             k.direction == WindowDirection::Forward ? k.sample + 1 - n_ : k.sample;
-        const auto e = model.evidence(residuals(k, first), nearRadius(windowTurn(*k.track, start)));
+        const auto e = model.evidenceProjected(projectedResiduals(k, start, queryProjected),
+                                               nearRadius(windowTurn(*k.track, start)));
         const double prior = -0.5 * (k.gate2 + k.fit.turnPriorChi2) - logZ;
         k.logWeight = e.logNear + prior;
         k.logFar = e.logFar + prior;
@@ -364,6 +367,38 @@ void MagneticWindowERD::weighDisplaced(std::vector<Candidate>& all, std::size_t 
         k.fitStat = e.chi2AtRadius;
         k.total = -2 * k.logWeight;
     }
+}
+
+Eigen::MatrixX3d MagneticWindowERD::projectedWindow(const magnetic::SupernodeTrack& track,
+                                                    std::size_t start, bool reversed) const {
+    Eigen::MatrixX3d w(static_cast<Eigen::Index>(n_), 3);
+    const auto& samples = track.samples();
+    for (std::size_t k = 0; k < n_; ++k)
+        w.row(static_cast<Eigen::Index>(k)) =
+            samples[reversed ? start + n_ - 1 - k : start + k].value.head<3>().cast<double>();
+    return basis_->toEigenbasis.lazyProduct(w);
+}
+
+Eigen::MatrixX3d MagneticWindowERD::projectedResiduals(const Candidate& k, std::size_t start,
+                                                       const Eigen::MatrixX3d& query) const {
+    // A stored window is compared with many queries: its projection is kept (the stored
+    // readings a candidate's window holds are final, min_travel_gap behind the robot).
+    const bool backward = k.direction == WindowDirection::Backward;
+    const std::uint64_t key =
+        (std::uint64_t(start) << 2) | (k.track == &queried() ? 0u : 2u) | (backward ? 1u : 0u);
+    auto it = projectedTargets_.find(key);
+    if (it == projectedTargets_.end()) {
+        if (projectedTargets_.size() >= kProjectionCache) projectedTargets_.clear();
+        it = projectedTargets_.emplace(key, projectedWindow(*k.track, start, backward)).first;
+    }
+    // The differences, as windowResiduals forms them, in the basis (a linear map).
+    const Eigen::MatrixX3d& t = it->second;
+    const double c = std::cos(k.fit.turn), s = std::sin(k.fit.turn);
+    Eigen::MatrixX3d d(query.rows(), 3);
+    d.col(0) = query.col(0) - (c * t.col(0) + s * t.col(1));
+    d.col(1) = query.col(1) - (-s * t.col(0) + c * t.col(1));
+    d.col(2) = query.col(2) - t.col(2);
+    return d;
 }
 
 double MagneticWindowERD::placePosterior(const Candidate& best,

@@ -49,6 +49,10 @@ class WindowDisplacementModel {
         double chi2AtRadius{0};
     };
     Evidence evidence(const Eigen::MatrixX3d& d, double nearRadius) const;
+    /** The same from the differences already in the basis (Basis::toEigenbasis * d): the
+     * differences are linear in both windows, so a window's projection can be kept and
+     * reused against every query. */
+    Evidence evidenceProjected(const Eigen::MatrixX3d& projectedD, double nearRadius) const;
 
     /** log p(d | delta) - log p(d | unrelated places). */
     double logLikelihoodRatio(const Eigen::MatrixX3d& d, double delta) const;

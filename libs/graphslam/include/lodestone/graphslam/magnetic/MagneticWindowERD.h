@@ -7,10 +7,12 @@
 #include <lodestone/magnetic/WindowComparison.h>
 #include <lodestone/magnetic/WindowDisplacement.h>
 
+#include <cstdint>
 #include <deque>
 #include <map>
 #include <memory>
 #include <optional>
+#include <unordered_map>
 #include <vector>
 
 namespace lodestone::graphslam {
@@ -199,6 +201,14 @@ class MagneticWindowERD : public EdgeDecider {
      * passes' arcs differ in length by the distance times the turn, and the fit, aligning the
      * windows' middles, places the newest reading off along the path by half of that. */
     double nearRadius(double turn) const;
+    /** A window of `track` from `start` (read backward if `reversed`) in the displacement
+     * model's basis. */
+    Eigen::MatrixX3d projectedWindow(const magnetic::SupernodeTrack& track, std::size_t start,
+                                     bool reversed) const;
+    /** A candidate's differences in that basis, from the query window's projection and its
+     * own (kept). */
+    Eigen::MatrixX3d projectedResiduals(const Candidate& k, std::size_t start,
+                                        const Eigen::MatrixX3d& query) const;
     /** A candidate's differences (query minus turned target). */
     Eigen::MatrixX3d residuals(const Candidate& k, std::size_t first) const;
     /** Same line: every plausible candidate's weight against the null (logWeight). */
@@ -257,6 +267,10 @@ class MagneticWindowERD : public EdgeDecider {
     std::deque<Closure> pending_;       // accepted, waiting for confirmation
     std::optional<Closure> confirmed_;  // the last closure of a confirmed match
     std::vector<TruthQuery> truthQueries_;
+    // Stored windows in the displacement model's basis, by (start, track, direction); cleared
+    // whole when full (20 000 windows of 2 m: about 19 MB).
+    static constexpr std::size_t kProjectionCache = 20000;
+    mutable std::unordered_map<std::uint64_t, Eigen::MatrixX3d> projectedTargets_;
 };
 
 }  // namespace lodestone::graphslam
