@@ -38,10 +38,10 @@ std::optional<MagneticWindowERD::Closure> MagneticWindowERD::measureClosure(
     if (params_.passDisplacement) {
         // Two passes beside each other place the robot off along the path too, in proportion
         // to their distance (which the closure does not estimate: its across sigma stays the
-        // platform's sigma_cross - the field's own posterior of the distance, 0.03 m, held
-        // 0.22 m RMS of error on Kok's eight; README). In a turn the arcs differ in length by
-        // the distance times the turn, and the fit, aligning the windows' middles, is off by
-        // half of that (nearRadius). Anywhere, the stretch that best aligns two lines of an
+        // platform's sigma_cross - the field's own posterior of the distance, about 0.03 m,
+        // held 0.13-0.24 m RMS of across error on Kok's walks; README). In a turn the arcs differ
+        // in length by the distance times the turn, and the fit, aligning the windows' middles, is
+        // off by half of that (nearRadius). Anywhere, the stretch that best aligns two lines of an
         // isotropic field moves by the distance times the ratio of its cross- to along-path
         // gradients summed over the window: to first order of variance (sum of the kernel's
         // correlations) / (3 n) per unit distance squared.

@@ -297,9 +297,7 @@ double MagneticWindowERD::mapFrameSpread(std::size_t first) const {
     mean /= double(n_);
     double sum = 0;
     for (const auto& v : b) sum += (v - mean).squaredNorm();
-    const double s2 = params_.noise.sigma * params_.noise.sigma;
-    const double spread2 = sum / (3.0 * double(n_) - 3) - 0.5 * s2;
-    return std::sqrt(std::max(spread2, 1e-6));
+    return windowSpread(sum / (params_.noise.sigma * params_.noise.sigma));
 }
 
 double MagneticWindowERD::logPriorNormalizer(const std::vector<Candidate>& all) {
