@@ -10,10 +10,10 @@
 //   first lap (every revisit of a place piles onto one set of nodes) or to the previous lap
 #include "ScriptedDeciders.h"
 
-#include <lodestone/graphslam/CeresGSO.h>
-#include <lodestone/graphslam/CompositeERD.h>
+#include <lodestone/graphslam/gso/CeresGSO.h>
+#include <lodestone/graphslam/erd/CompositeERD.h>
 #include <lodestone/graphslam/SlamEngine.h>
-#include <lodestone/graphslam/SyntheticGraph.h>
+#include <SyntheticGraph.h>
 #include <mrpt/obs/CObservationComment.h>
 
 #include <algorithm>

@@ -15,7 +15,7 @@
 //       on a 2 530 m walk (over 10 000 supernodes stored by its end).
 #include "magnetic_recordings.h"
 
-#include <lodestone/io/MagneticRecordingImport.h>
+#include <lodestone/datasets/MagneticRecordingImport.h>
 #include <lodestone/io/TumTrajectory.h>
 #include <lodestone/magnetic/FieldMapSearch.h>
 #include <lodestone/magnetic/GpShiftCorrection.h>
@@ -106,7 +106,7 @@ ClosureErrors closureErrors(const std::string& dir, const std::vector<io::TumPos
 struct Revisits {
     double same{0}, reversed{0}, crossing{0};
 };
-Revisits revisits(const io::MagneticRecording& rec, double radius = 0.2, double gap = 4.0) {
+Revisits revisits(const datasets::MagneticRecording& rec, double radius = 0.2, double gap = 4.0) {
     const double step = 0.05;
     std::vector<Eigen::Vector2d> p;
     for (const auto& s : rec.samples) {
@@ -314,9 +314,9 @@ int timing() {
  * rectangle (2 530 m), through lodestone-slam's code path with magnetic_only.ini. */
 int timingRun(const std::string& out, const std::string& magneticIni) {
     registerAllClasses();
-    io::OdometryDriftModel model;
+    datasets::OdometryDriftModel model;
     model.seed = 1;
-    const auto imported = io::writeMagneticRecording(syntheticLongWalk(21), out + "/laps21.rawlog", model);
+    const auto imported = datasets::writeMagneticRecording(syntheticLongWalk(21), out + "/laps21.rawlog", model);
     slamapp::SlamRunOptions o;
     o.rawlog = imported.rawlog;
     o.config = magneticIni.find('/') != std::string::npos

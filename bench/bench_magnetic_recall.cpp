@@ -12,7 +12,7 @@
 // place reached in any query inside it; how often the truth lay inside the position gate.
 #include <lodestone/eval/ClosureEval.h>
 #include <lodestone/eval/ClosureFunnel.h>
-#include <lodestone/io/MagneticRecordingImport.h>
+#include <lodestone/datasets/MagneticRecordingImport.h>
 #include <lodestone/io/TumTrajectory.h>
 #include <lodestone/obs/registerAllClasses.h>
 #include <lodestone/slamapp/SlamRun.h>

@@ -7,7 +7,7 @@
 // The engine time excludes rendering the simulated sensors.
 //   bench_slam SCENARIO.ini SLAM.ini [WIDTHxHEIGHT@HZ|-] [SECONDS]
 #include <lodestone/eval/TrajectoryError.h>
-#include <lodestone/graphslam/FusedOdometryNRD.h>
+#include <lodestone/graphslam/nrd/FusedOdometryNRD.h>
 #include <lodestone/graphslam/SlamEngine.h>
 #include <lodestone/sim/SimulatorSource.h>
 #include <mrpt/config/CConfigFile.h>

@@ -11,9 +11,9 @@
 //   bench_visual SCENARIO.ini VISUAL.ini [KEYFRAMES_PER_SUBMAP] [WIDTHxHEIGHT@HZ|-]
 // KEYFRAMES_PER_SUBMAP overrides submap_max_keyframes (1: single keyframes, no submaps).
 #include <lodestone/eval/TrajectoryError.h>
-#include <lodestone/graphslam/CompositeERD.h>
-#include <lodestone/graphslam/FusedOdometryNRD.h>
-#include <lodestone/graphslam/OrbSubmapERD.h>
+#include <lodestone/graphslam/erd/CompositeERD.h>
+#include <lodestone/graphslam/nrd/FusedOdometryNRD.h>
+#include <lodestone/graphslam/erd/visual/OrbSubmapERD.h>
 #include <lodestone/graphslam/SlamEngine.h>
 #include <lodestone/sim/RgbdRenderer.h>
 #include <lodestone/sim/SimulatorSource.h>

@@ -1,6 +1,6 @@
 #include "magnetic_recordings.h"
 
-#include <lodestone/io/MagneticRecordingImport.h>
+#include <lodestone/datasets/MagneticRecordingImport.h>
 
 #include <Eigen/Core>
 #include <chrono>
@@ -52,7 +52,7 @@ class SyntheticField {
     std::vector<Bump> bumps_;
 };
 
-void addSample(io::MagneticRecording& rec, double t, const Eigen::Vector2d& p, double heading,
+void addSample(datasets::MagneticRecording& rec, double t, const Eigen::Vector2d& p, double heading,
                const SyntheticField& field) {
     const Eigen::Vector3d b = field.reading(p, heading);
     rec.samples.push_back({t, p.x(), p.y(), heading, {b.x(), b.y(), b.z()}});
@@ -60,11 +60,11 @@ void addSample(io::MagneticRecording& rec, double t, const Eigen::Vector2d& p, d
 
 }  // namespace
 
-io::MagneticRecording syntheticLongWalk(int laps) {
+datasets::MagneticRecording syntheticLongWalk(int laps) {
     const double w = 40, h = 20;
     const std::vector<Eigen::Vector2d> corners = {{0, 0}, {w, 0}, {w, h}, {0, h}, {0, 0}};
     const SyntheticField field(corners, 29);
-    io::MagneticRecording rec;
+    datasets::MagneticRecording rec;
     rec.name = "synthetic long walk";
     rec.calibrated = true;
     double t = 0, heading = 0;
@@ -82,12 +82,12 @@ io::MagneticRecording syntheticLongWalk(int laps) {
     return rec;
 }
 
-io::MagneticRecording syntheticCorridorWalk() {
+datasets::MagneticRecording syntheticCorridorWalk() {
     const double length = 30;
     const SyntheticField field({{0, 0}, {length, 0}}, 31);
     std::mt19937 rng(37);
     std::uniform_real_distribution<double> offset(-0.15, 0.15);
-    io::MagneticRecording rec;
+    datasets::MagneticRecording rec;
     rec.name = "synthetic corridor";
     rec.calibrated = true;
     double t = 0, heading = 0;
@@ -111,11 +111,11 @@ std::vector<Recording> benchRecordings(const std::string& data) {
     if (std::filesystem::is_directory(data)) {
         for (int t = 1; t <= 9; ++t) {
             recs.push_back({"aalto " + std::to_string(t),
-                            [=] { return io::readAaltoTrial(data + "/aalto/invensense", t); }});
+                            [=] { return datasets::readAaltoTrial(data + "/aalto/invensense", t); }});
         }
         for (const char* w : {"eight", "square"}) {
             recs.push_back({std::string("kok ") + w,
-                            [=] { return io::readKokWalk(data + "/kok/" + w + ".csv"); }});
+                            [=] { return datasets::readKokWalk(data + "/kok/" + w + ".csv"); }});
         }
     }
     recs.push_back({"synthetic longwalk", [] { return syntheticLongWalk(); }});
@@ -123,14 +123,14 @@ std::vector<Recording> benchRecordings(const std::string& data) {
     return recs;
 }
 
-io::MagneticImportResult importSeed(const io::MagneticRecording& recording, const std::string& path,
+datasets::MagneticImportResult importSeed(const datasets::MagneticRecording& recording, const std::string& path,
                                     int seed) {
-    io::OdometryDriftModel model;
+    datasets::OdometryDriftModel model;
     model.seed = static_cast<std::uint64_t>(seed);
-    return io::writeMagneticRecording(recording, path, model);
+    return datasets::writeMagneticRecording(recording, path, model);
 }
 
-TimedRun runImported(const io::MagneticImportResult& imported, const std::string& config,
+TimedRun runImported(const datasets::MagneticImportResult& imported, const std::string& config,
                      const std::string& outDir) {
     TimedRun run;
     run.options.rawlog = imported.rawlog;

@@ -1,5 +1,5 @@
 // lodestone-eval: ATE / RPE of a TUM trajectory against ground truth, with a plot.
-#include <lodestone/eval/EvalApp.h>
+#include <EvalApp.h>
 
 #include <iostream>
 

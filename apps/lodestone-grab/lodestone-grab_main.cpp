@@ -1,5 +1,5 @@
 // lodestone-grab: live sensors into a rawlog (rawlog-grabber's INI, written safely).
-#include <lodestone/grab/GrabApp.h>
+#include <GrabApp.h>
 
 #include <iostream>
 

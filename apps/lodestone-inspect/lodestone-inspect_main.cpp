@@ -1,5 +1,5 @@
 // lodestone-inspect: RawLogViewer-style inspection of rawlogs on the command line.
-#include <lodestone/inspect/InspectApp.h>
+#include <InspectApp.h>
 
 #include <iostream>
 

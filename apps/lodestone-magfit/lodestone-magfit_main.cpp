@@ -1,5 +1,5 @@
 // lodestone-magfit: fit MagneticGpERD's GP hyperparameters to a recording.
-#include <lodestone/slamapp/MagneticFitApp.h>
+#include <MagneticFitApp.h>
 
 #include <iostream>
 

@@ -1,5 +1,5 @@
 // lodestone-sim: writes a simulated rawlog, its ground truth and kidnap events from a scenario.
-#include <lodestone/sim/SimApp.h>
+#include <SimApp.h>
 
 #include <iostream>
 

@@ -1,6 +1,6 @@
 // lodestone-slam: offline graph SLAM on a rawlog or a simulated scenario.
 #include <lodestone/slamapp/FrameAllocator.h>
-#include <lodestone/slamapp/SlamApp.h>
+#include <SlamApp.h>
 
 #include <unistd.h>
 

@@ -2,8 +2,8 @@
 // known length scale (random Fourier features of the squared-exponential kernel) is fitted
 // back; bad inputs are clear errors with exit code 1 or 2.
 #include <gtest/gtest.h>
-#include <lodestone/io/MagneticRecordingImport.h>
-#include <lodestone/slamapp/MagneticFitApp.h>
+#include <lodestone/datasets/MagneticRecordingImport.h>
+#include <MagneticFitApp.h>
 
 #include <cmath>
 #include <fstream>
@@ -49,14 +49,14 @@ std::string writeGpRecording(const std::string& path, double lengthScale, double
         omega.push_back(n(rng) / lengthScale);
         offset.push_back(phase(rng));
     }
-    lodestone::io::MagneticRecording rec;
+    lodestone::datasets::MagneticRecording rec;
     rec.name = "gp draw";
     for (int i = 0; i <= 3000; ++i) {
         const double s = 0.02 * i, a = s / 4.0;
         double g = 0;
         for (int k = 0; k < features; ++k) g += std::cos(omega[k] * s + offset[k]);
         g *= sigmaF * std::sqrt(2.0 / features);
-        lodestone::io::MagneticRecordingSample x;
+        lodestone::datasets::MagneticRecordingSample x;
         x.t = 0.02 * i;
         x.x = 4 * std::sin(a);
         x.y = 4 * (1 - std::cos(a));
@@ -64,9 +64,9 @@ std::string writeGpRecording(const std::string& path, double lengthScale, double
         x.field = {0, 0, -40 + g + 0.2 * n(rng)};
         rec.samples.push_back(x);
     }
-    lodestone::io::OdometryDriftModel exact;
+    lodestone::datasets::OdometryDriftModel exact;
     exact.bias = exact.sp2 = exact.sh2 = 0;
-    return lodestone::io::writeMagneticRecording(rec, path, exact).rawlog;
+    return lodestone::datasets::writeMagneticRecording(rec, path, exact).rawlog;
 }
 
 }  // namespace

@@ -3,7 +3,7 @@
 // through a field that barely varies (no closures at all, rather than false ones). Pose-only
 // odometry from Kok & Solin's drift model, as lodestone-import writes for real recordings.
 #include <gtest/gtest.h>
-#include <lodestone/io/MagneticRecordingImport.h>
+#include <lodestone/datasets/MagneticRecordingImport.h>
 #include <lodestone/obs/registerAllClasses.h>
 
 #include <cmath>
@@ -25,7 +25,7 @@ double numberAfter(const std::string& text, const std::string& pattern) {
 
 // Three laps of a 4 m x 2.5 m rectangle at 0.3 m/s, 50 Hz; the world field is the earth's plus
 // `anomalies` 2D Gaussian bumps (amplitude up to 8 uT, 0.3-0.6 m wide), seen in the robot frame.
-lodestone::io::MagneticRecording lapsThrough(int anomalies) {
+lodestone::datasets::MagneticRecording lapsThrough(int anomalies) {
     std::mt19937 rng(17);
     std::uniform_real_distribution<double> x(-0.5, 4.5), y(-0.5, 3.0), a(-8, 8), w(0.3, 0.6);
     struct Bump {
@@ -35,7 +35,7 @@ lodestone::io::MagneticRecording lapsThrough(int anomalies) {
     for (int k = 0; k < anomalies; ++k)
         bumps.push_back({x(rng), y(rng), a(rng), a(rng), a(rng), w(rng)});
     const double corners[5][2] = {{0, 0}, {4, 0}, {4, 2.5}, {0, 2.5}, {0, 0}};
-    lodestone::io::MagneticRecording rec;
+    lodestone::datasets::MagneticRecording rec;
     rec.name = "synthetic laps";
     double t = 0, heading = 0;
     for (int lap = 0; lap < 3; ++lap) {
@@ -85,7 +85,7 @@ Run slam(const std::string& rawlog, const std::string& config, const std::string
 TEST(MagneticSlam, LapsThroughAnomaliesCloseLoopsAndBeatOdometry) {
     lodestone::registerAllClasses();
     lodestone::test::TempDir dir;
-    lodestone::io::writeMagneticRecording(lapsThrough(40), dir.file("laps.rawlog"), {});
+    lodestone::datasets::writeMagneticRecording(lapsThrough(40), dir.file("laps.rawlog"), {});
     const auto odo = slam(dir.file("laps.rawlog"), "odometry_only.ini", dir.file("odo"));
     const auto mag = slam(dir.file("laps.rawlog"), "magnetic_only.ini", dir.file("mag"));
     EXPECT_GT(mag.closures, 10) << mag.output;
@@ -98,7 +98,7 @@ TEST(MagneticSlam, LapsThroughAnomaliesCloseLoopsAndBeatOdometry) {
 TEST(MagneticSlam, AFieldThatBarelyVariesGivesNoClosures) {
     lodestone::registerAllClasses();
     lodestone::test::TempDir dir;
-    lodestone::io::writeMagneticRecording(lapsThrough(0), dir.file("flat.rawlog"), {});
+    lodestone::datasets::writeMagneticRecording(lapsThrough(0), dir.file("flat.rawlog"), {});
     const auto mag = slam(dir.file("flat.rawlog"), "magnetic_only.ini", dir.file("mag"));
     EXPECT_EQ(mag.closures, 0) << mag.output;
 }

@@ -1,5 +1,5 @@
 #include <lodestone/eval/TrajectoryError.h>
-#include <lodestone/io/TimeAssociation.h>
+#include <lodestone/datasets/TimeAssociation.h>
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -32,7 +32,7 @@ std::vector<std::pair<std::size_t, std::size_t>> associate(const std::vector<io:
     std::vector<double> a, b;
     for (const auto& p : est) a.push_back(p.timestamp);
     for (const auto& p : gt) b.push_back(p.timestamp);
-    return io::associateByTime(a, b, maxDt);
+    return datasets::associateByTime(a, b, maxDt);
 }
 
 AteResult absoluteTrajectoryError(const std::vector<io::TumPose>& est,

@@ -1,12 +1,12 @@
 #include <lodestone/config/IniSection.h>
-#include <lodestone/graphslam/CeresGSO.h>
-#include <lodestone/graphslam/CompositeERD.h>
+#include <lodestone/graphslam/gso/CeresGSO.h>
+#include <lodestone/graphslam/erd/CompositeERD.h>
 #include <lodestone/graphslam/DeciderRegistry.h>
-#include <lodestone/graphslam/FusedOdometryNRD.h>
-#include <lodestone/graphslam/camera/VisualOdometryNRD.h>
-#include <lodestone/graphslam/MagneticGpERD.h>
-#include <lodestone/graphslam/OrbSubmapERD.h>
-#include <lodestone/graphslam/magnetic/MagneticWindowERD.h>
+#include <lodestone/graphslam/nrd/FusedOdometryNRD.h>
+#include <lodestone/graphslam/nrd/VisualOdometryNRD.h>
+#include <lodestone/graphslam/erd/magnetic/MagneticGpERD.h>
+#include <lodestone/graphslam/erd/visual/OrbSubmapERD.h>
+#include <lodestone/graphslam/erd/magnetic/MagneticWindowERD.h>
 
 namespace lodestone::graphslam {
 
@@ -48,7 +48,12 @@ auto make(const Map& m, const std::string& name, const std::string& kind, const 
 DeciderRegistry::DeciderRegistry() {
     registerNodeDecider("FusedOdometryNRD", [] { return std::make_unique<FusedOdometryNRD>(); });
     registerNodeDecider("VisualOdometryNRD", [] { return std::make_unique<VisualOdometryNRD>(); });
-    registerEdgeDecider("CompositeERD", [] { return std::make_unique<CompositeERD>(); });
+    registerEdgeDecider("CompositeERD", [this] {
+        return std::make_unique<CompositeERD>(
+            [this](const std::string& name, const std::string& where) {
+                return makeEdgeDecider(name, where);
+            });
+    });
     registerEdgeDecider("OrbSubmapERD", [] { return std::make_unique<OrbSubmapERD>(); });
     registerEdgeDecider("MagneticGpERD", [] { return std::make_unique<MagneticGpERD>(); });
     registerEdgeDecider("MagneticWindowERD", [] { return std::make_unique<MagneticWindowERD>(); });

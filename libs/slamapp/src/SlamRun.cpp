@@ -4,7 +4,7 @@
 #include <lodestone/eval/TrajectoryPlot.h>
 #include <lodestone/graphslam/ClosureLog.h>
 #include <lodestone/graphslam/DeciderRegistry.h>
-#include <lodestone/graphslam/FusedOdometryNRD.h>
+#include <lodestone/graphslam/nrd/FusedOdometryNRD.h>
 #include <lodestone/graphslam/MapExport.h>
 #include <lodestone/graphslam/SlamEngine.h>
 #include <lodestone/io/KidnapEvents.h>

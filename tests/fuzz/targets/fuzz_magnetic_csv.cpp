@@ -1,7 +1,7 @@
 // The magnetic recording importers (lodestone-import kok / aalto): the first byte picks Kok &
 // Solin's walk CSV or an Aalto trial, whose time, location and field CSVs are the rest split
 // at lines "%%".
-#include <lodestone/io/MagneticRecording.h>
+#include <lodestone/datasets/MagneticRecording.h>
 
 #include "../FuzzInput.h"
 
@@ -10,13 +10,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (size == 0) return 0;
     try {
         if ((data[0] & 1) == 0) {
-            io::readKokWalk(fuzz::writeScratch("walk.csv", data + 1, size - 1));
+            datasets::readKokWalk(fuzz::writeScratch("walk.csv", data + 1, size - 1));
         } else {
             const auto parts = fuzz::splitParts(data + 1, size - 1, 3);
             fuzz::writeScratch("1-time.csv", parts[0]);
             fuzz::writeScratch("1-loc.csv", parts[1]);
             fuzz::writeScratch("1-mag.csv", parts[2]);
-            io::readAaltoTrial(fuzz::scratchDir(), 1);
+            datasets::readAaltoTrial(fuzz::scratchDir(), 1);
         }
     } catch (const std::exception&) {
     }

@@ -1,7 +1,7 @@
 // A TUM RGB-D sequence folder (lodestone-import tum): rgb.txt, depth.txt and groundtruth.txt
 // are the input split at lines "%%". The images the lists name do not exist (an error once a
 // pair is associated): the lists' parsing and the association are what is fuzzed.
-#include <lodestone/io/TumRgbdImport.h>
+#include <lodestone/datasets/TumRgbdImport.h>
 #include <lodestone/obs/registerAllClasses.h>
 
 #include <filesystem>
@@ -21,7 +21,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         fuzz::writeScratch("groundtruth.txt", parts[2]);
     }
     try {
-        io::importTumRgbd(fuzz::scratchDir(), fuzz::scratchDir() + "/out.rawlog", io::TumImportOptions{});
+        datasets::importTumRgbd(fuzz::scratchDir(), fuzz::scratchDir() + "/out.rawlog", datasets::TumImportOptions{});
     } catch (const std::exception&) {
     }
     return 0;

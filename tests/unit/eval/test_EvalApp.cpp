@@ -1,5 +1,5 @@
 #include <gtest/gtest.h>
-#include <lodestone/eval/EvalApp.h>
+#include <EvalApp.h>
 #include <lodestone/io/TumTrajectory.h>
 
 #include <opencv2/imgcodecs.hpp>

@@ -2,11 +2,11 @@
 // A scripted run of one magnetic loop closer alone (MagneticGpERD, MagneticWindowERD): the
 // nodes' odometry steps and records (with their magnetometer readings) replayed through the
 // engine with CeresGSO, the ERD configured from `ini`.
-#include <lodestone/graphslam/CeresGSO.h>
-#include <lodestone/graphslam/CompositeERD.h>
-#include <lodestone/graphslam/MagneticGpERD.h>
+#include <lodestone/graphslam/gso/CeresGSO.h>
+#include <lodestone/graphslam/erd/CompositeERD.h>
+#include <lodestone/graphslam/erd/magnetic/MagneticGpERD.h>
 #include <lodestone/graphslam/SlamEngine.h>
-#include <lodestone/graphslam/magnetic/MagneticWindowERD.h>
+#include <lodestone/graphslam/erd/magnetic/MagneticWindowERD.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/obs/CObservationComment.h>
 

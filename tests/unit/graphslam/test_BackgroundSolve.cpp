@@ -3,11 +3,11 @@
 // rejections applied), and the engine with background solves is deterministic and as accurate.
 #include "ScriptedDeciders.h"
 
-#include <lodestone/graphslam/BackgroundSolve.h>
-#include <lodestone/graphslam/CeresGSO.h>
-#include <lodestone/graphslam/CompositeERD.h>
+#include <lodestone/graphslam/gso/BackgroundSolve.h>
+#include <lodestone/graphslam/gso/CeresGSO.h>
+#include <lodestone/graphslam/erd/CompositeERD.h>
 #include <lodestone/graphslam/SlamEngine.h>
-#include <lodestone/graphslam/SyntheticGraph.h>
+#include <SyntheticGraph.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/obs/CObservationComment.h>
 

@@ -1,6 +1,6 @@
 #include <lodestone/config/IniSection.h>
-#include <lodestone/graphslam/CeresGSO.h>
-#include <lodestone/graphslam/SyntheticGraph.h>
+#include <lodestone/graphslam/gso/CeresGSO.h>
+#include <SyntheticGraph.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
 #include <gtest/gtest.h>

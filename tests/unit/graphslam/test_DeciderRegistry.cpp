@@ -1,5 +1,5 @@
 #include <lodestone/config/IniSection.h>
-#include <lodestone/graphslam/CompositeERD.h>
+#include <lodestone/graphslam/erd/CompositeERD.h>
 #include <lodestone/graphslam/DeciderRegistry.h>
 #include <lodestone/graphslam/SlamEngine.h>
 #include <mrpt/config/CConfigFile.h>

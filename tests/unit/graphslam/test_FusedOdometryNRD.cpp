@@ -1,7 +1,7 @@
 #include <lodestone/config/IniSection.h>
-#include <lodestone/graphslam/CeresGSO.h>
-#include <lodestone/graphslam/CompositeERD.h>
-#include <lodestone/graphslam/FusedOdometryNRD.h>
+#include <lodestone/graphslam/gso/CeresGSO.h>
+#include <lodestone/graphslam/erd/CompositeERD.h>
+#include <lodestone/graphslam/nrd/FusedOdometryNRD.h>
 #include <lodestone/graphslam/SlamEngine.h>
 #include <lodestone/obs/CObservationWheelDrop.h>
 #include <lodestone/sim/SimulatorSource.h>

@@ -1,4 +1,4 @@
-#include <lodestone/graphslam/kidnap/KidnapDetector.h>
+#include <lodestone/graphslam/nrd/KidnapDetector.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
 #include <gtest/gtest.h>

@@ -4,7 +4,7 @@
 // honestly). Where the sequence matcher places little, the field map must place the second
 // lap - right along the path, and across it within what its covariance admits.
 #include <gtest/gtest.h>
-#include <lodestone/graphslam/MagneticGpERD.h>
+#include <lodestone/graphslam/erd/magnetic/MagneticGpERD.h>
 #include <lodestone/graphslam/SlamEngine.h>
 
 #include "PlaneField.h"

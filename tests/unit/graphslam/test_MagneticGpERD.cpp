@@ -5,7 +5,7 @@
 // position gate) or near (inside), an exact copy (undecidable) or a copy with anomalies of its
 // own (the GP's likelihood tells them apart).
 #include <gtest/gtest.h>
-#include <lodestone/graphslam/MagneticGpERD.h>
+#include <lodestone/graphslam/erd/magnetic/MagneticGpERD.h>
 #include <lodestone/graphslam/SlamEngine.h>
 
 #include <random>

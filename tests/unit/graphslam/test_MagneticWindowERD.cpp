@@ -4,7 +4,7 @@
 // "the same place").
 #include <gtest/gtest.h>
 #include <lodestone/config/IniSection.h>
-#include <lodestone/graphslam/magnetic/MagneticWindowERD.h>
+#include <lodestone/graphslam/erd/magnetic/MagneticWindowERD.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
 #include <random>

@@ -5,11 +5,11 @@
 #include "ScriptedDeciders.h"
 
 #include <lodestone/config/IniSection.h>
-#include <lodestone/graphslam/CeresGSO.h>
-#include <lodestone/graphslam/CompositeERD.h>
-#include <lodestone/graphslam/OrbSubmapERD.h>
+#include <lodestone/graphslam/gso/CeresGSO.h>
+#include <lodestone/graphslam/erd/CompositeERD.h>
+#include <lodestone/graphslam/erd/visual/OrbSubmapERD.h>
 #include <lodestone/graphslam/SlamEngine.h>
-#include <lodestone/graphslam/SyntheticGraph.h>
+#include <SyntheticGraph.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/obs/CObservationComment.h>
 

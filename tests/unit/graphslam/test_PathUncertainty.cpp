@@ -3,7 +3,7 @@
 // unbroken path judged by the uncertainty grown between the two, which must hold the truth
 // (the gate's 99.73 %) without being much wider.
 #include <gtest/gtest.h>
-#include <lodestone/graphslam/closure/PathUncertainty.h>
+#include <lodestone/graphslam/erd/magnetic/PathUncertainty.h>
 
 #include <random>
 

@@ -1,5 +1,5 @@
-#include <lodestone/graphslam/PoseGraphSolver.h>
-#include <lodestone/graphslam/SyntheticGraph.h>
+#include <lodestone/graphslam/gso/PoseGraphSolver.h>
+#include <SyntheticGraph.h>
 
 #include <gtest/gtest.h>
 

@@ -1,9 +1,9 @@
 #include "ScriptedDeciders.h"
 
-#include <lodestone/graphslam/CeresGSO.h>
-#include <lodestone/graphslam/CompositeERD.h>
+#include <lodestone/graphslam/gso/CeresGSO.h>
+#include <lodestone/graphslam/erd/CompositeERD.h>
 #include <lodestone/graphslam/SlamEngine.h>
-#include <lodestone/graphslam/SyntheticGraph.h>
+#include <SyntheticGraph.h>
 #include <lodestone/graphslam/relocalization/Relocalizer.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/obs/CObservationComment.h>

@@ -3,8 +3,8 @@
 // which x, y, yaw cannot see - is not believed.
 #include "ScriptedDeciders.h"
 
-#include <lodestone/graphslam/CeresGSO.h>
-#include <lodestone/graphslam/CompositeERD.h>
+#include <lodestone/graphslam/gso/CeresGSO.h>
+#include <lodestone/graphslam/erd/CompositeERD.h>
 #include <lodestone/graphslam/SlamEngine.h>
 #include <lodestone/graphslam/relocalization/Relocalizer.h>
 #include <mrpt/config/CConfigFileMemory.h>

@@ -1,10 +1,10 @@
 #include "ScriptedDeciders.h"
 
-#include <lodestone/graphslam/CeresGSO.h>
-#include <lodestone/graphslam/CompositeERD.h>
-#include <lodestone/graphslam/PoseGraphSolver.h>
+#include <lodestone/graphslam/gso/CeresGSO.h>
+#include <lodestone/graphslam/erd/CompositeERD.h>
+#include <lodestone/graphslam/gso/PoseGraphSolver.h>
 #include <lodestone/graphslam/SlamEngine.h>
-#include <lodestone/graphslam/SyntheticGraph.h>
+#include <SyntheticGraph.h>
 #include <mrpt/obs/CObservationComment.h>
 
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 #include <gtest/gtest.h>
-#include <lodestone/inspect/InspectApp.h>
+#include <InspectApp.h>
 #include <lodestone/obs/registerAllClasses.h>
 
 #include <filesystem>

@@ -2,7 +2,7 @@
 // truth are the simulator's.
 #include <gtest/gtest.h>
 #include <lodestone/io/RawlogSource.h>
-#include <lodestone/io/TumRgbdImport.h>
+#include <lodestone/datasets/TumRgbdImport.h>
 #include <lodestone/io/TumTrajectory.h>
 #include <lodestone/obs/registerAllClasses.h>
 #include <lodestone/sim/RgbdRenderer.h>
@@ -56,9 +56,9 @@ TEST(TumFromSimulator, RenderedSequenceImportsWithItsGroundTruth) {
     rgb.close();
     depth.close();
     gt.close();
-    io::TumImportOptions o;
+    datasets::TumImportOptions o;
     o.intrinsics = {sc.camera.fx, sc.camera.fy, sc.camera.cx, sc.camera.cy};
-    const auto r = io::importTumRgbd(seq.string(), dir.file("office.rawlog"), o);
+    const auto r = datasets::importTumRgbd(seq.string(), dir.file("office.rawlog"), o);
     ASSERT_EQ(r.frames, 10u);
     ASSERT_EQ(r.groundTruthPoses, 10u);
     io::RawlogSource rawlog(r.rawlog);

@@ -1,6 +1,6 @@
 #pragma once
 
-#include <lodestone/graphslam/KeyframeCloud.h>
+#include <lodestone/graphslam/nrd/KeyframeCloud.h>
 #include <lodestone/graphslam/PoseGraph.h>
 #include <lodestone/vision/OrbFeatures.h>
 

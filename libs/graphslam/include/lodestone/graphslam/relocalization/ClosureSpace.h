@@ -1,7 +1,7 @@
 #pragma once
 
 #include <lodestone/graphslam/PoseGraph.h>
-#include <lodestone/graphslam/PoseGraphSolver.h>
+#include <lodestone/graphslam/gso/PoseGraphSolver.h>
 #include <mrpt/poses/CPose2D.h>
 #include <mrpt/poses/CPose3D.h>
 

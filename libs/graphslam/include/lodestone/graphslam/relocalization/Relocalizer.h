@@ -1,7 +1,7 @@
 #pragma once
 
 #include <lodestone/graphslam/NodeStore.h>
-#include <lodestone/graphslam/PoseGraphSolver.h>
+#include <lodestone/graphslam/gso/PoseGraphSolver.h>
 #include <lodestone/graphslam/ReportJson.h>
 #include <lodestone/graphslam/relocalization/ClosureAlgebra.h>
 #include <mrpt/config/CConfigFileBase.h>

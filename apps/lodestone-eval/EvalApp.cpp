@@ -1,0 +1,169 @@
+#include <lodestone/config/CommandLine.h>
+#include <lodestone/eval/ClosureEval.h>
+#include <lodestone/eval/ClosureFunnel.h>
+#include <EvalApp.h>
+#include <lodestone/eval/RelocationEval.h>
+#include <lodestone/eval/TrajectoryPlot.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+
+namespace lodestone::eval {
+
+namespace {
+
+int runRelocationEval(const std::string& dir, std::string truthPath, std::string eventsPath,
+                      double maxDt, std::ostream& out, std::ostream& err) {
+    try {
+        if (truthPath.empty()) truthPath = dir + "/ground_truth.tum";
+        if (eventsPath.empty()) eventsPath = dir + "/events.txt";
+        const auto reported = readReportedKidnaps(dir + "/report.json");
+        const auto trajectory = io::readTumTrajectory(dir + "/trajectory.tum");
+        const std::string before = dir + "/map_at_first_kidnap.tum";
+        std::vector<io::TumPose> mapBefore;
+        if (std::ifstream(before).good()) mapBefore = io::readTumTrajectory(before);
+        const auto truth = io::readTumTrajectory(truthPath);
+        const auto events = io::readKidnapEvents(eventsPath);
+        RelocationEvalOptions options;
+        options.maxDt = maxDt;
+        out << formatRelocationEvaluation(
+            evaluateRelocations(reported, trajectory, mapBefore, truth, events, options));
+    } catch (const std::exception& e) {
+        err << "lodestone-eval: error: " << e.what() << "\n";
+        return 1;
+    }
+    return 0;
+}
+
+int runClosureEval(const std::string& dir, std::string truthPath, double maxDt, double radius,
+                   std::ostream& out, std::ostream& err) {
+    try {
+        if (truthPath.empty()) truthPath = dir + "/ground_truth.tum";
+        const auto closures = readClosureLog(dir + "/closures.csv");
+        const auto trajectory = io::readTumTrajectory(dir + "/trajectory.tum");
+        const auto truth = io::readTumTrajectory(truthPath);
+        ClosureEvalOptions options;
+        options.maxDt = maxDt;
+        options.radius = radius;
+        const auto qualities = evaluateClosures(closures, trajectory, truth, options);
+        out << formatClosureQuality(qualities, options);
+        // The closers' recall funnels, when the run reported them (it had ground truth).
+        const std::string report = dir + "/report.json";
+        if (std::ifstream(report)) {
+            const auto funnels =
+                readClosureFunnels(report, revisitPasses(trajectory, truth, options), qualities);
+            if (!funnels.empty()) {
+                out << "\nRecall funnel: every revisit pass a matcher missed, by the furthest "
+                       "stage its true place reached in it\n\n"
+                    << formatClosureFunnels(funnels);
+            }
+        }
+    } catch (const std::exception& e) {
+        err << "lodestone-eval: error: " << e.what() << "\n";
+        return 1;
+    }
+    return 0;
+}
+
+}  // namespace
+
+int runEvalApp(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
+    TCLAP::CmdLine cmd(
+        "Trajectory error of an estimate against ground truth (TUM RGB-D metrics).\n"
+        "  lodestone-eval EST.tum GT.tum            ATE and RPE\n"
+        "  lodestone-eval relocation SLAM_OUT_DIR   kidnaps of a lodestone-slam run, judged\n"
+        "      (reads report.json, trajectory.tum, map_at_first_kidnap.tum, and the ground\n"
+        "      truth and events that lodestone-slam --sim writes there, unless given)\n"
+        "  lodestone-eval closures SLAM_OUT_DIR     each loop closer's proposals judged against\n"
+        "      the truth: precision, recall of revisits, recall at 100 % precision (reads\n"
+        "      closures.csv, trajectory.tum and ground_truth.tum unless --ground-truth)",
+        ' ', "");
+    TCLAP::UnlabeledMultiArg<std::string> files(
+        "EST_GT", "EST.tum then GT.tum (TUM format), or: relocation|closures SLAM_OUT_DIR", true, "EST GT",
+        cmd);
+    TCLAP::ValueArg<std::string> truthArg("g", "ground-truth",
+                                          "relocation, closures: ground truth (default DIR/ground_truth.tum)",
+                                          false, "", "TUM", cmd);
+    TCLAP::ValueArg<std::string> eventsArg(
+        "e", "events", "relocation: the simulator's kidnap events (default DIR/events.txt)", false,
+        "", "TXT", cmd);
+    TCLAP::ValueArg<std::string> plot("p", "plot", "write trajectories and error as a PNG", false,
+                                      "", "PNG", cmd);
+    TCLAP::ValueArg<double> maxDt("", "max-dt", "timestamp association tolerance [s]", false, 0.02,
+                                  "S", cmd);
+    TCLAP::ValueArg<double> radius("", "radius",
+                                   "closures: a closure is right within this of the truth [m]",
+                                   false, 0.5, "M", cmd);
+    const auto outcome = config::parseCommandLine(cmd, std::vector<std::string>(argv, argv + argc));
+    if (outcome.kind == config::ParseOutcome::Kind::HelpShown) return 0;
+    if (outcome.kind == config::ParseOutcome::Kind::UsageError || files.getValue().size() != 2) {
+        err << "lodestone-eval: "
+            << (outcome.error.empty() ? "expected EST.tum and GT.tum" : outcome.error)
+            << " (see lodestone-eval --help)\n";
+        return 2;
+    }
+    const bool relocation = files.getValue().size() == 2 && files.getValue()[0] == "relocation";
+    const bool closures = files.getValue().size() == 2 && files.getValue()[0] == "closures";
+    if ((!relocation && !closures && truthArg.isSet()) || (!relocation && eventsArg.isSet()) ||
+        (!closures && radius.isSet())) {
+        err << "lodestone-eval: --ground-truth belongs to 'relocation' and 'closures', --events "
+               "to 'relocation', --radius to 'closures' (see lodestone-eval --help)\n";
+        return 2;
+    }
+    if (closures) {
+        if (!(radius.getValue() > 0)) {
+            err << "lodestone-eval: --radius must be > 0\n";
+            return 2;
+        }
+        return runClosureEval(files.getValue()[1], truthArg.getValue(), maxDt.getValue(),
+                              radius.getValue(), out, err);
+    }
+    if (relocation) {
+        return runRelocationEval(files.getValue()[1], truthArg.getValue(), eventsArg.getValue(),
+                                 maxDt.getValue(), out, err);
+    }
+    try {
+        const auto est = io::readTumTrajectory(files.getValue()[0]);
+        const auto gt = io::readTumTrajectory(files.getValue()[1]);
+        const auto ate = absoluteTrajectoryError(est, gt, maxDt.getValue());
+        if (ate.pairs < 3) {
+            throw std::runtime_error("only " + std::to_string(ate.pairs) +
+                                     " poses associate within " + std::to_string(maxDt.getValue()) +
+                                     " s: are the timestamps of the same clock?");
+        }
+        const auto perSecond =
+            relativePoseError(est, gt, RpeInterval::Seconds, 1.0, maxDt.getValue());
+        const auto perMetre =
+            relativePoseError(est, gt, RpeInterval::Metres, 1.0, maxDt.getValue());
+        char line[200];
+        std::snprintf(line, sizeof(line),
+                      "associated poses     %zu of %zu (estimate) / %zu (truth)\n", ate.pairs,
+                      est.size(), gt.size());
+        out << line;
+        std::snprintf(line, sizeof(line), "ATE  RMSE %.4f m   mean %.4f   median %.4f   max %.4f\n",
+                      ate.rmse, ate.mean, ate.median, ate.max);
+        out << line;
+        std::snprintf(line, sizeof(line), "RPE  per second: %.4f m, %.3f deg   (%zu pairs)\n",
+                      perSecond.translationRmse, perSecond.rotationRmse * 180 / M_PI,
+                      perSecond.pairs);
+        out << line;
+        std::snprintf(line, sizeof(line), "RPE  per metre:  %.2f %%, %.3f deg   (%zu pairs)\n",
+                      100 * perMetre.translationRmse, perMetre.rotationRmse * 180 / M_PI,
+                      perMetre.pairs);
+        out << line;
+        if (plot.isSet()) {
+            if (!cv::imwrite(plot.getValue(), plotTrajectories(est, gt, ate))) {
+                throw std::runtime_error(plot.getValue() + ": cannot write picture");
+            }
+            out << "plot -> " << plot.getValue() << "\n";
+        }
+    } catch (const std::exception& e) {
+        err << "lodestone-eval: error: " << e.what() << "\n";
+        return 1;
+    }
+    return 0;
+}
+
+}  // namespace lodestone::eval

@@ -1,0 +1,68 @@
+#include <lodestone/config/CommandLine.h>
+#include <SlamApp.h>
+#include <lodestone/slamapp/SlamRun.h>
+
+namespace lodestone::slamapp {
+
+int runSlamApp(int argc, const char* const* argv, std::ostream& out, std::ostream& err,
+               bool terminal) {
+    TCLAP::CmdLine cmd(
+        "Offline graph SLAM (RGB-D + wheel odometry + magnetometers) on a rawlog or a simulated "
+        "scenario",
+        ' ', "");
+    TCLAP::ValueArg<std::string> rawlog("r", "rawlog", "input rawlog (.rawlog or .rawlog.gz)", false,
+                                        "", "FILE", cmd);
+    TCLAP::ValueArg<std::string> sim("s", "sim", "run the simulator on this scenario instead",
+                                     false, "", "SCENARIO.ini", cmd);
+    TCLAP::ValueArg<std::string> config("c", "config", "SLAM configuration (config_ini/*.ini)",
+                                        true, "", "INI", cmd);
+    TCLAP::ValueArg<std::string> outDir("o", "out", "output directory (created)", true, "", "DIR",
+                                        cmd);
+    TCLAP::ValueArg<std::string> gt("g", "ground-truth", "TUM ground truth for the ATE", false, "",
+                                    "GT.tum", cmd);
+    TCLAP::ValueArg<double> maxSeconds("", "max-seconds", "process only this much data [s]", false,
+                                       0, "S", cmd);
+    TCLAP::ValueArg<int> decodeAhead("", "decode-ahead",
+                                     "frames (observations with images or range data) read and "
+                                     "decoded ahead on other threads (0: in the frame loop; "
+                                     "results are the same)",
+                                     false, 8, "N", cmd);
+    TCLAP::ValueArg<int> decodeThreads("", "decode-threads",
+                                       "threads that read and decode ahead (0: one per core this process may use)",
+                                       false, 0, "N", cmd);
+    TCLAP::SwitchArg quiet("q", "quiet", "no progress output", cmd);
+    const auto outcome = config::parseCommandLine(cmd, std::vector<std::string>(argv, argv + argc));
+    if (outcome.kind == config::ParseOutcome::Kind::HelpShown) return 0;
+    std::string usage = outcome.error;
+    if (usage.empty() && rawlog.isSet() == sim.isSet()) usage = "give exactly one of --rawlog and --sim";
+    if (usage.empty() && sim.isSet() && gt.isSet()) {
+        usage = "--ground-truth is for --rawlog; --sim uses the simulator's own ground truth";
+    }
+    if (usage.empty() && maxSeconds.isSet() && !(maxSeconds.getValue() > 0)) {
+        usage = "--max-seconds must be > 0";
+    }
+    if (usage.empty() && (decodeAhead.getValue() < 0 || decodeAhead.getValue() > 1000)) {
+        usage = "--decode-ahead must be 0..1000";
+    }
+    if (usage.empty() && (decodeThreads.getValue() < 0 || decodeThreads.getValue() > 64)) {
+        usage = "--decode-threads must be 0..64";
+    }
+    if (!usage.empty()) {
+        err << "lodestone-slam: " << usage << " (see lodestone-slam --help)\n";
+        return 2;
+    }
+    SlamRunOptions o;
+    o.rawlog = rawlog.getValue();
+    o.scenario = sim.getValue();
+    o.config = config.getValue();
+    o.outDir = outDir.getValue();
+    o.groundTruth = gt.getValue();
+    if (maxSeconds.isSet()) o.maxSeconds = maxSeconds.getValue();
+    o.decodeAhead = static_cast<std::size_t>(decodeAhead.getValue());
+    o.decodeThreads = static_cast<std::size_t>(decodeThreads.getValue());
+    o.quiet = quiet.getValue();
+    o.terminal = terminal;
+    return runSlam(o, out, err).exitCode;
+}
+
+}  // namespace lodestone::slamapp

@@ -1,0 +1,68 @@
+#pragma once
+
+#include <lodestone/graphslam/NodeStore.h>
+#include <lodestone/graphslam/PoseGraph.h>
+#include <lodestone/graphslam/ReportJson.h>
+#include <lodestone/graphslam/erd/magnetic/PathUncertainty.h>
+
+#include <Eigen/Core>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace lodestone::graphslam {
+
+/** The path both magnetic loop closers build from the nodes as they come: each node's travel
+ * and segment, the pose uncertainty along it, and one magnetometer's readings over each node's
+ * interval. */
+class MagneticPath {
+  public:
+    /** What became of the readings. */
+    struct Counts {
+        std::size_t readings{0}, dropped{0}, otherSensors{0};
+    };
+    using ReadingSink = std::function<void(double travel, const Eigen::Vector3d& robotField)>;
+    /** Readings of any magnetometer: the reading (its label and mounting), its travel and the
+     * field in the levelled robot frame. */
+    using SensorSink = std::function<void(const MagneticSample& reading, double travel,
+                                          const Eigen::Vector3d& robotField)>;
+    /** Which readings a caller takes (the others are counted as other sensors'). */
+    using SensorFilter = std::function<bool(const MagneticSample& reading)>;
+
+    explicit MagneticPath(const closure::PathUncertainty::Params& p = {}) : uncertainty(p) {}
+
+    /** Node `id` (IDs in order): its odometry edge from id - 1 (none at the first node or
+     * across a kidnap: no travel) into `travel` and `uncertainty`; then each reading of the
+     * magnetometer `label` (empty: the first one seen, which `label` then names) in the node's
+     * record, placed along the step by its time between the previous node's and this one's, in
+     * the levelled robot frame (the sensor's mounting applied), to `sink`. NaN, infinite and
+     * saturated (a component over `saturation` uT) readings are counted and skipped. */
+    void addNode(TNodeID id, const Graph& graph, const NodeStore& nodes, std::string& label,
+                 double saturation, const ReadingSink& sink);
+    /** The same for the readings `take` accepts, of any magnetometer. */
+    void addNode(TNodeID id, const Graph& graph, const NodeStore& nodes, double saturation,
+                 const SensorFilter& take, const SensorSink& sink);
+
+    /** A loop closure placed node `query` with `positionCov` in the frame of a node facing
+     * `targetYaw` and `yawVariance`: the uncertainty pinned there, in the map frame. */
+    void pinClosure(TNodeID query, double targetYaw, const Eigen::Matrix2d& positionCov,
+                    double yawVariance);
+    /** The reading counts into report.json's stats: readings, dropped_readings,
+     * other_sensor_readings. */
+    JsonObject& describeCounts(JsonObject& stats) const;
+
+    std::vector<double> travel;  ///< per node [m]
+    std::vector<int> segment;    ///< per node
+    closure::PathUncertainty uncertainty;
+    Counts counts;
+};
+
+/** The covariance of a place on a path whose step is `step` (the step's own frame): variance
+ * `along2` along it, `across2` across it (a sequence of the field places a node along the
+ * path it matched, loosely across). */
+Eigen::Matrix2d alongAcross(const mrpt::poses::CPose3D& step, double along2, double across2);
+
+/** query_ms_mean and query_ms_max of per-query times [ms] into report.json's stats. */
+JsonObject& describeQueryTimes(JsonObject& stats, const std::vector<double>& queryMs);
+
+}  // namespace lodestone::graphslam

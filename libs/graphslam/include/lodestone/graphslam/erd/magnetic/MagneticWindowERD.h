@@ -1,0 +1,276 @@
+#pragma once
+
+#include <lodestone/graphslam/EdgeDecider.h>
+#include <lodestone/graphslam/erd/magnetic/PathUncertainty.h>
+#include <lodestone/graphslam/erd/magnetic/MagneticPath.h>
+#include <lodestone/magnetic/SupernodeTrack.h>
+#include <lodestone/magnetic/WindowComparison.h>
+#include <lodestone/magnetic/WindowDisplacement.h>
+
+#include <cstdint>
+#include <deque>
+#include <map>
+#include <memory>
+#include <optional>
+#include <unordered_map>
+#include <vector>
+
+namespace lodestone::graphslam {
+
+/** Magnetic loop closure by short windows of the field, after Kok & Solin, "Online
+ * One-Dimensional Magnetic Field SLAM with Loop-Closure Detection" (MFI 2024): the last
+ * `window_length` metres of readings, in the levelled robot frame (heading-aligned), compared
+ * with every earlier window both ways - walked again the same way (forward) and walked back
+ * (the sequence reversed; the horizontal components turned by the relative heading, which the
+ * field itself measures) - weighted by a Gaussian position prior from the pose uncertainty.
+ * Every threshold is a quantile of the noise model: the readings of one place repeat between
+ * passes as magnetic::PassNoise says (white noise, an offset and a trend over the window), the
+ * position prior is closure::PathUncertainty.
+ *   - excitation: a window whose field is flat within the noise (chi-square, 3(n-1) dof) never
+ *     closes - it would match anywhere;
+ *   - gate: a target is a candidate only where the robot can be (chi-square, 2 dof, of the
+ *     pose uncertainty relative to the target: closure::PathUncertainty::relativeGateDistance2;
+ *     across a kidnap, everywhere);
+ *   - distance (pass_displacement): how far beside the earlier pass this one ran, weighed by
+ *     magnetic::WindowDisplacementModel - near (close enough to place the robot within
+ *     `distinct_radius`) or beside it;
+ *   - fit: the best candidate's differences must be noise (chi-square, 3n dof; with
+ *     pass_displacement, at the near distance);
+ *   - distinct: the posterior of the best place (candidates within `distinct_radius` of it
+ *     are the same place, on any earlier pass, passed near) against every other candidate in
+ *     the gate, every pass beside, and the null hypothesis - no earlier place: the window
+ *     differs from each candidate as two unrelated stretches of a field as lively as this
+ *     window's do (the window's own spread) - must reach
+ *     `min_posterior`. Each candidate's weight is its likelihood ratio over the null times its
+ *     position prior normalized over the candidates, so a wide gate (many places to be
+ *     fooled by) asks for more evidence. A look-alike elsewhere, a field too smooth to say
+ *     where along the path, or too little field for the gate's size leaves it undecided.
+ * An accepted window gives one node-to-node edge: the query node on the target's path,
+ * its heading turned by the field's relative heading, along-track sigma from the fit's
+ * curvature (and what the passes' distance does to it), across-track `sigma_cross`. INI
+ * section [MagneticWindowERD]. */
+class MagneticWindowERD : public EdgeDecider {
+  public:
+    struct Params {
+        std::string sensorLabel;  ///< the magnetometer queried ("": the first one seen)
+        /** Walked back, a magnetometer mounted off the robot's centre line passes where its
+         * mirror image (the same mounting, the other side) passed on the way out: backward
+         * windows are compared with that sensor's readings when the robot carries one. */
+        bool mirrorSensors{true};
+        double saturation{1000.0};  ///< [uT] a component this large is a saturated reading
+        double step{0.05};          ///< [m] readings resampled by travel
+        double window{2.0};      ///< [m] of path per window (Kok & Solin: ~1 s of walking; README)
+        double queryEvery{0.1};  ///< [m] of travel between queries
+        /** How the readings of one place differ between two passes (magnetic::PassNoise):
+         * white noise of `window_sigma` [uT] per component, plus over a window an offset of
+         * `window_bias_sigma` [uT] and a trend of `window_trend_sigma` [uT/m]. (`step` is
+         * resample_step.) */
+        magnetic::PassNoise noise;
+        /** [m] the field's correlation length along a path (lodestone-magfit's fit): with
+         * the query window's own spread, how two unrelated stretches differ - the null
+         * hypothesis every candidate must beat. */
+        double lengthScale{0.28};
+        double nullOdds{1.0};  ///< prior odds of "no earlier place" against "one of the candidates"
+        double minTravelGap{4.0};  ///< [m] targets the robot left at least this long ago
+        double gateChi2{11.83};    ///< 2 dof, 99.73 %
+        closure::PathUncertainty::Params uncertainty;
+        double quantile{0.9973};  ///< of the excitation and fit tests
+        double minPosterior{0.9973};
+        double distinctRadius{0.5};  ///< [m]
+        double closureEvery{0.5};    ///< [m] of query travel between closures
+        /** An accepted window closes only once a later window that does not overlap it (an
+         * independent stretch of the field, `window_length` on) is accepted and places the
+         * robot consistently (within distinct_radius); after that the match continues with
+         * every agreeing window. A chance look-alike seldom repeats on the next stretch. */
+        bool confirm{false};
+        /** Two passes of one place run beside each other by a distance whose prior is
+         * half-normal with `sigma_cross`; the field says how far
+         * (magnetic::WindowDisplacementModel). A place is the same when the passes ran close
+         * enough to place the robot within `distinct_radius` (nearRadius): the fit test takes
+         * the differences at that distance, a candidate further apart counts against its
+         * place, and the closure's across-track sigma is the distance's posterior. false: the
+         * same place means the same line (C1 alone), the across-track sigma is `sigma_cross`. */
+        bool passDisplacement{true};
+        double sigmaAlongFloor{0.03};  ///< [m]
+        double sigmaCross{0.20};       ///< [m]
+        double turnFloorDeg{2.0};      ///< [deg] added to the field's turn sigma
+    };
+    /** What became of the queries (the funnel of this decider). */
+    struct Stats {
+        std::size_t queries{0}, flat{0}, noCandidate{0}, noFit{0}, ambiguous{0}, accepted{0},
+            unmeasured{0}, confirmed{0}, forward{0}, backward{0}, edges{0};
+        std::vector<double> queryMs;
+    };
+
+    /** With the run's true trajectory (SlamComponent::setDiagnosticTruth): for every query
+     * whose newest reading revisits an earlier place (within `distinct_radius` of it, at least
+     * `min_travel_gap` of travel later), how far the true place got through the tests. */
+    enum class TruthStage {
+        Flat,         ///< the query window was flat
+        NoWindow,     ///< the true place has no whole window that way (a segment's start or end)
+        OutsideGate,  ///< the true place lay outside the position gate
+        NoFit,        ///< its differences were not noise (fit test)
+        LostToOther,  ///< another place fitted best
+        Ambiguous,    ///< it fitted best, short of min_posterior
+        Accepted,     ///< accepted, no edge (closure_every)
+        Closed        ///< an edge was made
+    };
+    static const char* toString(TruthStage stage);
+    struct TruthQuery {
+        TNodeID queryNode{0};
+        TruthStage stage{TruthStage::Flat};
+        bool backward{false};  ///< the true place walked the other way
+        double gate2{NAN};     ///< the true place's squared Mahalanobis distance in the gate
+        double fitChi2{NAN};
+    };
+
+    MagneticWindowERD();
+    void configure(const mrpt::config::CConfigFileBase& ini) override;
+    const Params& params() const { return params_; }
+    bool updateState(mrpt::obs::CActionCollection::Ptr action,
+                     mrpt::obs::CSensoryFrame::Ptr observations,
+                     mrpt::obs::CObservation::Ptr observation) override;
+    std::set<std::string> requiredObservations() const override {
+        return {"CObservationMagnetometer"};
+    }
+    JsonObject describe() const override;
+    const Stats& stats() const { return stats_; }
+    const std::vector<TruthQuery>& truthQueries() const { return truthQueries_; }
+
+  private:
+    /** The best fit of one stored sample as the query's newest reading's place. */
+    struct Candidate {
+        const magnetic::SupernodeTrack* track{nullptr};  ///< whose readings `sample` indexes
+        std::size_t sample{0};
+        magnetic::WindowDirection direction{magnetic::WindowDirection::Forward};
+        magnetic::WindowFit fit;
+        Eigen::Vector2d position{0, 0};  ///< the sample's place in the graph
+        double gate2{0};                 ///< position prior's squared Mahalanobis distance
+        /** -2 log of its weight up to a constant: the best candidate has the least. Same line:
+         * fit.chi2 + gate2; with pass_displacement: -2 (logNear + position and turn prior). */
+        double total{0};
+        double fitStat{0};  ///< the fit test's chi-square (fit.chi2, or at distinct_radius apart)
+        double logWeight{-INFINITY};  ///< log of its posterior weight: its place within reach
+        double logFar{-INFINITY};     ///< ... and its place beside, passed further apart
+        double nearDelta2{0};         ///< [m^2] the passes' squared distance, posterior
+    };
+    /** A candidate's prior: the gate's squared Mahalanobis distance, the graph's relative
+     * heading and its variance (across a kidnap: 0, 0, infinite). */
+    struct Prior {
+        Eigen::Vector2d position{0, 0};  ///< the target sample's place in the graph
+        double gate2{0}, turn{0}, turnVariance{INFINITY};
+    };
+    /** What a query came to, for the diagnostics. */
+    struct Outcome {
+        bool flat{false}, closed{false};
+        std::optional<Candidate> best;
+        double posterior{NAN};
+        std::optional<magnetic::WindowDisplacementModel> displacement;  ///< pass_displacement
+    };
+    void rebuild();
+    void onNode(TNodeID id);
+    void query(std::size_t first);
+    /** The tests on a query's candidates (fit, posterior), then its closure. */
+    void decide(std::size_t first, double excitation, std::vector<Candidate>& candidates,
+                Outcome& out);
+    Prior priorAt(const magnetic::SupernodeTrack& track, std::size_t c, TNodeID qNode,
+                  const Eigen::Vector2d& here) const;
+    /** The truth's stage for the query ending at `first` + n - 1 (MagneticWindowFunnel.cpp). */
+    std::optional<std::size_t> diagnose(std::size_t first, const Outcome& out);
+    JsonObject describeTruth() const;
+    /** The fit of stored sample `c` of `track` as the place of the query's newest reading,
+     * `direction`, if its window is whole there. */
+    void compareAt(const magnetic::SupernodeTrack& track, std::size_t c,
+                   magnetic::WindowDirection direction, std::size_t first, const Prior& prior,
+                   std::vector<Candidate>& out) const;
+    /** The field's spread in the query window, the reading noise taken out (from its
+     * excitation): the amplitude of the null and displacement models. */
+    double windowSpread(double excitation) const;
+    /** The same in the map's frame (each reading's horizontal part turned by the graph's
+     * heading there): the field's own variation over the window, without the turning of the
+     * robot-frame components that a turn in a uniform field shows. */
+    double mapFrameSpread(std::size_t first) const;
+    /** log of the position prior's normalizer over the candidates. */
+    static double logPriorNormalizer(const std::vector<Candidate>& all);
+    /** With pass_displacement: every candidate's weight near and far, its total and fitStat. */
+    void weighDisplaced(std::vector<Candidate>& all, std::size_t first,
+                        const magnetic::WindowDisplacementModel& model) const;
+    /** [rad] how far the robot turned over a window of `track` from `start` (graph poses). */
+    double windowTurn(const magnetic::SupernodeTrack& track, std::size_t start) const;
+    /** The passes' distance that places the robot within distinct_radius: in a turn `turn` the
+     * passes' arcs differ in length by the distance times the turn, and the fit, aligning the
+     * windows' middles, places the newest reading off along the path by half of that. */
+    double nearRadius(double turn) const;
+    /** A window of `track` from `start` (read backward if `reversed`) in the displacement
+     * model's basis. */
+    Eigen::MatrixX3d projectedWindow(const magnetic::SupernodeTrack& track, std::size_t start,
+                                     bool reversed) const;
+    /** A candidate's differences in that basis, from the query window's projection and its
+     * own (kept). */
+    Eigen::MatrixX3d projectedResiduals(const Candidate& k, std::size_t start,
+                                        const Eigen::MatrixX3d& query) const;
+    /** A candidate's differences (query minus turned target). */
+    Eigen::MatrixX3d residuals(const Candidate& k, std::size_t first) const;
+    /** Same line: every plausible candidate's weight against the null (logWeight). */
+    void weighSameLine(const Candidate& best, std::vector<Candidate>& all, std::size_t first,
+                       const magnetic::WindowNullModel& null) const;
+    /** The posterior of the best candidate's place (candidates within distinct_radius of it,
+     * passed within reach) against every other place, passes further apart, and the null. */
+    double placePosterior(const Candidate& best, const std::vector<Candidate>& all) const;
+    /** An accepted window's closure, measured (MagneticWindowClosures.cpp). */
+    struct Closure {
+        TNodeID target{0}, query{0};
+        mrpt::poses::CPosePDFGaussian z;
+        Eigen::Matrix2d positionCov{Eigen::Matrix2d::Identity()};  ///< in the target's frame
+        double score{0};
+        magnetic::WindowDirection direction{magnetic::WindowDirection::Forward};
+        double sQuery{0}, sTarget{0};  ///< [m] travel of the query's newest reading and its match
+        int targetSegment{0};
+        std::optional<std::size_t> truthRecord;  ///< in truthQueries_
+    };
+    /** The edge from the target's path to the query node (nullopt: not measurable). */
+    std::optional<Closure> measureClosure(const Candidate& best, const std::vector<Candidate>& all,
+                                          std::size_t first) const;
+    /** `later` continues `earlier`'s match (same direction and path, consistent travel). */
+    bool agree(const Closure& earlier, const Closure& later) const;
+    /** Commits `c` now, or when confirmed (Params::confirm); true when it made an edge. */
+    bool confirm(const Closure& c);
+    bool commit(const Closure& c);
+    Eigen::Vector2d positionAtSample(const magnetic::SupernodeTrack& track, std::size_t i) const;
+    /** The graph's heading at a sample (interpolated in its node's interval). */
+    double yawAtSample(const magnetic::SupernodeTrack& track, std::size_t i) const;
+    /** Where travel `s` lies in node k's interval (0 at node k - 1, 1 at k); none for a node
+     * with no interval (a segment's first). */
+    std::optional<double> intervalFraction(TNodeID k, double s) const;
+    /** Readings to keep: the queried sensor's and its mirror's (MagneticWindowSensors.cpp). */
+    bool takeReading(const MagneticSample& reading);
+    const magnetic::SupernodeTrack& queried() const;
+    /** The track backward windows are compared with: the mirror's, else the queried one. */
+    const magnetic::SupernodeTrack& mirrored() const;
+
+    Params params_;
+    std::size_t n_{0};  // samples per window (rebuild)
+    // what the displacement model keeps for every window of n_ samples (rebuild)
+    std::shared_ptr<const magnetic::WindowDisplacementModel::Basis> basis_;
+    double correlatedSamples_{0};  // sum of the field kernel's correlations over a window (rebuild)
+    struct Sensor {
+        std::unique_ptr<magnetic::SupernodeTrack> track;
+        Eigen::Vector3d position;  ///< on the robot [m]
+    };
+    std::map<std::string, Sensor> sensors_;           // the queried one and its mirror
+    std::string mirror_;                              // the mirror's label ("": none)
+    MagneticPath path_;                               // travel, segment, pose uncertainty per node
+    std::vector<const Graph::global_pose_t*> poses_;  // per node, in the graph
+    TNodeID seen_{0};
+    double lastQuery_{-1e18}, lastClosure_{-1e18};  // [m] travel
+    Stats stats_;
+    std::deque<Closure> pending_;       // accepted, waiting for confirmation
+    std::optional<Closure> confirmed_;  // the last closure of a confirmed match
+    std::vector<TruthQuery> truthQueries_;
+    // Stored windows in the displacement model's basis, by (start, track, direction); cleared
+    // whole when full (20 000 windows of 2 m: about 19 MB).
+    static constexpr std::size_t kProjectionCache = 20000;
+    mutable std::unordered_map<std::uint64_t, Eigen::MatrixX3d> projectedTargets_;
+};
+
+}  // namespace lodestone::graphslam

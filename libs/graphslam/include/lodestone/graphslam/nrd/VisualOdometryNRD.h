@@ -1,0 +1,113 @@
+#pragma once
+
+#include <lodestone/graphslam/NodeDecider.h>
+#include <lodestone/graphslam/nrd/NodeSpacing.h>
+#include <lodestone/vision/RgbdVisualOdometry.h>
+#include <mrpt/obs/CObservation3DRangeScan.h>
+#include <mrpt/poses/CPose3DPDFGaussian.h>
+
+#include <cmath>
+#include <deque>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace lodestone::graphslam {
+
+/** Node registration from RGB-D visual odometry alone, in 6-DoF: for a camera carried by
+ * hand, or any recording without wheel odometry (TUM RGB-D, 7-Scenes, 3DMatch). A node when
+ * the camera has moved `node_distance` or turned `node_angle_deg` since the last one; the edge
+ * is VO's motion composed along its reference frames, with its covariance (first order, MRPT's
+ * pose composition), in full SE(3) - the graph is then solved with `[CeresGSO] mode = se3`.
+ * Nodes every `keyframe_distance` / `keyframe_angle_deg` are keyframes: the frame's ORB
+ * features (from VO's own pass) and, for map.ply, a coloured cloud.
+ *
+ * VO lost with no wheels to bridge the gap: when VO re-initializes after LOST, the frame it
+ * restarts from is first aligned (VO's matching and RANSAC) with the last tracked frame and
+ * the segment's latest keyframes (`relocalize_keyframes`, newest first): a view that came back
+ * after a blank wall or a blur joins the graph there, with an edge from that frame composed
+ * with VO's, and no gap is left. Else a short gap (`bridge_max_seconds`) is bridged by the camera's last velocity, the edge's covariance that
+ * of a constant-velocity model with white-noise acceleration over the gap; after a longer one
+ * the frame it starts from is the first node of a new segment, tied to the last node by a very
+ * weak edge (`lost_edge_sigma`), as after a kidnap; the visual loop closer relocalizes it
+ * (SlamEngine, Relocalizer). Its record carries when tracking was lost and found again.
+ *
+ * INI: [VisualOdometryNRD] and [visual_odometry]. */
+class VisualOdometryNRD : public NodeDecider {
+  public:
+    struct Params : NodeSpacing {
+        Params() {
+            // A hand moves the view faster than a robot: keyframes closer together.
+            keyframeDistance = 0.30;
+            keyframeAngle = 15 * M_PI / 180;
+        }
+        double lostEdgeSigma{100.0};  ///< [m, rad] of the edge across a VO gap
+        /** After a VO loss, the restart frame is aligned with the last tracked frame and this
+         * many of the segment's latest keyframes before anything else (0: never). */
+        int relocalizeKeyframes{8};
+        /** A gap this short [s] is bridged by the camera's last velocity instead (constant
+         * velocity, white-noise acceleration of `bridgeAccelSigma` [m/s^2] and
+         * `bridgeAngularAccelSigma` [rad/s^2]: position sigma a dt^2 / 2); 0: never. */
+        double bridgeMaxSeconds{0.0};  // (rgbd_only.ini: 1 s, README "Camera-only SLAM")
+        double bridgeAccelSigma{1.5};
+        double bridgeAngularAccelSigma{3.0};
+        std::string cameraLabel;      ///< only this RGB-D label ("": the first one seen)
+        vision::RgbdVisualOdometry::Params visual;  ///< [visual_odometry]
+    };
+
+    VisualOdometryNRD();
+    void configure(const mrpt::config::CConfigFileBase& ini) override;
+    const Params& params() const { return params_; }
+
+    bool updateState(mrpt::obs::CActionCollection::Ptr action,
+                     mrpt::obs::CSensoryFrame::Ptr observations,
+                     mrpt::obs::CObservation::Ptr observation) override;
+    bool finish() override;
+    std::set<std::string> requiredObservations() const override {
+        return {"CObservation3DRangeScan"};
+    }
+    global_pose_t getCurrentRobotPosEstimation() const override;
+    JsonObject describe() const override;
+
+  protected:
+    bool checkRegistrationCondition() override;
+
+  private:
+    void consume(const mrpt::obs::CObservation3DRangeScan::Ptr& scan);
+    /** A node at this frame: `edge` from the last node (or the root when there is none). */
+    /** From the last node to a frame `gap` seconds after the last tracked one, by the last
+     * velocity. */
+    mrpt::poses::CPose3DPDFGaussian bridge(double gap) const;
+    /** The restart frame aligned with a recent frame of the segment: the edge from the last
+     * node to it, if one aligns. */
+    std::optional<mrpt::poses::CPose3DPDFGaussian> relocalize(
+        const vision::FrameFeatures& current, const Eigen::Isometry3d& cameraOnRobot);
+    /** Node `from`'s pose relative to the last node, with covariance (the segment's edges). */
+    mrpt::poses::CPose3DPDFGaussian relativeToLastNode(TNodeID from) const;
+    void registerAt(const mrpt::obs::CObservation3DRangeScan& scan, double t,
+                    const std::shared_ptr<const vision::FrameFeatures>& features,
+                    const mrpt::poses::CPose3DPDFGaussian& edge, bool restart);
+
+    /** A frame and its pose relative to the last node, with covariance. */
+    struct Anchor {
+        double t{NAN};
+        mrpt::poses::CPose3DPDFGaussian pdf;
+    };
+
+    Params params_;
+    vision::RgbdVisualOdometry vo_;
+    Anchor reference_;    // VO's reference frame
+    Anchor lastTracked_;  // the last frame VO tracked (it may become the reference)
+    std::shared_ptr<const vision::FrameFeatures> lastTrackedFeatures_;
+    std::deque<std::pair<TNodeID, std::shared_ptr<const vision::FrameFeatures>>> recentKeyframes_;
+    mrpt::poses::CPose3D sinceKeyframe_;  // the last node relative to the last keyframe
+    int segment_{0};
+    std::size_t frames_{0}, failedFrames_{0}, keyframes_{0}, gaps_{0}, bridged_{0}, relocalized_{0};
+    mrpt::poses::CPose3D lastStep_;  // the last motion between tracked frames ...
+    double lastStepSeconds_{0};      // ... and how long it took
+    std::vector<double> gapSeconds_;  // from the last tracked frame to VO's restart
+    std::map<std::string, std::size_t> failures_;  // failed frames by VO's reason
+};
+
+}  // namespace lodestone::graphslam

@@ -1,0 +1,91 @@
+#include <lodestone/graphslam/erd/magnetic/MagneticPath.h>
+#include <lodestone/magnetic/FieldFeatures.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+
+namespace lodestone::graphslam {
+
+void MagneticPath::addNode(TNodeID id, const Graph& graph, const NodeStore& nodes,
+                           std::string& label, double saturation, const ReadingSink& sink) {
+    addNode(
+        id, graph, nodes, saturation,
+        [&](const MagneticSample& m) {
+            if (label.empty()) label = m.sensorLabel;
+            return m.sensorLabel == label;
+        },
+        [&](const MagneticSample&, double s, const Eigen::Vector3d& b) { sink(s, b); });
+}
+
+void MagneticPath::addNode(TNodeID id, const Graph& graph, const NodeStore& nodes,
+                           double saturation, const SensorFilter& take, const SensorSink& sink) {
+    const NodeRecord& rec = nodes.at(id);
+    double step = 0;
+    double t0 = rec.timestamp;
+    const Constraint* odometry = nullptr;
+    if (id > 0) {
+        const auto e = graph.edges.find({id - 1, id});
+        // No travel across a kidnap: the edge there says nothing of the path.
+        if (e != graph.edges.end() && rec.segment == segment.back()) {
+            step = std::hypot(e->second.mean.x(), e->second.mean.y());
+            odometry = &e->second;
+        }
+        t0 = nodes.at(id - 1).timestamp;
+    }
+    uncertainty.addNode(id, odometry, id > 0 ? graph.nodes.at(id - 1).yaw() : 0.0);
+    const double s0 = travel.empty() ? 0.0 : travel.back();
+    travel.push_back(s0 + step);
+    segment.push_back(rec.segment);
+    for (const auto& m : rec.magnetic) {
+        if (!take(m)) {
+            ++counts.otherSensors;
+            continue;
+        }
+        ++counts.readings;
+        const Eigen::Vector3d inSensor(m.field.x, m.field.y, m.field.z);
+        if (!magnetic::usableReading(inSensor, saturation)) {
+            ++counts.dropped;
+            continue;
+        }
+        const double f = rec.timestamp > t0
+                             ? std::clamp((m.timestamp - t0) / (rec.timestamp - t0), 0.0, 1.0)
+                             : 1.0;
+        sink(m, s0 + f * step, m.sensorPose.getRotationMatrix().asEigen() * inSensor);
+    }
+}
+
+void MagneticPath::pinClosure(TNodeID query, double targetYaw, const Eigen::Matrix2d& positionCov,
+                              double yawVariance) {
+    const Eigen::Matrix2d R = Eigen::Rotation2Dd(targetYaw).toRotationMatrix();
+    Eigen::Matrix3d pinned = Eigen::Matrix3d::Zero();
+    pinned.topLeftCorner<2, 2>() = R * positionCov * R.transpose();
+    pinned(2, 2) = yawVariance;
+    uncertainty.pin(query, pinned);
+}
+
+JsonObject& MagneticPath::describeCounts(JsonObject& stats) const {
+    return stats.set("readings", counts.readings)
+        .set("dropped_readings", counts.dropped)
+        .set("other_sensor_readings", counts.otherSensors);
+}
+
+Eigen::Matrix2d alongAcross(const mrpt::poses::CPose3D& step, double along2, double across2) {
+    const double len = std::hypot(step.x(), step.y());
+    const Eigen::Vector2d u =
+        len > 1e-6 ? Eigen::Vector2d(step.x() / len, step.y() / len) : Eigen::Vector2d(1, 0);
+    const Eigen::Matrix2d P = u * u.transpose();
+    return along2 * P + across2 * (Eigen::Matrix2d::Identity() - P);
+}
+
+JsonObject& describeQueryTimes(JsonObject& stats, const std::vector<double>& queryMs) {
+    double total = 0, worst = 0;
+    for (double ms : queryMs) {
+        total += ms;
+        worst = std::max(worst, ms);
+    }
+    return stats.set("query_ms_mean", queryMs.empty() ? 0.0 : total / double(queryMs.size()))
+        .set("query_ms_max", worst);
+}
+
+}  // namespace lodestone::graphslam

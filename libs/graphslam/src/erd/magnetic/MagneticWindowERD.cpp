@@ -1,0 +1,464 @@
+#include <lodestone/config/IniSection.h>
+#include <lodestone/graphslam/erd/magnetic/MagneticWindowERD.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+
+#include "../../Stopwatch.h"
+
+namespace lodestone::graphslam {
+
+using magnetic::WindowDirection;
+
+MagneticWindowERD::MagneticWindowERD() {
+    setClassName("MagneticWindowERD");
+    rebuild();
+}
+
+void MagneticWindowERD::rebuild() {
+    params_.noise.step = params_.step;
+    sensors_.clear();
+    mirror_.clear();
+    poses_.clear();
+    n_ = magnetic::SupernodeTrack({params_.step, params_.window, params_.step}, 3)
+             .samplesPerSupernode();
+    path_ = MagneticPath(params_.uncertainty);
+    projectedTargets_.clear();
+    basis_ = std::make_shared<const magnetic::WindowDisplacementModel::Basis>(n_, params_.noise,
+                                                                              params_.lengthScale);
+    correlatedSamples_ = 0;  // the kernel's correlations summed over a window's offsets
+    for (int j = 1 - int(n_); j < int(n_); ++j) {
+        const double r = j * params_.step / params_.lengthScale;
+        correlatedSamples_ += std::exp(-0.5 * r * r);
+    }
+}
+
+void MagneticWindowERD::configure(const mrpt::config::CConfigFileBase& ini) {
+    config::IniSection s(ini, "MagneticWindowERD", config::sourceName(ini));
+    Params p = params_;  // all or nothing
+    p.sensorLabel = s.getString("sensor_label", p.sensorLabel);
+    p.mirrorSensors = s.getBool("mirror_sensors", p.mirrorSensors);
+    p.saturation = s.getDouble("saturation", p.saturation);
+    p.step = s.getDouble("resample_step", p.step);
+    p.window = s.getDouble("window_length", p.window);
+    p.queryEvery = s.getDouble("query_every", p.queryEvery);
+    p.noise.sigma = s.getDouble("window_sigma", p.noise.sigma);
+    p.noise.biasSigma = s.getDouble("window_bias_sigma", p.noise.biasSigma);
+    p.noise.trendSigma = s.getDouble("window_trend_sigma", p.noise.trendSigma);
+    p.lengthScale = s.getDouble("gp_length_scale", p.lengthScale);
+    p.nullOdds = s.getDouble("null_odds", p.nullOdds);
+    p.minTravelGap = s.getDouble("min_travel_gap", p.minTravelGap);
+    p.gateChi2 = s.getDouble("gate_chi2", p.gateChi2);
+    p.uncertainty.headingBias = s.getDouble("gate_heading_drift", p.uncertainty.headingBias);
+    p.uncertainty.floor = s.getDouble("gate_floor", p.uncertainty.floor);
+    p.quantile = s.getDouble("test_quantile", p.quantile);
+    p.minPosterior = s.getDouble("min_posterior", p.minPosterior);
+    p.distinctRadius = s.getDouble("distinct_radius", p.distinctRadius);
+    p.closureEvery = s.getDouble("closure_every", p.closureEvery);
+    p.confirm = s.getBool("confirm", p.confirm);
+    p.passDisplacement = s.getBool("pass_displacement", p.passDisplacement);
+    p.sigmaAlongFloor = s.getDouble("sigma_along_floor", p.sigmaAlongFloor);
+    p.sigmaCross = s.getDouble("sigma_cross", p.sigmaCross);
+    p.turnFloorDeg = s.getDouble("turn_floor_deg", p.turnFloorDeg);
+    if (!(p.saturation > 0)) s.fail("saturation", "must be > 0");
+    if (!(p.step > 0)) s.fail("resample_step", "must be > 0");
+    if (!(p.window >= 4 * p.step)) s.fail("window_length", "must be >= 4 x resample_step");
+    if (!(p.queryEvery > 0)) s.fail("query_every", "must be > 0");
+    if (!(p.noise.sigma > 0)) s.fail("window_sigma", "must be > 0");
+    if (!(p.noise.biasSigma >= 0)) s.fail("window_bias_sigma", "must be >= 0");
+    if (!(p.noise.trendSigma >= 0)) s.fail("window_trend_sigma", "must be >= 0");
+    if (!(p.lengthScale > 0)) s.fail("gp_length_scale", "must be > 0");
+    if (!(p.nullOdds > 0)) s.fail("null_odds", "must be > 0");
+    if (!(p.minTravelGap > p.window)) s.fail("min_travel_gap", "must be > window_length");
+    if (!(p.gateChi2 > 0)) s.fail("gate_chi2", "must be > 0");
+    if (!(p.uncertainty.headingBias >= 0)) s.fail("gate_heading_drift", "must be >= 0");
+    if (!(p.uncertainty.floor > 0)) s.fail("gate_floor", "must be > 0");
+    if (!(p.quantile > 0.5 && p.quantile < 1)) s.fail("test_quantile", "must be in (0.5, 1)");
+    if (!(p.minPosterior > 0.5 && p.minPosterior < 1))
+        s.fail("min_posterior", "must be in (0.5, 1)");
+    if (!(p.distinctRadius > 0)) s.fail("distinct_radius", "must be > 0");
+    if (!(p.closureEvery >= 0)) s.fail("closure_every", "must be >= 0");
+    if (!(p.sigmaAlongFloor > 0) || !(p.sigmaCross > 0) || !(p.turnFloorDeg >= 0))
+        s.fail("sigma_cross", "sigmas must be > 0");
+    s.finish();
+    params_ = p;
+    rebuild();
+}
+
+bool MagneticWindowERD::updateState(mrpt::obs::CActionCollection::Ptr,
+                                    mrpt::obs::CSensoryFrame::Ptr, mrpt::obs::CObservation::Ptr) {
+    const std::size_t before = stats_.edges;
+    for (; seen_ < m_graph->nodes.size() && nodes_ && nodes_->has(seen_); ++seen_) onNode(seen_);
+    return stats_.edges > before;
+}
+
+void MagneticWindowERD::onNode(TNodeID id) {
+    const int segment = nodes_->at(id).segment;
+    // (the graph's nodes are never erased: their addresses hold, their values follow the solves)
+    poses_.push_back(&m_graph->nodes.at(id));
+    path_.addNode(
+        id, *m_graph, *nodes_, params_.saturation,
+        [&](const MagneticSample& m) { return takeReading(m); },
+        [&](const MagneticSample& m, double s, const Eigen::Vector3d& b) {
+            auto& track = *sensors_.at(m.sensorLabel).track;
+            const auto windows = track.add(s, b, id, segment);
+            if (m.sensorLabel != params_.sensorLabel) return;  // the mirror's: stored only
+            for (const auto& w : windows) {
+                const double end = track.samples()[w.last - 1].s;
+                if (end - lastQuery_ + 1e-9 < params_.queryEvery) continue;
+                lastQuery_ = end;
+                query(w.first);
+            }
+        });
+}
+
+std::optional<double> MagneticWindowERD::intervalFraction(TNodeID k, double s) const {
+    if (k == 0 || path_.segment[k - 1] != path_.segment[k] ||
+        path_.travel[k] <= path_.travel[k - 1])
+        return std::nullopt;
+    return std::clamp((s - path_.travel[k - 1]) / (path_.travel[k] - path_.travel[k - 1]), 0.0,
+                      1.0);
+}
+
+Eigen::Vector2d MagneticWindowERD::positionAtSample(const magnetic::SupernodeTrack& track,
+                                                    std::size_t i) const {
+    // A sample lies in its node's interval: between node - 1 and node, by travel.
+    const auto& sample = track.samples()[i];
+    const auto k = static_cast<TNodeID>(sample.node);
+    const auto& b = *poses_[k];
+    const auto f = intervalFraction(k, sample.s);
+    if (!f) return {b.x(), b.y()};
+    const auto& a = *poses_[k - 1];
+    return {a.x() + *f * (b.x() - a.x()), a.y() + *f * (b.y() - a.y())};
+}
+
+double MagneticWindowERD::yawAtSample(const magnetic::SupernodeTrack& track, std::size_t i) const {
+    const auto& sample = track.samples()[i];
+    const auto k = static_cast<TNodeID>(sample.node);
+    const double b = poses_[k]->yaw();
+    const auto f = intervalFraction(k, sample.s);
+    if (!f) return b;
+    const double a = poses_[k - 1]->yaw();
+    return a + *f * std::remainder(b - a, 2 * M_PI);
+}
+
+void MagneticWindowERD::compareAt(const magnetic::SupernodeTrack& track, std::size_t c,
+                                  WindowDirection direction, std::size_t first, const Prior& prior,
+                                  std::vector<Candidate>& out) const {
+    const auto& samples = track.samples();
+    const auto& query = queried().samples();
+    // Forward: the window ending at c; backward: the window starting at c, read in reverse.
+    std::size_t start = 0;
+    if (direction == WindowDirection::Forward) {
+        if (c + 1 < n_ || samples[c + 1 - n_].segment != samples[c].segment) return;
+        start = c + 1 - n_;
+    } else {
+        if (c + n_ > samples.size() || samples[c + n_ - 1].segment != samples[c].segment ||
+            samples[c + n_ - 1].s > query[first + n_ - 1].s - params_.minTravelGap)
+            return;
+        start = c;
+    }
+    Candidate k;
+    k.track = &track;
+    k.sample = c;
+    k.direction = direction;
+    k.fit = magnetic::compareWindows(query, first, samples, start, n_, direction, params_.noise,
+                                     prior.turn, prior.turnVariance);
+    k.position = prior.position;
+    k.gate2 = prior.gate2;
+    k.total = k.fit.chi2 + prior.gate2;
+    k.fitStat = k.fit.chi2;
+    out.push_back(k);
+}
+
+MagneticWindowERD::Prior MagneticWindowERD::priorAt(const magnetic::SupernodeTrack& track,
+                                                    std::size_t c, TNodeID qNode,
+                                                    const Eigen::Vector2d& here) const {
+    const auto& samples = track.samples();
+    Prior p;
+    p.position = positionAtSample(track, c);
+    if (samples[c].segment != path_.segment[qNode]) return p;
+    // Where the robot can be, and which way it faces, under the pose uncertainty relative to
+    // the target. Across a kidnap the graph knows neither: everywhere, any way.
+    const auto target = static_cast<TNodeID>(samples[c].node);
+    p.gate2 = path_.uncertainty.relativeGateDistance2(target, qNode, here - p.position);
+    p.turn = poses_[qNode]->yaw() - poses_[target]->yaw();
+    const double turnFloor = params_.turnFloorDeg * M_PI / 180;
+    p.turnVariance = path_.uncertainty.covariance(qNode)(2, 2) + turnFloor * turnFloor;
+    return p;
+}
+
+void MagneticWindowERD::query(std::size_t first) {
+    const auto t0 = Clock::now();
+    ++stats_.queries;
+    const auto& samples = queried().samples();
+    const std::size_t newest = first + n_ - 1;
+    const double dof = 3.0 * double(n_);
+    Outcome out;
+    const double excitation = magnetic::windowExcitation(samples, first, n_, params_.noise.sigma);
+    out.flat = excitation < magnetic::chiSquareQuantile(dof - 3, params_.quantile);
+    std::vector<Candidate> candidates;
+    if (out.flat) {
+        ++stats_.flat;  // a flat field matches anywhere
+    } else {
+        const auto qNode = static_cast<TNodeID>(samples[newest].node);
+        const Eigen::Vector2d here = positionAtSample(queried(), newest);
+        // Every stored reading the robot left at least min_travel_gap ago, inside the gate:
+        // forward on the queried sensor's track, backward on its mirror's.
+        const auto scan = [&](const magnetic::SupernodeTrack& track, bool forward, bool backward) {
+            const auto& stored = track.samples();
+            for (std::size_t c = 0;
+                 c < stored.size() && stored[c].s <= samples[newest].s - params_.minTravelGap;
+                 ++c) {
+                const Prior p = priorAt(track, c, qNode, here);
+                if (p.gate2 > params_.gateChi2) continue;
+                if (forward) compareAt(track, c, WindowDirection::Forward, first, p, candidates);
+                if (backward) compareAt(track, c, WindowDirection::Backward, first, p, candidates);
+            }
+        };
+        if (&mirrored() == &queried()) {
+            scan(queried(), true, true);
+        } else {
+            scan(queried(), true, false);
+            scan(mirrored(), false, true);
+        }
+        decide(first, excitation, candidates, out);
+    }
+    stats_.queryMs.push_back(msSince(t0));
+    if (truth_) {  // (after the timing: diagnostics are not the decider's cost)
+        const auto record = diagnose(first, out);
+        // (a pending closure made later marks its query's record then)
+        if (record && !pending_.empty() && pending_.back().query == samples[newest].node &&
+            !out.closed)
+            pending_.back().truthRecord = record;
+    }
+}
+
+void MagneticWindowERD::decide(std::size_t first, double excitation,
+                               std::vector<Candidate>& candidates, Outcome& out) {
+    if (candidates.empty()) {
+        ++stats_.noCandidate;
+        return;
+    }
+    const double spread = windowSpread(excitation);
+    if (params_.passDisplacement) {
+        // Each frame adds its own artefact to the field's spread - the robot frame a turn's
+        // turning of the earth's field, the map frame the graph's heading errors (a corner's
+        // turn spread over the node interval): the smaller is the closer bound.
+        out.displacement.emplace(basis_, std::min(spread, mapFrameSpread(first)),
+                                 params_.sigmaCross, params_.distinctRadius);
+        weighDisplaced(candidates, first, *out.displacement);
+    }
+    out.best =
+        *std::min_element(candidates.begin(), candidates.end(),
+                          [](const Candidate& a, const Candidate& b) { return a.total < b.total; });
+    if (out.best->fitStat > magnetic::chiSquareQuantile(3.0 * double(n_), params_.quantile)) {
+        ++stats_.noFit;
+        return;
+    }
+    if (!params_.passDisplacement) {
+        const magnetic::WindowNullModel null(n_, params_.noise, spread, params_.lengthScale);
+        weighSameLine(*out.best, candidates, first, null);
+    }
+    out.posterior = placePosterior(*out.best, candidates);
+    if (out.posterior < params_.minPosterior) {
+        ++stats_.ambiguous;
+        return;
+    }
+    ++stats_.accepted;
+    if (auto c = measureClosure(*out.best, candidates, first)) {
+        out.closed = confirm(*c);
+    } else {
+        ++stats_.unmeasured;
+    }
+}
+
+double MagneticWindowERD::windowSpread(double excitation) const {
+    // The window's spread about its mean, the reading noise (half the difference's variance)
+    // taken out. A stretch that varies little is no strong evidence when it matches another
+    // that varies little.
+    const double dof = 3.0 * double(n_);
+    const double s2 = params_.noise.sigma * params_.noise.sigma;
+    const double spread2 = excitation * s2 / (dof - 3) - 0.5 * s2;
+    return std::sqrt(std::max(spread2, 1e-6));
+}
+
+double MagneticWindowERD::mapFrameSpread(std::size_t first) const {
+    const auto& samples = queried().samples();
+    std::vector<Eigen::Vector3d> b(n_);
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (std::size_t k = 0; k < n_; ++k) {
+        const Eigen::Vector3d v = samples[first + k].value.head<3>().cast<double>();
+        const double yaw = yawAtSample(queried(), first + k), c = std::cos(yaw), s = std::sin(yaw);
+        b[k] = {c * v.x() - s * v.y(), s * v.x() + c * v.y(), v.z()};
+        mean += b[k];
+    }
+    mean /= double(n_);
+    double sum = 0;
+    for (const auto& v : b) sum += (v - mean).squaredNorm();
+    return windowSpread(sum / (params_.noise.sigma * params_.noise.sigma));
+}
+
+double MagneticWindowERD::logPriorNormalizer(const std::vector<Candidate>& all) {
+    // The position prior normalized over the candidates (both directions of every sample).
+    double logZ = -INFINITY;
+    for (const auto& k : all) {
+        const double v = -0.5 * k.gate2;
+        logZ = std::max(logZ, v) + std::log1p(std::exp(-std::abs(logZ - v)));
+    }
+    return logZ;
+}
+
+double MagneticWindowERD::windowTurn(const magnetic::SupernodeTrack& track,
+                                     std::size_t start) const {
+    const auto& samples = track.samples();
+    return std::remainder(
+        poses_[samples[start + n_ - 1].node]->yaw() - poses_[samples[start].node]->yaw(), 2 * M_PI);
+}
+
+double MagneticWindowERD::nearRadius(double turn) const {
+    return params_.distinctRadius / std::sqrt(1 + turn * turn / 4);
+}
+
+Eigen::MatrixX3d MagneticWindowERD::residuals(const Candidate& k, std::size_t first) const {
+    return magnetic::windowResiduals(
+        queried().samples(), first, k.track->samples(),
+        k.direction == WindowDirection::Forward ? k.sample + 1 - n_ : k.sample, n_, k.direction,
+        k.fit);
+}
+
+void MagneticWindowERD::weighSameLine(const Candidate& best, std::vector<Candidate>& all,
+                                      std::size_t first,
+                                      const magnetic::WindowNullModel& null) const {
+    const double logZ = logPriorNormalizer(all);
+    // A candidate that fits worse than this beyond the fit test weighs nothing next to one
+    // that passes it: its likelihood ratio is not worth computing.
+    const double negligible =
+        magnetic::chiSquareQuantile(3.0 * double(n_), 1 - 1e-12) + best.fit.chi2;
+    for (auto& k : all) {
+        if (k.fit.chi2 > negligible) continue;
+        k.logWeight = null.logLikelihoodRatio(residuals(k, first)) -
+                      0.5 * (k.gate2 + k.fit.turnPriorChi2) - logZ;
+    }
+}
+
+void MagneticWindowERD::weighDisplaced(std::vector<Candidate>& all, std::size_t first,
+                                       const magnetic::WindowDisplacementModel& model) const {
+    const double logZ = logPriorNormalizer(all);
+    // A candidate whose differences fail the fit test by this much even at distinct_radius
+    // apart weighs nothing (its weight as a pass further beside is left out with it).
+    const double hopeless = magnetic::chiSquareQuantile(3.0 * double(n_), 1 - 1e-12);
+    const Eigen::MatrixX3d queryProjected = projectedWindow(queried(), first, false);
+    for (auto& k : all) {
+        k.fitStat = model.chi2LowerBound(k.fit.chi2 - k.fit.turnPriorChi2, params_.distinctRadius);
+        k.total = INFINITY;
+        if (k.fitStat > hopeless) continue;
+        const std::size_t start =
+            k.direction == WindowDirection::Forward ? k.sample + 1 - n_ : k.sample;
+        const auto e = model.evidenceProjected(projectedResiduals(k, start, queryProjected),
+                                               nearRadius(windowTurn(*k.track, start)));
+        const double prior = -0.5 * (k.gate2 + k.fit.turnPriorChi2) - logZ;
+        k.logWeight = e.logNear + prior;
+        k.logFar = e.logFar + prior;
+        k.nearDelta2 = e.nearDelta2;
+        k.fitStat = e.chi2AtRadius;
+        k.total = -2 * k.logWeight;
+    }
+}
+
+Eigen::MatrixX3d MagneticWindowERD::projectedWindow(const magnetic::SupernodeTrack& track,
+                                                    std::size_t start, bool reversed) const {
+    Eigen::MatrixX3d w(static_cast<Eigen::Index>(n_), 3);
+    const auto& samples = track.samples();
+    for (std::size_t k = 0; k < n_; ++k)
+        w.row(static_cast<Eigen::Index>(k)) =
+            samples[reversed ? start + n_ - 1 - k : start + k].value.head<3>().cast<double>();
+    return basis_->toEigenbasis.lazyProduct(w);
+}
+
+Eigen::MatrixX3d MagneticWindowERD::projectedResiduals(const Candidate& k, std::size_t start,
+                                                       const Eigen::MatrixX3d& query) const {
+    // A stored window is compared with many queries: its projection is kept (the stored
+    // readings a candidate's window holds are final, min_travel_gap behind the robot).
+    const bool backward = k.direction == WindowDirection::Backward;
+    const std::uint64_t key =
+        (std::uint64_t(start) << 2) | (k.track == &queried() ? 0u : 2u) | (backward ? 1u : 0u);
+    auto it = projectedTargets_.find(key);
+    if (it == projectedTargets_.end()) {
+        if (projectedTargets_.size() >= kProjectionCache) projectedTargets_.clear();
+        it = projectedTargets_.emplace(key, projectedWindow(*k.track, start, backward)).first;
+    }
+    // The differences, as windowResiduals forms them, in the basis (a linear map).
+    const Eigen::MatrixX3d& t = it->second;
+    const double c = std::cos(k.fit.turn), s = std::sin(k.fit.turn);
+    Eigen::MatrixX3d d(query.rows(), 3);
+    d.col(0) = query.col(0) - (c * t.col(0) + s * t.col(1));
+    d.col(1) = query.col(1) - (-s * t.col(0) + c * t.col(1));
+    d.col(2) = query.col(2) - t.col(2);
+    return d;
+}
+
+double MagneticWindowERD::placePosterior(const Candidate& best,
+                                         const std::vector<Candidate>& all) const {
+    double maxLog = std::log(params_.nullOdds);
+    for (const auto& k : all) maxLog = std::max({maxLog, k.logWeight, k.logFar});
+
+    const int segment = best.track->samples()[best.sample].segment;
+    double same = 0, rest = std::exp(std::log(params_.nullOdds) - maxLog);
+    for (const auto& k : all) {
+        if (std::isfinite(k.logFar)) rest += std::exp(k.logFar - maxLog);
+        if (!std::isfinite(k.logWeight)) continue;
+        const double w = std::exp(k.logWeight - maxLog);
+        const bool samePlace = k.track->samples()[k.sample].segment == segment &&
+                               (k.position - best.position).norm() <= params_.distinctRadius;
+        (samePlace ? same : rest) += w;
+    }
+    return same / (same + rest);
+}
+
+JsonObject MagneticWindowERD::describe() const {
+    JsonObject params;
+    params.set("sensor_label", params_.sensorLabel)
+        .set("resample_step", params_.step)
+        .set("window_length", params_.window)
+        .set("query_every", params_.queryEvery)
+        .set("window_sigma", params_.noise.sigma)
+        .set("window_bias_sigma", params_.noise.biasSigma)
+        .set("window_trend_sigma", params_.noise.trendSigma)
+        .set("gp_length_scale", params_.lengthScale)
+        .set("null_odds", params_.nullOdds)
+        .set("min_travel_gap", params_.minTravelGap)
+        .set("gate_chi2", params_.gateChi2)
+        .set("gate_heading_drift", params_.uncertainty.headingBias)
+        .set("gate_floor", params_.uncertainty.floor)
+        .set("test_quantile", params_.quantile)
+        .set("min_posterior", params_.minPosterior)
+        .set("distinct_radius", params_.distinctRadius)
+        .set("closure_every", params_.closureEvery)
+        .set("confirm", params_.confirm)
+        .set("pass_displacement", params_.passDisplacement)
+        .set("sigma_cross", params_.sigmaCross)
+        .set("turn_floor_deg", params_.turnFloorDeg);
+    JsonObject stats;
+    path_.describeCounts(stats)
+        .set("mirror_sensor", mirror_)
+        .set("queries", stats_.queries)
+        .set("flat", stats_.flat)
+        .set("no_candidate", stats_.noCandidate)
+        .set("no_fit", stats_.noFit)
+        .set("ambiguous", stats_.ambiguous)
+        .set("accepted", stats_.accepted)
+        .set("unmeasured", stats_.unmeasured)
+        .set("confirmed", stats_.confirmed)
+        .set("edges", stats_.edges)
+        .set("forward_edges", stats_.forward)
+        .set("backward_edges", stats_.backward);
+    describeQueryTimes(stats, stats_.queryMs);
+    JsonObject out;
+    out.set("class", getClassName()).set("params", params).set("stats", stats);
+    if (truth_) out.set("truth_funnel", describeTruth());
+    return out;
+}
+
+}  // namespace lodestone::graphslam

@@ -1,0 +1,292 @@
+#include <lodestone/config/IniSection.h>
+#include <lodestone/graphslam/nrd/KeyframeCloud.h>
+#include <lodestone/graphslam/Se3Pose.h>
+#include <lodestone/graphslam/nrd/VisualOdometryNRD.h>
+#include <lodestone/odometry/RgbdObservationFrame.h>
+#include <lodestone/vision/Se3Covariance.h>
+
+#include <cmath>
+
+#include "VoTimingJson.h"
+
+namespace lodestone::graphslam {
+
+namespace {
+/** VO's motion (optical frame, reference <- current) as the robot's, with its covariance:
+ * A T A^-1, the covariance of a perturbation moved with the adjoint of A. */
+mrpt::poses::CPose3DPDFGaussian robotMotion(const vision::VoResult& r, const Eigen::Isometry3d& A) {
+    const Eigen::Isometry3d T = A * r.T_ref_cur * A.inverse();
+    const Eigen::Matrix<double, 6, 6> Ad = vision::adjoint(A);
+    return mrpt::poses::CPose3DPDFGaussian(poseOf3D(T),
+                                           mrptCovarianceOf(Ad * r.covariance * Ad.transpose()));
+}
+
+double rotationAngle(const mrpt::poses::CPose3D& p) {
+    return Eigen::AngleAxisd(p.getRotationMatrix().asEigen()).angle();
+}
+
+/** An edge from a composed motion: its information, floored so a still camera's (zero)
+ * covariance stays invertible. */
+Constraint edgeOf(const mrpt::poses::CPose3DPDFGaussian& pdf) {
+    Constraint c;
+    c.mean = pdf.mean;
+    auto cov = pdf.cov;
+    for (int k = 0; k < 6; ++k) cov(k, k) += 1e-10;
+    c.cov_inv = cov.inverse_LLt();
+    return c;
+}
+}  // namespace
+
+VisualOdometryNRD::VisualOdometryNRD() : vo_(params_.visual) { setClassName("VisualOdometryNRD"); }
+
+void VisualOdometryNRD::configure(const mrpt::config::CConfigFileBase& ini) {
+    Params p = params_;  // all or nothing
+    p.visual.loadFromConfigFile(ini, "visual_odometry");
+    config::IniSection s(ini, "VisualOdometryNRD", config::sourceName(ini));
+    p.read(s);  // NodeSpacing: node and keyframe intervals, map clouds
+    p.lostEdgeSigma = s.getDouble("lost_edge_sigma", p.lostEdgeSigma);
+    p.relocalizeKeyframes = s.getInt("relocalize_keyframes", p.relocalizeKeyframes);
+    if (p.relocalizeKeyframes < 0) s.fail("relocalize_keyframes", "must be >= 0");
+    p.bridgeMaxSeconds = s.getDouble("bridge_max_seconds", p.bridgeMaxSeconds);
+    p.bridgeAccelSigma = s.getDouble("bridge_accel_sigma", p.bridgeAccelSigma);
+    p.bridgeAngularAccelSigma = s.getDouble("bridge_angular_accel_sigma", p.bridgeAngularAccelSigma);
+    if (!(p.bridgeMaxSeconds >= 0)) s.fail("bridge_max_seconds", "must be >= 0");
+    if (!(p.bridgeAccelSigma > 0) || !(p.bridgeAngularAccelSigma > 0))
+        s.fail("bridge_accel_sigma", "acceleration sigmas must be > 0");
+    p.cameraLabel = s.getString("camera_label", p.cameraLabel);
+    if (!(p.lostEdgeSigma > 0)) s.fail("lost_edge_sigma", "must be > 0");
+    s.finish();
+    params_ = p;
+    vo_ = vision::RgbdVisualOdometry(params_.visual);
+}
+
+bool VisualOdometryNRD::updateState(mrpt::obs::CActionCollection::Ptr,
+                                    mrpt::obs::CSensoryFrame::Ptr observations,
+                                    mrpt::obs::CObservation::Ptr observation) {
+    just_registered_.reset();
+    const auto take = [&](const mrpt::obs::CObservation::Ptr& o) {
+        // (one node per call, the engine's contract: in a sensory frame holding two RGB-D
+        // frames, a frame after a new node is skipped - rawlogs of observations give one a call)
+        if (auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(o);
+            scan && !just_registered_) {
+            consume(scan);
+        }
+    };
+    if (observation) take(observation);
+    if (observations) {
+        for (const auto& o : *observations) take(o);
+    }
+    return just_registered_.has_value();
+}
+
+void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& scan) {
+    if (params_.cameraLabel.empty()) params_.cameraLabel = scan->sensorLabel;
+    if (scan->sensorLabel != params_.cameraLabel) return;
+    ++frames_;
+    const double t = mrpt::Clock::toDouble(scan->timestamp);
+    const auto A = odometry::opticalFrameOnRobot(scan->sensorPose);
+    const auto r = vo_.process(odometry::frameFromObservation(*scan));
+    const mrpt::poses::CPose3DPDFGaussian here;  // a frame at the new node: identity, certain
+    if (r.failure == vision::VoFailure::NoReference) {
+        // VO (re)starts on this frame: the root, or after a loss a new segment.
+        const bool first = m_prev_registered_nodeID == mrpt::graphs::INVALID_NODEID;
+        const double gap = first ? 0.0 : t - lastTracked_.t;
+        if (!first) {
+            ++gaps_;
+            gapSeconds_.push_back(gap);
+        }
+        std::optional<mrpt::poses::CPose3DPDFGaussian> found;
+        if (!first && r.frameFeatures) found = relocalize(*r.frameFeatures, A);
+        if (found) {
+            // The view came back: the graph goes on from where it was seen before.
+            ++relocalized_;
+            registerAt(*scan, t, r.frameFeatures, *found, false);
+        } else if (!first && gap <= params_.bridgeMaxSeconds && lastStepSeconds_ > 0) {
+            // A short gap: where the last velocity carries the camera, as sure as a
+            // constant-velocity model is over that long.
+            ++bridged_;
+            registerAt(*scan, t, r.frameFeatures, bridge(gap), false);
+        } else {
+            registerAt(*scan, t, r.frameFeatures, here, !first);
+        }
+        reference_ = {t, here};
+        lastTracked_ = {t, here};
+        lastTrackedFeatures_ = r.frameFeatures;
+        return;
+    }
+    if (!r.success) {
+        ++failedFrames_;  // (VO keeps its reference; once LOST it restarts: NoReference above)
+        ++failures_[vision::toString(r.failure)];
+        return;
+    }
+    // The reference is the one VO started from or the last tracked frame, which VO made its
+    // new reference when the camera had moved far enough from the old one.
+    if (r.referenceTimestamp == lastTracked_.t) reference_ = lastTracked_;
+    if (r.referenceTimestamp != reference_.t) return;  // (cannot happen: VO keeps one reference)
+    const auto motion = robotMotion(r, A);
+    mrpt::poses::CPose3DPDFGaussian cur = reference_.pdf;
+    cur += motion;
+    lastStep_ = cur.mean - lastTracked_.pdf.mean;  // (both relative to the same node)
+    lastStepSeconds_ = t - lastTracked_.t;
+    lastTracked_ = {t, cur};
+    lastTrackedFeatures_ = r.frameFeatures;
+    if (cur.mean.norm() < params_.nodeDistance && rotationAngle(cur.mean) < params_.nodeAngle) return;
+    registerAt(*scan, t, r.frameFeatures, cur, false);
+    // Seen from the new node, the reference lies where VO measured it - the motion inverted,
+    // with the motion's own covariance (not the node's: that is the edge's).
+    mrpt::poses::CPose3DPDFGaussian back;
+    motion.inverse(back);
+    reference_.pdf = back;
+    lastTracked_.pdf = here;
+}
+
+mrpt::poses::CPose3DPDFGaussian VisualOdometryNRD::relativeToLastNode(TNodeID from) const {
+    mrpt::poses::CPose3DPDFGaussian chain;  // last node <- from, along the segment's edges
+    for (TNodeID id = from; id < m_prev_registered_nodeID; ++id) {
+        const Constraint& c = m_graph->edges.find({id, id + 1})->second;
+        chain += mrpt::poses::CPose3DPDFGaussian(c.mean, c.cov_inv.inverse_LLt());
+    }
+    mrpt::poses::CPose3DPDFGaussian back;
+    chain.inverse(back);
+    return back;
+}
+
+std::optional<mrpt::poses::CPose3DPDFGaussian> VisualOdometryNRD::relocalize(
+    const vision::FrameFeatures& current, const Eigen::Isometry3d& A) {
+    if (params_.relocalizeKeyframes == 0) return std::nullopt;
+    // Newest first: the last tracked frame, then the keyframes.
+    std::vector<std::pair<mrpt::poses::CPose3DPDFGaussian, const vision::FrameFeatures*>> tries;
+    if (lastTrackedFeatures_) tries.emplace_back(lastTracked_.pdf, lastTrackedFeatures_.get());
+    for (auto k = recentKeyframes_.rbegin(); k != recentKeyframes_.rend(); ++k) {
+        tries.emplace_back(relativeToLastNode(k->first), k->second.get());
+    }
+    std::uint64_t seed = params_.visual.seed + frames_ * 131;
+    for (const auto& [where, features] : tries) {
+        const auto a = vo_.align(*features, current, ++seed);
+        if (!a.success) continue;
+        vision::VoResult motion;
+        motion.T_ref_cur = a.estimate.transform;
+        motion.covariance = a.estimate.covariance;
+        mrpt::poses::CPose3DPDFGaussian edge = where;
+        edge += robotMotion(motion, A);
+        return edge;
+    }
+    return std::nullopt;
+}
+
+mrpt::poses::CPose3DPDFGaussian VisualOdometryNRD::bridge(double gap) const {
+    // The last step scaled to the gap (first order in its angles), from the last tracked frame.
+    const double k = gap / lastStepSeconds_;
+    const auto& s = lastStep_;
+    mrpt::poses::CPose3DPDFGaussian motion;
+    motion.mean = mrpt::poses::CPose3D(k * s.x(), k * s.y(), k * s.z(), k * s.yaw(), k * s.pitch(),
+                                       k * s.roll());
+    const double st = 0.5 * params_.bridgeAccelSigma * gap * gap,
+                 sr = 0.5 * params_.bridgeAngularAccelSigma * gap * gap;
+    motion.cov.setZero();
+    for (int i = 0; i < 3; ++i) {
+        motion.cov(i, i) = st * st;
+        motion.cov(i + 3, i + 3) = sr * sr;
+    }
+    mrpt::poses::CPose3DPDFGaussian edge = lastTracked_.pdf;
+    edge += motion;
+    return edge;
+}
+
+void VisualOdometryNRD::registerAt(const mrpt::obs::CObservation3DRangeScan& scan, double t,
+                                   const std::shared_ptr<const vision::FrameFeatures>& features,
+                                   const mrpt::poses::CPose3DPDFGaussian& edge, bool restart) {
+    bool keyframe = true;
+    TNodeID id = m_graph->root;
+    const double lostAfter = lastTracked_.t;  // (lastTracked_ becomes this frame below)
+    if (m_prev_registered_nodeID == mrpt::graphs::INVALID_NODEID) {
+        m_graph->nodes[m_graph->root] = mrpt::poses::CPose3D();  // the camera starts the map
+        m_prev_registered_nodeID = m_graph->root;
+    } else {
+        Constraint c = edgeOf(edge);
+        if (restart) {
+            // Across a VO gap: no idea where the camera went.
+            c.mean = mrpt::poses::CPose3D();
+            c.cov_inv.setZero();
+            for (int k = 0; k < 6; ++k) c.cov_inv(k, k) = 1 / (params_.lostEdgeSigma * params_.lostEdgeSigma);
+            ++segment_;
+        }
+        m_since_prev_node_PDF = c;
+        // MRPT's registerNewNodeAtEnd() places the node at getCurrentRobotPosEstimation(),
+        // the last node + lastTracked_: make that the edge's end first (across a gap the last
+        // tracked frame is not the new node's frame).
+        lastTracked_ = {t, mrpt::poses::CPose3DPDFGaussian(c.mean)};
+        registerNewNodeAtEnd();
+        id = m_prev_registered_nodeID;
+        sinceKeyframe_ = sinceKeyframe_ + c.mean;
+        keyframe = restart || sinceKeyframe_.norm() >= params_.keyframeDistance ||
+                   rotationAngle(sinceKeyframe_) >= params_.keyframeAngle;
+    }
+    if (nodes_) {
+        NodeRecord rec;
+        rec.timestamp = t;
+        rec.segment = segment_;
+        rec.keyframe = keyframe;
+        if (restart) {
+            rec.liftTime = lostAfter;  // tracking lost after this frame ...
+            rec.putDownTime = t;            // ... and found again at this one
+        }
+        if (keyframe) {
+            rec.features = features;
+            rec.cameraOnRobot = odometry::opticalFrameOnRobot(scan.sensorPose);
+            if (params_.mapPixelStep > 0) {
+                rec.cloud = std::make_shared<KeyframeCloud>(
+                    makeKeyframeCloud(scan, params_.mapPixelStep, params_.mapMaxDepth));
+            }
+        }
+        nodes_->add(id, std::move(rec));
+    }
+    if (restart) recentKeyframes_.clear();  // (a new segment: nothing before it is related)
+    if (keyframe) {
+        sinceKeyframe_ = mrpt::poses::CPose3D();
+        ++keyframes_;
+        if (features) recentKeyframes_.emplace_back(id, features);
+        while (recentKeyframes_.size() > static_cast<std::size_t>(params_.relocalizeKeyframes))
+            recentKeyframes_.pop_front();
+    }
+    just_registered_ = id;
+}
+
+bool VisualOdometryNRD::finish() {
+    just_registered_.reset();
+    return false;  // nodes are placed at frames as they come: nothing waits
+}
+
+bool VisualOdometryNRD::checkRegistrationCondition() { return false; }
+
+VisualOdometryNRD::global_pose_t VisualOdometryNRD::getCurrentRobotPosEstimation() const {
+    global_pose_t pose;
+    if (m_prev_registered_nodeID != mrpt::graphs::INVALID_NODEID)
+        pose = m_graph->nodes.at(m_prev_registered_nodeID);
+    return global_pose_t(pose + lastTracked_.pdf.mean);
+}
+
+JsonObject VisualOdometryNRD::describe() const {
+    JsonObject params;
+    params_.describe(params);
+    params.set("lost_edge_sigma", params_.lostEdgeSigma)
+        .set("relocalize_keyframes", params_.relocalizeKeyframes)
+        .set("bridge_max_seconds", params_.bridgeMaxSeconds)
+        .set("camera_label", params_.cameraLabel);
+    JsonObject stats;
+    stats.set("rgbd_frames", frames_)
+        .set("failed_frames", failedFrames_)
+        .set("keyframes", keyframes_)
+        .set("vo_gaps", gaps_)
+        .set("vo_gap_seconds", gapSeconds_)
+        .set("vo_gaps_bridged", bridged_)
+        .set("vo_gaps_relocalized", relocalized_)
+        .set("segments", segment_ + 1)
+        .set("vo_ms_per_frame", detail::voTimingJson(vo_.totals()));
+    JsonObject why;
+    for (const auto& [reason, count] : failures_) why.set(reason, count);
+    stats.set("failed_frames_by_reason", why);
+    return JsonObject().set("class", getClassName()).set("params", params).set("stats", stats);
+}
+
+}  // namespace lodestone::graphslam

@@ -1,0 +1,162 @@
+#!/usr/bin/env bash
+# The proof of a change that must not change behaviour (a refactoring): builds REF (a git
+# revision) in a worktree beside this checkout, builds the working tree, runs the same jobs with
+# both and compares what they write - trajectories, graphs, closure logs, node tables, maps, the
+# simulator's truths and rawlogs, imported rawlogs, the evaluations' figures. Wall-clock figures
+# (report.json "timing", nodes.csv engine_ms, the summary line's speed) are dropped first; charts
+# (PNG) are not compared. Prints a markdown table and exits 1 if anything differs.
+#
+# Jobs: the demo's two runs (the bundled rawlog, office simulated on the fly); corridor_kidnap
+# simulated into a rawlog and run from disk; paper_kidnap on the fly; corridor_shuttle with the
+# window closer; a hand-held camera-only paper_loop; Kok's walks and Aalto trials 1 and 9
+# imported (seed 1) and run with both magnetic closers (skipped when ../shared/data is absent).
+#
+# Usage: scripts/compare_outputs.sh [REF]   (default HEAD: the working tree's uncommitted change)
+# Outputs stay in build-compare/{ref,new}-out/ for a closer look.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+ref=${1:-HEAD}
+sha=$(git -C "$root" rev-parse --verify "$ref^{commit}")
+cmp_dir="$root/build-compare"
+worktree="$cmp_dir/ref"
+data="$root/../shared/data/magnetic"
+mkdir -p "$cmp_dir"
+
+# --- Both builds (ccache shares objects between them: paths relative to each tree) -------------
+export CCACHE_BASEDIR="$cmp_dir/.."
+if [ ! -d "$worktree/.git" ] && [ ! -f "$worktree/.git" ]; then
+    git -C "$root" worktree add --detach "$worktree" "$sha" > /dev/null
+else
+    git -C "$worktree" checkout --detach --quiet "$sha"
+fi
+echo "building $ref ($sha) in $worktree/build ..." >&2
+"$worktree/scripts/build.sh" > "$cmp_dir/ref-build.log" 2>&1 ||
+    { tail -20 "$cmp_dir/ref-build.log"; exit 1; }
+echo "building the working tree ..." >&2
+"$root/scripts/build.sh" > "$cmp_dir/new-build.log" 2>&1 ||
+    { tail -20 "$cmp_dir/new-build.log"; exit 1; }
+
+app() {  # BUILD_DIR NAME: the app's executable wherever the build put it
+    local found
+    found=$(find "$1/apps" -type f -name "$2" -perm -u+x | head -1)
+    [ -n "$found" ] || { echo "compare_outputs.sh: no $2 in $1/apps" >&2; exit 1; }
+    echo "$found"
+}
+
+# --- The jobs, run with one build into OUT; inputs always from the working tree --------------
+run_jobs() {
+    local build=$1 out=$2
+    local slam sim imp ev insp ini="$root/config_ini" tmp="$out/tmp"
+    slam=$(app "$build" lodestone-slam)
+    sim=$(app "$build" lodestone-sim)
+    imp=$(app "$build" lodestone-import)
+    ev=$(app "$build" lodestone-eval)
+    insp=$(app "$build" lodestone-inspect)
+    rm -rf "$out"
+    mkdir -p "$out" "$tmp"
+    "$root/scripts/bench/window_inis.sh" "$tmp" > /dev/null
+    local sample="$root/rawlogs/office_qvga.rawlog.gz"
+    job() { echo "  $1" >&2; }
+
+    job bundled
+    "$insp" summary "$sample" > "$out/summary.txt"
+    "$slam" -q --rawlog "$sample" --ground-truth "${sample%.rawlog.gz}.gt.tum" \
+        --config "$ini/slam.ini" --out "$out/bundled" > "$out/bundled.stdout"
+    job office
+    "$slam" -q --sim "$ini/office.ini" --config "$ini/slam.ini" --out "$out/office" \
+        > "$out/office.stdout"
+    job corridor_kidnap
+    "$sim" -c "$ini/corridor_kidnap.ini" -o "$out/corridor_kidnap.rawlog.gz" > /dev/null
+    "$slam" -q --rawlog "$out/corridor_kidnap.rawlog.gz" --config "$ini/slam.ini" \
+        --ground-truth "$out/corridor_kidnap.gt.tum" --out "$out/corridor_kidnap" \
+        > "$out/corridor_kidnap.stdout"
+    job paper_kidnap
+    "$slam" -q --sim "$ini/paper_kidnap.ini" --config "$ini/slam.ini" --out "$out/paper_kidnap" \
+        > "$out/paper_kidnap.stdout"
+    "$ev" relocation "$out/paper_kidnap" > "$out/paper_kidnap.relocation.txt"
+    job corridor_shuttle
+    "$slam" -q --sim "$ini/corridor_shuttle.ini" --config "$tmp/slam_window.ini" \
+        --out "$out/corridor_shuttle" > "$out/corridor_shuttle.stdout"
+    "$ev" closures "$out/corridor_shuttle" > "$out/corridor_shuttle.closures.txt"
+    job handheld
+    "$sim" -c "$ini/paper_loop_qvga.ini" --handheld -o "$out/handheld.rawlog" > /dev/null
+    "$slam" -q --rawlog "$out/handheld.rawlog" --config "$ini/rgbd_only.ini" \
+        --ground-truth "$out/handheld.gt.tum" --out "$out/handheld" > "$out/handheld.stdout"
+    if [ -d "$data" ]; then
+        local name
+        for rec in kok/eight.csv kok/square.csv aalto1 aalto9; do
+            name=$(basename "$rec" .csv)
+            job "$name"
+            case $rec in
+                kok/*) "$imp" kok "$data/$rec" "$out/$name.rawlog" --seed 1 > /dev/null ;;
+                aalto*) "$imp" aalto "$data/aalto/invensense" "${rec#aalto}" "$out/$name.rawlog" \
+                            --seed 1 > /dev/null ;;
+            esac
+            for cfg in magnetic_only magnetic_window; do
+                "$slam" -q --rawlog "$out/$name.rawlog" --config "$ini/$cfg.ini" \
+                    --ground-truth "$out/$name.gt.tum" --out "$out/$name-$cfg" \
+                    > "$out/$name-$cfg.stdout"
+                "$ev" closures "$out/$name-$cfg" -g "$out/$name.gt.tum" \
+                    > "$out/$name-$cfg.closures.txt"
+            done
+        done
+    else
+        echo "  (the magnetic recordings are absent: $data; their jobs skipped)" >&2
+    fi
+    rm -rf "$tmp"
+}
+
+# Prints FILE (under DIR) as compared: what depends on the wall clock or on DIR taken out.
+normalized() {
+    case $1 in
+        *.png) ;;
+        *.gz) zcat "$1" ;;
+        */nodes.csv) cut -d, -f1-4 "$1" ;;
+        */report.json)
+            python3 -c 'import json,sys
+r = json.load(open(sys.argv[1])); r.pop("timing", None); r.pop("input", None)
+print(json.dumps(r, indent=1, sort_keys=True))' "$1" ;;
+        *.stdout) sed -E 's/ in [0-9.]+ s \([0-9.]+x real time\)//; s|outputs in .*:|outputs:|' "$1" ;;
+        *) sed "s|$2|OUT|g" "$1" ;;
+    esac
+}
+
+echo "running the jobs with $ref ..." >&2
+run_jobs "$worktree/build" "$cmp_dir/ref-out"
+echo "running the jobs with the working tree ..." >&2
+run_jobs "$root/build" "$cmp_dir/new-out"
+
+echo "| output | files compared | differing |"
+echo "|---|---|---|"
+status=0
+declare -A total differ
+while IFS= read -r f; do
+    rel=${f#"$cmp_dir/ref-out/"}
+    group=${rel%%/*}
+    group=${group%%.*}
+    case $rel in *.png) continue ;; esac
+    total[$group]=$(( ${total[$group]:-0} + 1 ))
+    other="$cmp_dir/new-out/$rel"
+    if [ ! -f "$other" ] ||
+        ! cmp -s <(normalized "$f" "$cmp_dir/ref-out") <(normalized "$other" "$cmp_dir/new-out"); then
+        differ[$group]="${differ[$group]:-}${differ[$group]:+, }$rel"
+        status=1
+    fi
+done < <(find "$cmp_dir/ref-out" -type f | sort)
+# Files only the new build wrote are a change too.
+while IFS= read -r f; do
+    rel=${f#"$cmp_dir/new-out/"}
+    case $rel in *.png) continue ;; esac
+    if [ ! -f "$cmp_dir/ref-out/$rel" ]; then
+        group=${rel%%/*}
+        group=${group%%.*}
+        differ[$group]="${differ[$group]:-}${differ[$group]:+, }$rel (new)"
+        status=1
+    fi
+done < <(find "$cmp_dir/new-out" -type f | sort)
+for group in $(printf '%s\n' "${!total[@]}" | sort); do
+    echo "| $group | ${total[$group]} | ${differ[$group]:-none} |"
+done
+[ $status -eq 0 ] && echo && echo "identical: $ref and the working tree" ||
+    { echo; echo "DIFFERENT: $ref and the working tree"; }
+exit $status
