@@ -321,7 +321,7 @@ int timingRun(const std::string& out, const std::string& magneticIni) {
     o.rawlog = imported.rawlog;
     o.config = magneticIni.find('/') != std::string::npos
                    ? magneticIni
-                   : std::string(LODESTONE_CONFIG_INI_DIR) + "/" + magneticIni;
+                   : std::string(LODESTONE_CONFIG_INI_DIR) + "/slam/" + magneticIni;
     o.outDir = out + "/laps21_mag";
     o.quiet = true;
     std::ostringstream sout, serr;

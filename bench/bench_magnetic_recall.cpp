@@ -10,6 +10,8 @@
 // wrong closures (> 0.5 m), ATE median / worst, real-time factor. Table 2, for deciders that
 // report a truth funnel (MagneticWindowERD): every pass missed, by the furthest stage its true
 // place reached in any query inside it; how often the truth lay inside the position gate.
+#include <lodestone/outputs/ClosureTable.h>
+#include <lodestone/outputs/RunFiles.h>
 #include <lodestone/eval/ClosureEval.h>
 #include <lodestone/eval/ClosureFunnel.h>
 #include <lodestone/datasets/MagneticRecordingImport.h>
@@ -58,7 +60,7 @@ bool judgeRun(const slamapp::SlamRunOptions& o, Row& row) {
     const auto nodes = io::readTumTrajectory(o.outDir + "/trajectory.tum");
     const auto passes = eval::revisitPasses(nodes, truth);
     const auto qs =
-        eval::evaluateClosures(eval::readClosureLog(o.outDir + "/closures.csv"), nodes, truth);
+        eval::evaluateClosures(outputs::readClosureTable(outputs::pathIn(o.outDir, outputs::RunFile::Closures)), nodes, truth);
     std::vector<bool> found(passes.size(), false);
     for (const auto& q : qs) {
         row.closures += q.proposals;

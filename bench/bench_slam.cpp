@@ -9,6 +9,7 @@
 #include <lodestone/eval/TrajectoryError.h>
 #include <lodestone/graphslam/nrd/FusedOdometryNRD.h>
 #include <lodestone/graphslam/SlamEngine.h>
+#include <lodestone/sim/RobotConfig.h>
 #include <lodestone/sim/SimulatorSource.h>
 #include <mrpt/config/CConfigFile.h>
 
@@ -33,11 +34,12 @@ int main(int argc, char** argv) {
         std::snprintf(cam, sizeof cam, "%dx%d@%.0f", sc.camera.width, sc.camera.height, sc.camera.rate);
         const double limit = argc > 4 ? std::atof(argv[4]) : 1e9;
         const mrpt::config::CConfigFile ini(argv[2]);
-        auto engine = graphslam::SlamEngine::fromConfig(ini);
-        auto* nrd = dynamic_cast<graphslam::FusedOdometryNRD*>(&engine->nodeDecider());
-        if (!nrd) throw std::runtime_error("bench_slam needs FusedOdometryNRD");
-        nrd->setWheelGeometry(sc.motion.wheelBase, sc.motion.wheelRadius, sc.encoders.ticksPerRev);
-        odometry::FusedOdometry odo(nrd->params().odometry);
+        const auto robotIni = sim::withScenarioWheels(ini, sc, argv[2]);
+        auto engine = graphslam::SlamEngine::fromConfig(robotIni);
+        // The same odometry as the node decider's, alone beside the engine.
+        odometry::FusedOdometry::Params odometryParams;
+        odometryParams.loadFromConfigFile(robotIni, "odometry_fusion");
+        odometry::FusedOdometry odo(odometryParams);
 
         sim::SimulatorSource source(sc, sc.seed);
         std::map<double, mrpt::poses::CPose2D> fused;

@@ -15,6 +15,7 @@
 #include <lodestone/graphslam/nrd/FusedOdometryNRD.h>
 #include <lodestone/graphslam/erd/visual/OrbSubmapERD.h>
 #include <lodestone/graphslam/SlamEngine.h>
+#include <lodestone/sim/RobotConfig.h>
 #include <lodestone/sim/RgbdRenderer.h>
 #include <lodestone/sim/SimulatorSource.h>
 #include <mrpt/config/CConfigFileMemory.h>
@@ -63,9 +64,7 @@ int main(int argc, char** argv) {
                                      "submap_max_keyframes = " + perSubmap);
         }
         const mrpt::config::CConfigFileMemory cfg(ini);
-        auto engine = graphslam::SlamEngine::fromConfig(cfg);
-        auto& nrd = dynamic_cast<graphslam::FusedOdometryNRD&>(engine->nodeDecider());
-        nrd.setWheelGeometry(sc.motion.wheelBase, sc.motion.wheelRadius, sc.encoders.ticksPerRev);
+        auto engine = graphslam::SlamEngine::fromConfig(sim::withScenarioWheels(cfg, sc, argv[2]));
         const auto& composite = dynamic_cast<graphslam::CompositeERD&>(engine->edgeDecider());
         const auto* erd = dynamic_cast<const graphslam::OrbSubmapERD*>(composite.children().at(0).get());
         if (!erd) throw std::runtime_error("the INI's first loop closer is not OrbSubmapERD");

@@ -137,7 +137,7 @@ TimedRun runImported(const datasets::MagneticImportResult& imported, const std::
     run.options.groundTruth = imported.groundTruth;
     run.options.config = config.find('/') != std::string::npos
                              ? config
-                             : std::string(LODESTONE_CONFIG_INI_DIR) + "/" + config;
+                             : std::string(LODESTONE_CONFIG_INI_DIR) + "/slam/" + config;
     run.options.outDir = outDir;
     run.options.quiet = true;
     std::ostringstream out, err;

@@ -3,18 +3,24 @@
 # revision) in a worktree beside this checkout, builds the working tree, runs the same jobs with
 # both and compares what they write - trajectories, graphs, closure logs, node tables, maps, the
 # simulator's truths and rawlogs, imported rawlogs, the evaluations' figures. Wall-clock figures
-# (report.json "timing", nodes.csv engine_ms, the summary line's speed) are dropped first; charts
-# (PNG) are not compared. Prints a markdown table and exits 1 if anything differs.
+# (report.json's "timing", stage and solve seconds and every *_ms_* key, nodes.csv's engine_ms,
+# the summary line's speed) and the output folder's own path are taken out first; pictures are
+# compared byte for byte too (the simulator's frames, field_map.png, the charts). Prints a
+# markdown table and exits 1 if anything differs.
 #
-# Jobs: the demo's two runs (the bundled rawlog, office simulated on the fly); corridor_kidnap
-# simulated into a rawlog and run from disk; paper_kidnap on the fly; corridor_shuttle with the
-# window closer; a hand-held camera-only paper_loop; Kok's walks and Aalto trials 1 and 9
-# imported (seed 1) and run with both magnetic closers (skipped when ../shared/data is absent).
+# Jobs: the demo's two runs (the bundled rawlog, office simulated on the fly); corridor_kidnap,
+# paper_kidnap (slam.ini) and corridor_shuttle (the window closer) recorded at 320x240 / 15 Hz
+# and run from disk, judged by lodestone-eval; a hand-held camera-only paper_loop; Kok's walks
+# and Aalto trials 1 and 9 imported (seed 1) and run with both magnetic closers, judged (skipped
+# when ../shared/data is absent). About 15 minutes a build on two cores.
 #
-# Usage: scripts/compare_outputs.sh [REF]   (default HEAD: the working tree's uncommitted change)
-# Outputs stay in build-compare/{ref,new}-out/ for a closer look.
+# Usage: scripts/compare_outputs.sh [--compare-only] [REF]   (default HEAD: the working tree's
+# uncommitted change). Outputs stay in build-compare/{ref,new}-out/ for a closer look;
+# --compare-only compares the outputs already there again (no build, no run).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
+compare_only=0
+if [ "${1:-}" = "--compare-only" ]; then compare_only=1; shift; fi
 ref=${1:-HEAD}
 sha=$(git -C "$root" rev-parse --verify "$ref^{commit}")
 cmp_dir="$root/build-compare"
@@ -24,17 +30,21 @@ mkdir -p "$cmp_dir"
 
 # --- Both builds (ccache shares objects between them: paths relative to each tree) -------------
 export CCACHE_BASEDIR="$cmp_dir/.."
-if [ ! -d "$worktree/.git" ] && [ ! -f "$worktree/.git" ]; then
+if [ $compare_only -eq 1 ]; then
+    :
+elif [ ! -d "$worktree/.git" ] && [ ! -f "$worktree/.git" ]; then
     git -C "$root" worktree add --detach "$worktree" "$sha" > /dev/null
 else
     git -C "$worktree" checkout --detach --quiet "$sha"
 fi
-echo "building $ref ($sha) in $worktree/build ..." >&2
-"$worktree/scripts/build.sh" > "$cmp_dir/ref-build.log" 2>&1 ||
-    { tail -20 "$cmp_dir/ref-build.log"; exit 1; }
-echo "building the working tree ..." >&2
-"$root/scripts/build.sh" > "$cmp_dir/new-build.log" 2>&1 ||
-    { tail -20 "$cmp_dir/new-build.log"; exit 1; }
+if [ $compare_only -eq 0 ]; then
+    echo "building $ref ($sha) in $worktree/build ..." >&2
+    "$worktree/scripts/build.sh" > "$cmp_dir/ref-build.log" 2>&1 ||
+        { tail -20 "$cmp_dir/ref-build.log"; exit 1; }
+    echo "building the working tree ..." >&2
+    "$root/scripts/build.sh" > "$cmp_dir/new-build.log" 2>&1 ||
+        { tail -20 "$cmp_dir/new-build.log"; exit 1; }
+fi
 
 app() {  # BUILD_DIR NAME: the app's executable wherever the build put it
     local found
@@ -46,7 +56,8 @@ app() {  # BUILD_DIR NAME: the app's executable wherever the build put it
 # --- The jobs, run with one build into OUT; inputs always from the working tree --------------
 run_jobs() {
     local build=$1 out=$2
-    local slam sim imp ev insp ini="$root/config_ini" tmp="$out/tmp"
+    local slam sim imp ev insp tmp="$out/tmp"
+    local ini="$root/config_ini/slam" scenarios="$root/config_ini/scenarios"
     slam=$(app "$build" lodestone-slam)
     sim=$(app "$build" lodestone-sim)
     imp=$(app "$build" lodestone-import)
@@ -63,23 +74,26 @@ run_jobs() {
     "$slam" -q --rawlog "$sample" --ground-truth "${sample%.rawlog.gz}.gt.tum" \
         --config "$ini/slam.ini" --out "$out/bundled" > "$out/bundled.stdout"
     job office
-    "$slam" -q --sim "$ini/office.ini" --config "$ini/slam.ini" --out "$out/office" \
+    "$slam" -q --sim "$scenarios/office.ini" --config "$ini/slam.ini" --out "$out/office" \
         > "$out/office.stdout"
-    job corridor_kidnap
-    "$sim" -c "$ini/corridor_kidnap.ini" -o "$out/corridor_kidnap.rawlog.gz" > /dev/null
-    "$slam" -q --rawlog "$out/corridor_kidnap.rawlog.gz" --config "$ini/slam.ini" \
-        --ground-truth "$out/corridor_kidnap.gt.tum" --out "$out/corridor_kidnap" \
-        > "$out/corridor_kidnap.stdout"
-    job paper_kidnap
-    "$slam" -q --sim "$ini/paper_kidnap.ini" --config "$ini/slam.ini" --out "$out/paper_kidnap" \
-        > "$out/paper_kidnap.stdout"
-    "$ev" relocation "$out/paper_kidnap" > "$out/paper_kidnap.relocation.txt"
-    job corridor_shuttle
-    "$slam" -q --sim "$ini/corridor_shuttle.ini" --config "$tmp/slam_window.ini" \
-        --out "$out/corridor_shuttle" > "$out/corridor_shuttle.stdout"
-    "$ev" closures "$out/corridor_shuttle" > "$out/corridor_shuttle.closures.txt"
+    # Longer scenarios are recorded at 320x240 / 15 Hz and run from disk (the user's path).
+    local scenario
+    for scenario in corridor_kidnap:slam.ini paper_kidnap:slam.ini \
+        corridor_shuttle:tmp/slam_window.ini; do
+        local name=${scenario%%:*} cfg=${scenario#*:}
+        case $cfg in tmp/*) cfg="$out/$cfg" ;; *) cfg="$ini/$cfg" ;; esac
+        job "$name"
+        "$sim" -c "$scenarios/$name.ini" --camera 320x240@15 -o "$out/$name.rawlog.gz" > /dev/null
+        "$slam" -q --rawlog "$out/$name.rawlog.gz" --config "$cfg" \
+            --ground-truth "$out/$name.gt.tum" --out "$out/$name" > "$out/$name.stdout"
+        "$ev" closures "$out/$name" -g "$out/$name.gt.tum" > "$out/$name.closures.txt"
+        case $name in
+            *kidnap) "$ev" relocation "$out/$name" -g "$out/$name.gt.tum" \
+                         -e "$out/$name.events.txt" > "$out/$name.relocation.txt" ;;
+        esac
+    done
     job handheld
-    "$sim" -c "$ini/paper_loop_qvga.ini" --handheld -o "$out/handheld.rawlog" > /dev/null
+    "$sim" -c "$scenarios/paper_loop_qvga.ini" --handheld -o "$out/handheld.rawlog" > /dev/null
     "$slam" -q --rawlog "$out/handheld.rawlog" --config "$ini/rgbd_only.ini" \
         --ground-truth "$out/handheld.gt.tum" --out "$out/handheld" > "$out/handheld.stdout"
     if [ -d "$data" ]; then
@@ -103,28 +117,35 @@ run_jobs() {
     else
         echo "  (the magnetic recordings are absent: $data; their jobs skipped)" >&2
     fi
-    rm -rf "$tmp"
 }
 
 # Prints FILE (under DIR) as compared: what depends on the wall clock or on DIR taken out.
 normalized() {
     case $1 in
-        *.png) ;;
         *.gz) zcat "$1" ;;
         */nodes.csv) cut -d, -f1-4 "$1" ;;
         */report.json)
-            python3 -c 'import json,sys
-r = json.load(open(sys.argv[1])); r.pop("timing", None); r.pop("input", None)
-print(json.dumps(r, indent=1, sort_keys=True))' "$1" ;;
-        *.stdout) sed -E 's/ in [0-9.]+ s \([0-9.]+x real time\)//; s|outputs in .*:|outputs:|' "$1" ;;
+            python3 -c 'import json, re, sys
+wall = {"timing", "stage_seconds", "full_seconds", "local_seconds", "background_wait_seconds"}
+def strip(x):
+    if isinstance(x, dict):
+        return {k: strip(v) for k, v in x.items()
+                if k != "input" and k not in wall and not re.search(r"(^|_)ms(_|$)", k)}
+    if isinstance(x, list):
+        return [strip(v) for v in x]
+    return x.replace(sys.argv[2], "OUT") if isinstance(x, str) else x
+print(json.dumps(strip(json.load(open(sys.argv[1]))), indent=1, sort_keys=True))' "$1" "$2" ;;
+        *.stdout) sed -E "s/ in [0-9.]+ s \([0-9.]+x real time\)//; s/^\[[0-9:.]+\|/[/; s|$2|OUT|g" "$1" ;;
         *) sed "s|$2|OUT|g" "$1" ;;
     esac
 }
 
-echo "running the jobs with $ref ..." >&2
-run_jobs "$worktree/build" "$cmp_dir/ref-out"
-echo "running the jobs with the working tree ..." >&2
-run_jobs "$root/build" "$cmp_dir/new-out"
+if [ $compare_only -eq 0 ]; then
+    echo "running the jobs with $ref ..." >&2
+    run_jobs "$worktree/build" "$cmp_dir/ref-out"
+    echo "running the jobs with the working tree ..." >&2
+    run_jobs "$root/build" "$cmp_dir/new-out"
+fi
 
 echo "| output | files compared | differing |"
 echo "|---|---|---|"
@@ -134,7 +155,6 @@ while IFS= read -r f; do
     rel=${f#"$cmp_dir/ref-out/"}
     group=${rel%%/*}
     group=${group%%.*}
-    case $rel in *.png) continue ;; esac
     total[$group]=$(( ${total[$group]:-0} + 1 ))
     other="$cmp_dir/new-out/$rel"
     if [ ! -f "$other" ] ||
@@ -146,7 +166,6 @@ done < <(find "$cmp_dir/ref-out" -type f | sort)
 # Files only the new build wrote are a change too.
 while IFS= read -r f; do
     rel=${f#"$cmp_dir/new-out/"}
-    case $rel in *.png) continue ;; esac
     if [ ! -f "$cmp_dir/ref-out/$rel" ]; then
         group=${rel%%/*}
         group=${group%%.*}

@@ -19,14 +19,14 @@ sample="$root/rawlogs/office_qvga.rawlog.gz"
 "$inspect" summary "$sample" > "$out/summary.txt"
 echo "== lodestone-slam on the bundled rawlog $sample"
 "$slam" --rawlog "$sample" --ground-truth "${sample%.rawlog.gz}.gt.tum" \
-    --config "$root/config_ini/slam.ini" --out "$out/bundled"
+    --config "$root/config_ini/slam/slam.ini" --out "$out/bundled"
 echo
 echo "== lodestone-inspect report of the bundled rawlog and that run"
 "$inspect" report "$sample" --out "$out/report" --slam "$out/bundled" \
     --ground-truth "${sample%.rawlog.gz}.gt.tum" -q
 echo
 echo "== lodestone-slam on the office scenario, simulated on the fly"
-"$slam" --sim "$root/config_ini/office.ini" --config "$root/config_ini/slam.ini" \
+"$slam" --sim "$root/config_ini/scenarios/office.ini" --config "$root/config_ini/slam/slam.ini" \
     --out "$out/office"
 echo
 echo "demo: results in $out"

@@ -16,7 +16,7 @@ echo "|---|---|---|---|---|---|"
 for s in "${scenarios[@]}"; do
     rm -rf "$out/$s.rawlog.gz" "$out/${s}_Images"
     start=$(date +%s.%N)
-    log=$("$root/build/apps/lodestone-sim/lodestone-sim" --config "$root/config_ini/$s.ini" \
+    log=$("$root/build/apps/lodestone-sim/lodestone-sim" --config "$root/config_ini/scenarios/$s.ini" \
         --out "$out/$s.rawlog.gz")
     end=$(date +%s.%N)
     summary=$(echo "$log" | grep "observations (")

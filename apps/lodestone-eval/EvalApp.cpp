@@ -4,6 +4,8 @@
 #include <EvalApp.h>
 #include <lodestone/eval/RelocationEval.h>
 #include <lodestone/eval/TrajectoryPlot.h>
+#include <lodestone/outputs/ClosureTable.h>
+#include <lodestone/outputs/RunFiles.h>
 
 #include <cmath>
 #include <cstdio>
@@ -14,14 +16,17 @@ namespace lodestone::eval {
 
 namespace {
 
+using outputs::pathIn;
+using outputs::RunFile;
+
 int runRelocationEval(const std::string& dir, std::string truthPath, std::string eventsPath,
                       double maxDt, std::ostream& out, std::ostream& err) {
     try {
-        if (truthPath.empty()) truthPath = dir + "/ground_truth.tum";
-        if (eventsPath.empty()) eventsPath = dir + "/events.txt";
-        const auto reported = readReportedKidnaps(dir + "/report.json");
-        const auto trajectory = io::readTumTrajectory(dir + "/trajectory.tum");
-        const std::string before = dir + "/map_at_first_kidnap.tum";
+        if (truthPath.empty()) truthPath = pathIn(dir, RunFile::GroundTruth);
+        if (eventsPath.empty()) eventsPath = pathIn(dir, RunFile::Events);
+        const auto reported = readReportedKidnaps(pathIn(dir, RunFile::Report));
+        const auto trajectory = io::readTumTrajectory(pathIn(dir, RunFile::Trajectory));
+        const std::string before = pathIn(dir, RunFile::MapAtFirstKidnap);
         std::vector<io::TumPose> mapBefore;
         if (std::ifstream(before).good()) mapBefore = io::readTumTrajectory(before);
         const auto truth = io::readTumTrajectory(truthPath);
@@ -40,9 +45,9 @@ int runRelocationEval(const std::string& dir, std::string truthPath, std::string
 int runClosureEval(const std::string& dir, std::string truthPath, double maxDt, double radius,
                    std::ostream& out, std::ostream& err) {
     try {
-        if (truthPath.empty()) truthPath = dir + "/ground_truth.tum";
-        const auto closures = readClosureLog(dir + "/closures.csv");
-        const auto trajectory = io::readTumTrajectory(dir + "/trajectory.tum");
+        if (truthPath.empty()) truthPath = pathIn(dir, RunFile::GroundTruth);
+        const auto closures = outputs::readClosureTable(pathIn(dir, RunFile::Closures));
+        const auto trajectory = io::readTumTrajectory(pathIn(dir, RunFile::Trajectory));
         const auto truth = io::readTumTrajectory(truthPath);
         ClosureEvalOptions options;
         options.maxDt = maxDt;
@@ -50,7 +55,7 @@ int runClosureEval(const std::string& dir, std::string truthPath, double maxDt, 
         const auto qualities = evaluateClosures(closures, trajectory, truth, options);
         out << formatClosureQuality(qualities, options);
         // The closers' recall funnels, when the run reported them (it had ground truth).
-        const std::string report = dir + "/report.json";
+        const std::string report = pathIn(dir, RunFile::Report);
         if (std::ifstream(report)) {
             const auto funnels =
                 readClosureFunnels(report, revisitPasses(trajectory, truth, options), qualities);

@@ -45,7 +45,7 @@ for f in "${inputs[@]}"; do
     for app in inspect slam magfit; do
         case $app in
             inspect) cmd=("$inspect" summary "$f") ;;
-            slam) cmd=("$slam" --rawlog "$f" --config "$root/config_ini/slam.ini" --quiet --out "$work/out") ;;
+            slam) cmd=("$slam" --rawlog "$f" --config "$root/config_ini/slam/slam.ini" --quiet --out "$work/out") ;;
             magfit) cmd=("$magfit" "$f") ;;
         esac
         set +e

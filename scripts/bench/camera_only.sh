@@ -13,7 +13,7 @@ slam="$root/build/apps/lodestone-slam/lodestone-slam"
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 scenarios=("$@")
-[ ${#scenarios[@]} -gt 0 ] || scenarios=("$root/config_ini/office.ini" "$root/config_ini/paper_loop.ini")
+[ ${#scenarios[@]} -gt 0 ] || scenarios=("$root/config_ini/scenarios/office.ini" "$root/config_ini/scenarios/paper_loop.ini")
 field() { { grep -o "\"$2\": [0-9.e+-]*" "$1" || true; } | head -1 | awk '{print $2}'; }
 echo "| scenario | camera | carrier | frames | ATE [m] | VO gaps / segments | loop closures kept | real-time factor (one run on 2 cores) |"
 echo "|---|---|---|---|---|---|---|---|"
@@ -28,7 +28,7 @@ for ini in "${scenarios[@]}"; do
             *) flags=(); config=visual_only.ini; tag=wheels ;;
         esac
         "$sim" -c "$ini" -o "$out/${name}_$tag.rawlog" "${flags[@]}" > /dev/null
-        run=$("$slam" -r "$out/${name}_$tag.rawlog" --config "$root/config_ini/$config" \
+        run=$("$slam" -r "$out/${name}_$tag.rawlog" --config "$root/config_ini/slam/$config" \
             --ground-truth "$out/${name}_$tag.gt.tum" --out "$out/${name}_$tag" --quiet 2>&1 | grep -v "^\[")
         report="$out/${name}_$tag/report.json"
         ate=$(echo "$run" | grep -o "ATE RMSE [0-9.]*" | awk '{print $3}')

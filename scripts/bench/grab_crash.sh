@@ -27,7 +27,7 @@ rawlog_prefix = $run/grab
 [SIM]
 driver = CSimulatedRobot
 process_rate = 100
-scenario = $root/config_ini/paper_loop.ini
+scenario = $root/config_ini/scenarios/paper_loop.ini
 camera = 640x480@30
 time_scale = 1
 ground_truth = $run/grab.gt.tum

@@ -12,18 +12,18 @@
 #
 # Usage: scripts/bench/kidnap.sh [--qvga] [--variants N] [--jobs J] [--no-wheel-drop]
 #                                [--config SLAM.ini] [SCENARIO.ini ...]
-#   default scenario: config_ini/paper_kidnap.ini (830 s of 640x480 data: about ten minutes)
+#   default scenario: config_ini/scenarios/paper_kidnap.ini (830 s of 640x480 data: about ten minutes)
 #   --qvga           the camera at 320x240 / 15 Hz (about three times faster)
 #   --variants N     also N variants of each scenario: other simulator seeds, put-downs drawn
 #                    at random on the loop (kidnap_variant.awk; corridor scenarios only on its
 #                    long plain sides), lift times moved by up to 15 s - the held-out kind
 #   --jobs J         runs at once (each pinned to a core of its own when taskset exists)
 #   --no-wheel-drop  no wheel-drop sensor: the kidnap detectors of [kidnap_detection] instead
-#   --config INI     the SLAM configuration (default config_ini/slam.ini; scripts/bench/
+#   --config INI     the SLAM configuration (default config_ini/slam/slam.ini; scripts/bench/
 #                    window_inis.sh writes slam.ini with the window closer, or both closers)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
-qvga=0 variants=0 jobs=1 nowheel=0 config="$root/config_ini/slam.ini"
+qvga=0 variants=0 jobs=1 nowheel=0 config="$root/config_ini/slam/slam.ini"
 scenarios=()
 while [ $# -gt 0 ]; do
     case "$1" in
@@ -37,7 +37,7 @@ while [ $# -gt 0 ]; do
     esac
     shift
 done
-[ ${#scenarios[@]} -gt 0 ] || scenarios=("$root/config_ini/paper_kidnap.ini")
+[ ${#scenarios[@]} -gt 0 ] || scenarios=("$root/config_ini/scenarios/paper_kidnap.ini")
 "$root/scripts/build.sh" > /dev/null
 slam="$root/build/apps/lodestone-slam/lodestone-slam"
 evaluate="$root/build/apps/lodestone-eval/lodestone-eval"

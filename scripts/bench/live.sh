@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Live grabbing with live SLAM (issue #18): lodestone-grab streams a simulated robot
-# (CSimulatedRobot) in real time with --slam config_ini/slam.ini; then lodestone-slam runs
+# (CSimulatedRobot) in real time with --slam config_ini/slam/slam.ini; then lodestone-slam runs
 # offline on the grabbed rawlog. Prints a markdown table: the live run's lag behind the newest
 # observation (p50 / p99 / max), RGB-D frames skipped, ATE of the live and of the offline run
 # against the driver's ground truth, and the grab's own counts.
@@ -30,13 +30,13 @@ rawlog_prefix = $run/grab
 [SIM]
 driver = CSimulatedRobot
 process_rate = 100
-scenario = $root/config_ini/$scenario.ini
+scenario = $root/config_ini/scenarios/$scenario.ini
 camera = $camera
 time_scale = 1
 max_seconds = $seconds
 ground_truth = $run/grab.gt.tum
 INI
-    "$grab" "$run/grab.ini" -q --slam "$root/config_ini/slam.ini" > "$run/grab.txt"
+    "$grab" "$run/grab.ini" -q --slam "$root/config_ini/slam/slam.ini" > "$run/grab.txt"
     summary=$(grep "live SLAM" "$run/grab.txt")
     p50=$(echo "$summary" | sed -E 's/.*p50 ([0-9.]+) s.*/\1/')
     p99=$(echo "$summary" | sed -E 's/.*p99 ([0-9.]+) s.*/\1/')
@@ -44,7 +44,7 @@ INI
     skipped=$(echo "$summary" | sed -E 's/.*; ([0-9]+ of [0-9]+) RGB-D.*/\1/')
     obs=$(head -1 "$run/grab.txt" | awk '{print $2}')
     live_ate=$("$eval_" "$run/grab_slam/trajectory.tum" "$run/grab.gt.tum" | awk '/^ATE/{print $3}')
-    "$slam" --rawlog "$run/grab.rawlog.gz" --config "$root/config_ini/slam.ini" --quiet --out "$run/offline" > /dev/null
+    "$slam" --rawlog "$run/grab.rawlog.gz" --config "$root/config_ini/slam/slam.ini" --quiet --out "$run/offline" > /dev/null
     offline_ate=$("$eval_" "$run/offline/trajectory.tum" "$run/grab.gt.tum" | awk '/^ATE/{print $3}')
     echo "| $scenario | $camera | $seconds | $obs | $p50 | $p99 | $max | $skipped | $live_ate | $offline_ate |"
 done

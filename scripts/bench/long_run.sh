@@ -9,7 +9,7 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 laps=28
 camera=""
-config="$root/config_ini/slam.ini"
+config="$root/config_ini/slam/slam.ini"
 keep=""
 while [ $# -gt 0 ]; do
     case "$1" in
@@ -26,7 +26,7 @@ mkdir -p "$out"
 [ -n "$keep" ] || trap 'rm -rf "$out"' EXIT
 ini="$out/long_run.ini"
 sed -e "s/^name *=.*/name       = long_run/" -e "s/^laps *=.*/laps      = $laps/" \
-    "$root/config_ini/paper_kidnap.ini" > "$ini"
+    "$root/config_ini/scenarios/paper_kidnap.ini" > "$ini"
 if [ -n "$camera" ]; then
     w=${camera%%x*}; rest=${camera#*x}; h=${rest%%@*}; hz=${rest#*@}
     sed -i -e "/^\[camera\]/,/^\[/ s/^width *=.*/width      = $w/" \

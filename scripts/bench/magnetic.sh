@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Magnetic loop closure benchmarks (MagneticGpERD, config_ini/magnetic_only.ini), printed as
+# Magnetic loop closure benchmarks (MagneticGpERD, config_ini/slam/magnetic_only.ini), printed as
 # markdown tables:
 #   1. Aalto invensense trials 1-9 and Kok & Solin's walks, read in place from
 #      ../shared/data/magnetic, each imported with the drift model for seeds 1..N (10) and run through
@@ -29,7 +29,7 @@ if [ -d "$data" ]; then
     # One key or more changed in magnetic_only.ini: "key=value ..." [ONLY]
     variant() {
         local ini="$out/variant.ini"
-        cp "$root/config_ini/magnetic_only.ini" "$ini"
+        cp "$root/config_ini/slam/magnetic_only.ini" "$ini"
         for kv in $1; do sed -i "s|^${kv%%=*} *=[^;]*|${kv%%=*} = ${kv#*=} |" "$ini"; done
         echo "$1:"
         echo

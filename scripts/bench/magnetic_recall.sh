@@ -39,9 +39,9 @@ echo
 echo "| seed | INI: magnetic closer | its closures: right / wrong | same direction: passes, recall | opposite direction: passes, recall | ATE [m] |"
 echo "|---|---|---|---|---|---|"
 for seed in $(seq 1 "$sim_seeds"); do
-    "$sim" -c "$root/config_ini/corridor_shuttle.ini" --camera 320x240@15 -s "$seed" \
+    "$sim" -c "$root/config_ini/scenarios/corridor_shuttle.ini" --camera 320x240@15 -s "$seed" \
         -o "$out/shuttle_$seed.rawlog" > /dev/null
-    for ini in "$root/config_ini/slam.ini" "$out/slam_window.ini" "$out/slam_both.ini"; do
+    for ini in "$root/config_ini/slam/slam.ini" "$out/slam_window.ini" "$out/slam_both.ini"; do
         name=$(basename "$ini")
         run="$out/shuttle_${seed}_$name"
         ate=$("$slam" --rawlog "$out/shuttle_$seed.rawlog" --ground-truth "$out/shuttle_$seed.gt.tum" \

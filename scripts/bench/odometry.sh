@@ -5,7 +5,7 @@
 #   3. VO on the real Kinect frames of ../shared/data/rgbd/3dmatch (skipped when absent).
 # Usage: scripts/bench/odometry.sh [--no-guided] [SCENARIO ...]   (default: office corridor
 #        paper_loop; paper_loop is 640x480 at 30 Hz for 379 s and takes several minutes)
-#   --no-guided   VO matches by brute force only (config_ini/odometry.ini with guided_matching
+#   --no-guided   VO matches by brute force only (config_ini/slam/odometry.ini with guided_matching
 #                 = false), for the before / after of guided matching
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
@@ -13,7 +13,7 @@ root=$(cd "$(dirname "$0")/../.." && pwd)
 bin="$root/build/bench"
 pin=()
 command -v taskset > /dev/null && pin=(taskset -c 0)
-odometry_ini="$root/config_ini/odometry.ini"
+odometry_ini="$root/config_ini/slam/odometry.ini"
 tmp_ini=$(mktemp --suffix=.ini)
 if [ "${1:-}" = "--no-guided" ]; then
     shift
@@ -30,7 +30,7 @@ echo
 echo "| scenario | method | ATE RMSE [m] | RPE [m per s] | RPE [% of 1 m] | end-point drift [m] |"
 echo "|---|---|---|---|---|---|"
 for s in "${scenarios[@]}"; do
-    "${pin[@]}" "$bin/bench_odometry" "$root/config_ini/$s.ini" - 1e9 "$odometry_ini" 2>> "$vo_rows"
+    "${pin[@]}" "$bin/bench_odometry" "$root/config_ini/scenarios/$s.ini" - 1e9 "$odometry_ini" 2>> "$vo_rows"
 done
 echo
 echo "### Visual odometry on the same runs (time per frame on one core, ms)"

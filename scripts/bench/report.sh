@@ -33,7 +33,7 @@ for item in "${inputs[@]}"; do
     key=$(basename "${rawlog%.rawlog.gz}")
     run="$out/${key}_slam"
     if [ ! -f "$run/report.json" ]; then
-        "$slam" --rawlog "$rawlog" --config "$root/config_ini/slam.ini" --quiet --out "$run" > /dev/null
+        "$slam" --rawlog "$rawlog" --config "$root/config_ini/slam/slam.ini" --quiet --out "$run" > /dev/null
     fi
     bytes=$(on_disk "$rawlog")
     for with_slam in no yes; do

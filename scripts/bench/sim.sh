@@ -16,7 +16,7 @@ echo "| scenario | size | frames | ms / frame | frames / s | pixels with depth |
 echo "|---|---|---|---|---|---|"
 for scenario in paper_loop corridor office; do
     for size in 320x240 640x480; do
-        "${pin[@]}" "$bin/bench_sim_render" "$root/config_ini/$scenario.ini" "$size" 300
+        "${pin[@]}" "$bin/bench_sim_render" "$root/config_ini/scenarios/$scenario.ini" "$size" 300
     done
 done
 echo
@@ -25,5 +25,5 @@ echo
 echo "| scenario | path [m] | earth field [uT] | abs(B) range [uT] | abs(B) std [uT] | largest anomaly [uT] | correlation length [m] |"
 echo "|---|---|---|---|---|---|---|"
 for scenario in office corridor paper_loop; do
-    "$bin/bench_sim_field" "$root/config_ini/$scenario.ini"
+    "$bin/bench_sim_field" "$root/config_ini/scenarios/$scenario.ini"
 done

@@ -21,7 +21,7 @@ echo
 echo "| scenario | camera | config | nodes | loop closures | ATE graph [m] | ATE fused odometry, same nodes [m] | difference [m] | engine ms per frame: mean / p99 | engine real-time factor | engine ms per node, by decile of the run |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|"
 for s in "${scenarios[@]}"; do
-    "${pin[@]}" "$bin/bench_slam" "$root/config_ini/$s.ini" "$root/config_ini/odometry_only.ini"
+    "${pin[@]}" "$bin/bench_slam" "$root/config_ini/scenarios/$s.ini" "$root/config_ini/slam/odometry_only.ini"
 done
 echo
 echo "### Engine + CeresGSO on synthetic graphs (laps of a 25 m square, a closure on every 8th node of every later lap, to the first or the previous lap)"

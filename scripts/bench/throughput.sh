@@ -9,7 +9,7 @@
 # the build did not report them), ORB, matching, RANSAC (VO), the rest of the node decider
 # (fusion, keyframes, graph), the loop closers, the solves, and the frame loop's wait for data.
 # Usage: scripts/bench/throughput.sh [--config INI] [--recordings DIR] [--slam BINARY] [SCENARIO.ini ...]
-#   --config      SLAM INI (default config_ini/slam.ini)
+#   --config      SLAM INI (default config_ini/slam/slam.ini)
 #   --recordings  keep the recorded rawlogs in DIR and reuse them when there (they are large:
 #                 paper_loop is 7 GB with its images)
 #   --slam        another lodestone-slam (e.g. a build of an earlier commit, for "before")
@@ -18,7 +18,7 @@
 #   default scenarios: office and paper_loop
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
-config="$root/config_ini/slam.ini"
+config="$root/config_ini/slam/slam.ini"
 recordings=""
 simArgs=()
 ext=rawlog
@@ -40,7 +40,7 @@ trap 'rm -rf "$out"' EXIT
 rec=${recordings:-$out}
 mkdir -p "$rec"
 scenarios=("$@")
-[ ${#scenarios[@]} -gt 0 ] || scenarios=("$root/config_ini/office.ini" "$root/config_ini/paper_loop.ini")
+[ ${#scenarios[@]} -gt 0 ] || scenarios=("$root/config_ini/scenarios/office.ini" "$root/config_ini/scenarios/paper_loop.ini")
 json() { python3 -c "import json,sys; r=json.load(open(sys.argv[1])); print(eval(sys.argv[2]))" "$@"; }
 stages="$out/stages.md"
 : > "$stages"

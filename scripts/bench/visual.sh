@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Visual loop closure benchmarks (OrbSubmapERD, config_ini/visual_only.ini), printed as
+# Visual loop closure benchmarks (OrbSubmapERD, config_ini/slam/visual_only.ini), printed as
 # markdown tables:
 #   1. closures on the simulator against ground truth, with submaps of 6 keyframes and with
 #      single keyframes (no submaps), ATE of the graph;
@@ -21,7 +21,7 @@ rows=$(mktemp)
 trap 'rm -f "$rows"' EXIT
 for s in "${scenarios[@]}"; do
     for k in 6 1; do
-        "${pin[@]}" "$bin/bench_visual" "$root/config_ini/$s.ini" "$root/config_ini/visual_only.ini" "$k" >> "$rows"
+        "${pin[@]}" "$bin/bench_visual" "$root/config_ini/scenarios/$s.ini" "$root/config_ini/slam/visual_only.ini" "$k" >> "$rows"
     done
 done
 echo "### Visual loop closures against ground truth (visual_only.ini)"

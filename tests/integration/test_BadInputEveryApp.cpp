@@ -88,7 +88,7 @@ TEST(BadInputEveryApp, EveryRawlogReaderNamesEveryDamagedRawlog) {
              path, dir.file("imu" + n + ".rawlog")},
             {"magfit: " + shape, kMagfit + " " + path, 1, path, ""},
             {"slam: " + shape,
-             kSlam + " --rawlog " + path + " --config " + kConfigDir + "/slam.ini --quiet --out " +
+             kSlam + " --rawlog " + path + " --config " + kConfigDir + "/slam/slam.ini --quiet --out " +
                  dir.file("slam" + n),
              1, path, ""}};
         for (const auto& c : cases) check(c);
@@ -103,13 +103,13 @@ TEST(BadInputEveryApp, EveryRawlogReaderNamesEveryDamagedRawlog) {
 
 TEST(BadInputEveryApp, EveryIniIsCheckedBeforeAnyWork) {
     lodestone::test::TempDir dir;
-    const std::string office = readBytes(kConfigDir + "/office.ini");
+    const std::string office = readBytes(kConfigDir + "/scenarios/office.ini");
     const auto scenarioWith = [&](const std::string& name, const std::string& speedLine) {
         const auto path = dir.file(name);
         writeBytes(path, std::regex_replace(office, std::regex("\nspeed *=[^\n]*"), "\n" + speedLine));
         return path;
     };
-    const std::string magneticIni = readBytes(kConfigDir + "/magnetic_only.ini");
+    const std::string magneticIni = readBytes(kConfigDir + "/slam/magnetic_only.ini");
     const auto magfitWith = [&](const std::string& name, const std::string& line) {
         const auto path = dir.file(name);
         writeBytes(path, std::regex_replace(magneticIni, std::regex("\\[MagneticGpERD\\]"),
@@ -120,7 +120,7 @@ TEST(BadInputEveryApp, EveryIniIsCheckedBeforeAnyWork) {
     writeBytes(nanLengthScale,
                std::regex_replace(magneticIni, std::regex("\ngp_length_scale *=[^\n]*"), "\ngp_length_scale = nan"));
     const auto slamIni = dir.file("slam_typo.ini");
-    writeBytes(slamIni, readBytes(kConfigDir + "/slam.ini") + "\n[CeresGSO]\nmax_iteratons = 10\n");
+    writeBytes(slamIni, readBytes(kConfigDir + "/slam/slam.ini") + "\n[CeresGSO]\nmax_iteratons = 10\n");
     const std::vector<Case> cases{
         {"sim: a typo", kSim + " -c " + scenarioWith("typo.ini", "sped = 0.4") + " -o " + dir.file("a.rawlog"), 1,
          "'sped'", dir.file("a.rawlog")},
@@ -145,9 +145,9 @@ TEST(BadInputEveryApp, OutputsThatCannotBeWrittenAreNamedFirst) {
     writeBytes(walk, "t,tm,px,py,pz,q0,q1,q2,q3,mx,my,mz\n0,0,0,0,0,1,0,0,0,1,2,3\n1,1,1,0,0,1,0,0,0,1,2,3\n");
     const std::string unwritable = "/proc/lodestone_cannot_be_here/out.rawlog";
     const std::vector<Case> cases{
-        {"sim: an unwritable folder", kSim + " -c " + kConfigDir + "/office.ini -o " + unwritable, 1,
+        {"sim: an unwritable folder", kSim + " -c " + kConfigDir + "/scenarios/office.ini -o " + unwritable, 1,
          unwritable, ""},
-        {"sim: --out is a folder", kSim + " -c " + kConfigDir + "/office.ini -o " + dir.file("a_folder.rawlog"), 1,
+        {"sim: --out is a folder", kSim + " -c " + kConfigDir + "/scenarios/office.ini -o " + dir.file("a_folder.rawlog"), 1,
          dir.file("a_folder.rawlog"), dir.file("a_folder_Images")},
         {"inspect to-imu: an unwritable folder", kInspect + " to-imu " + kSample + " " + unwritable, 1,
          "/proc/lodestone_cannot_be_here", ""},

@@ -55,7 +55,7 @@ TEST(BadInputMatrix, RawlogsThatAreNoRawlogsAreNamedByEveryReader) {
     for (const auto& c : cases) {
         expectNamedError(runCommand(kInspect + " summary " + c.path), 1, c.path, "inspect: " + c.name);
         const auto slam = runCommand(kSlam + " --rawlog " + c.path + " --config " + kConfigDir +
-                                     "/slam.ini --quiet --out " + dir.file("out_" + std::to_string(&c - &cases[0])));
+                                     "/slam/slam.ini --quiet --out " + dir.file("out_" + std::to_string(&c - &cases[0])));
         expectNamedError(slam, 1, c.path, "slam: " + c.name);
     }
 }
@@ -73,7 +73,7 @@ TEST(BadInputMatrix, ConfigurationValuesAndOutputsAreNamed) {
                      "negative value");
     // An existing file as --out, and a folder that cannot be made.
     std::ofstream(dir.file("a_file")) << "x";
-    const std::string slamIni = readBytes(kConfigDir + "/slam.ini");
+    const std::string slamIni = readBytes(kConfigDir + "/slam/slam.ini");
     expectNamedError(slamWith(slamIni, dir.file("a_file")), 1, dir.file("a_file"), "file as --out");
     EXPECT_EQ(readBytes(dir.file("a_file")), "x");
     expectNamedError(slamWith(slamIni, "/proc/lodestone_cannot_be_here"), 1,

@@ -26,7 +26,7 @@ const std::string kConfigDir = LODESTONE_CONFIG_INI_DIR;
 /** The office at 320x240 / 15 Hz, images embedded, then only its RGB-D frames kept (and its
  * ground truth beside). Returns the camera-only rawlog's path. */
 std::string cameraOnlyOffice(const lodestone::test::TempDir& dir, int blankFrom = -1, int blankTo = -1) {
-    const auto sim = lodestone::test::runCommand(kSim + " -c " + kConfigDir + "/office.ini -o " +
+    const auto sim = lodestone::test::runCommand(kSim + " -c " + kConfigDir + "/scenarios/office.ini -o " +
                                                  dir.file("office.rawlog") +
                                                  " --camera 320x240@15 --embedded-images");
     EXPECT_EQ(sim.exitCode, 0) << sim.output;
@@ -63,7 +63,7 @@ TEST(CameraOnlySlam, RunsWithRgbdOnlyAndIsRefusedWithANamedWayOutElsewhere) {
     const std::string rawlog = cameraOnlyOffice(dir);
 
     const auto run = lodestone::test::runCommand(
-        kSlam + " --rawlog " + rawlog + " --config " + kConfigDir + "/rgbd_only.ini --out " +
+        kSlam + " --rawlog " + rawlog + " --config " + kConfigDir + "/slam/rgbd_only.ini --out " +
         dir.file("out") + " --ground-truth " + dir.file("camera.gt.tum") + " --quiet");
     ASSERT_EQ(run.exitCode, 0) << run.output;
     const auto traj = lodestone::io::readTumTrajectory(dir.file("out/trajectory.tum"));
@@ -75,7 +75,7 @@ TEST(CameraOnlySlam, RunsWithRgbdOnlyAndIsRefusedWithANamedWayOutElsewhere) {
 
     for (const char* ini : {"slam.ini", "visual_only.ini"}) {
         const auto refused = lodestone::test::runCommand(kSlam + " --rawlog " + rawlog + " --config " +
-                                                         kConfigDir + "/" + ini + " --out " +
+                                                         kConfigDir + "/slam/" + ini + " --out " +
                                                          dir.file(std::string("no_") + ini));
         EXPECT_EQ(refused.exitCode, 1) << ini;
         EXPECT_NE(refused.output.find("rgbd_only.ini"), std::string::npos) << refused.output;
@@ -85,7 +85,7 @@ TEST(CameraOnlySlam, RunsWithRgbdOnlyAndIsRefusedWithANamedWayOutElsewhere) {
 namespace {
 /** rgbd_only.ini with `key = value` set in it, written to `path`. */
 std::string rgbdOnlyWith(const std::string& path, const std::vector<std::pair<std::string, std::string>>& keys) {
-    std::ifstream base(kConfigDir + "/rgbd_only.ini");
+    std::ifstream base(kConfigDir + "/slam/rgbd_only.ini");
     std::string ini((std::istreambuf_iterator<char>(base)), std::istreambuf_iterator<char>());
     for (const auto& [key, value] : keys) {
         const std::regex line("\n" + key + " *= *[0-9.]+");
@@ -108,7 +108,7 @@ TEST(CameraOnlySlam, VoLostWithNoWheelsRelocalizesOnTheViewThatCameBack) {
     // 0.4 m further on, looking at what it saw before the lens was covered.
     const std::string rawlog = cameraOnlyOffice(dir, 150, 170);
     const auto run = lodestone::test::runCommand(
-        kSlam + " --rawlog " + rawlog + " --config " + kConfigDir + "/rgbd_only.ini --out " +
+        kSlam + " --rawlog " + rawlog + " --config " + kConfigDir + "/slam/rgbd_only.ini --out " +
         dir.file("out") + " --ground-truth " + dir.file("camera.gt.tum") + " --quiet");
     ASSERT_EQ(run.exitCode, 0) << run.output;
     const std::string report = reportOf(dir.file("out"));

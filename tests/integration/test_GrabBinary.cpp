@@ -21,7 +21,7 @@ using lodestone::test::runCommand;
 namespace {
 const std::string kGrab = LODESTONE_GRAB_BINARY;
 const std::string kSlam = LODESTONE_SLAM_BINARY;
-const std::string kOffice = std::string(LODESTONE_CONFIG_INI_DIR) + "/office.ini";
+const std::string kOffice = std::string(LODESTONE_CONFIG_INI_DIR) + "/scenarios/office.ini";
 
 // A grab INI of the simulated office robot; `extra` lines go into its section.
 std::string writeGrabIni(const lodestone::test::TempDir& dir, const std::string& extra,
@@ -73,7 +73,7 @@ TEST(GrabBinary, TheSimulatedRobotGrabbedAtTimeScale4RunsThroughSlam) {
     }
     const auto s = runCommand(kSlam + " --rawlog " + dir.file("run.rawlog.gz") + " --ground-truth " +
                               dir.file("run.gt.tum") + " --config " + LODESTONE_CONFIG_INI_DIR +
-                              "/slam.ini --quiet --out " + dir.file("slam"));
+                              "/slam/slam.ini --quiet --out " + dir.file("slam"));
     ASSERT_EQ(s.exitCode, 0) << s.output;
     std::smatch m;
     ASSERT_TRUE(std::regex_search(s.output, m, std::regex("ATE RMSE ([0-9.]+) m"))) << s.output;
@@ -192,7 +192,7 @@ TEST(GrabBinary, LiveSlamMatchesTheOfflineRunOnTheGrabbedRawlog) {
     lodestone::test::TempDir dir;
     const auto ini = writeGrabIni(dir, "time_scale = 4\nmax_seconds = 12");
     const auto r = runCommand("timeout 120 " + kGrab + " " + ini + " -q --slam " +
-                              LODESTONE_CONFIG_INI_DIR + "/slam.ini");
+                              LODESTONE_CONFIG_INI_DIR + "/slam/slam.ini");
     ASSERT_EQ(r.exitCode, 0) << r.output;
     const long nodes = numberIn(r.output, "live SLAM: ([0-9]+) nodes");
     EXPECT_GT(nodes, 10) << r.output;
@@ -203,7 +203,7 @@ TEST(GrabBinary, LiveSlamMatchesTheOfflineRunOnTheGrabbedRawlog) {
     const auto truth = lodestone::io::readTumTrajectory(dir.file("run.gt.tum"));
     const auto live = lodestone::io::readTumTrajectory(dir.file("run_slam/trajectory.tum"));
     const auto s = runCommand(kSlam + " --rawlog " + dir.file("run.rawlog.gz") + " --config " +
-                              LODESTONE_CONFIG_INI_DIR + "/slam.ini --quiet --out " + dir.file("offline"));
+                              LODESTONE_CONFIG_INI_DIR + "/slam/slam.ini --quiet --out " + dir.file("offline"));
     ASSERT_EQ(s.exitCode, 0) << s.output;
     const auto offline = lodestone::io::readTumTrajectory(dir.file("offline/trajectory.tum"));
     const double liveAte = lodestone::eval::absoluteTrajectoryError(live, truth).rmse;
@@ -227,7 +227,7 @@ TEST(GrabBinary, SigintDuringLiveSlamEndsBothCleanly) {
     lodestone::test::TempDir dir;
     const auto ini = writeGrabIni(dir, "time_scale = 1");
     const auto r = runCommand(kGrab + " " + ini + " -q --slam " + LODESTONE_CONFIG_INI_DIR +
-                              "/slam.ini & pid=$!; sleep 4; kill -INT $pid; wait $pid");
+                              "/slam/slam.ini & pid=$!; sleep 4; kill -INT $pid; wait $pid");
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("stopped by signal"), std::string::npos) << r.output;
     EXPECT_TRUE(fs::exists(dir.file("run.rawlog.gz")));

@@ -94,7 +94,7 @@ TEST(InspectReport, TheBundledSampleWithItsSlamRunOpensInChromium) {
     lodestone::test::TempDir dir;
     const std::string gt = std::regex_replace(kOffice, std::regex("rawlog.gz$"), "gt.tum");
     auto r = runCommand(kSlam + " --rawlog " + kOffice + " --config " + LODESTONE_CONFIG_INI_DIR +
-                        "/slam.ini --quiet --out " + dir.file("slam"));
+                        "/slam/slam.ini --quiet --out " + dir.file("slam"));
     ASSERT_EQ(r.exitCode, 0) << r.output;
     r = runCommand(kInspect + " report " + kOffice + " --out " + dir.file("report") + " --slam " +
                    dir.file("slam") + " --ground-truth " + gt + " -q");

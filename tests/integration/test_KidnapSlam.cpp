@@ -19,7 +19,7 @@ const std::string kScenario = LODESTONE_TEST_DATA_DIR "/kidnap_short.ini";
 
 /** slam.ini with the kidnap switches set. */
 std::string configWith(const lodestone::test::TempDir& dir, bool wheelDrop, bool detector) {
-    std::string ini = lodestone::test::readTextFile(kConfigDir + "/slam.ini");
+    std::string ini = lodestone::test::readTextFile(kConfigDir + "/slam/slam.ini");
     const auto set = [&](const std::string& key, bool on) {
         const std::regex re("(\n" + key + "\\s*=\\s*)(true|false)");
         EXPECT_TRUE(std::regex_search(ini, re)) << key << " not in slam.ini";

@@ -72,7 +72,7 @@ struct Run {
 Run slam(const std::string& rawlog, const std::string& config, const std::string& out) {
     const auto r = lodestone::test::runCommand(
         kSlam + " --rawlog " + rawlog + " --ground-truth " + rawlog.substr(0, rawlog.size() - 7) +
-        ".gt.tum --config " + kConfigDir + "/" + config + " --quiet --out " + out);
+        ".gt.tum --config " + kConfigDir + "/slam/" + config + " --quiet --out " + out);
     Run run;
     run.output = r.output;
     EXPECT_EQ(r.exitCode, 0) << r.output;

@@ -25,7 +25,7 @@ class SimBinary : public ::testing::TestWithParam<std::string> {};
 TEST_P(SimBinary, ScenarioRunsAndInspectReadsItsRawlog) {
     lodestone::test::TempDir dir;
     const auto out = dir.file(GetParam() + ".rawlog.gz");
-    const auto sim = lodestone::test::runCommand(kSim + " --config " + kConfigDir + "/" +
+    const auto sim = lodestone::test::runCommand(kSim + " --config " + kConfigDir + "/scenarios/" +
                                                  GetParam() + ".ini --camera 32x24@1 --out " + out);
     ASSERT_EQ(sim.exitCode, 0) << sim.output;
     const auto summary = lodestone::test::runCommand(kInspect + " summary " + out);
@@ -57,7 +57,7 @@ INSTANTIATE_TEST_SUITE_P(Scenarios, SimBinary,
 TEST(SimBinaryErrors, BadScenarioNamesTheKeyAndExits1) {
     lodestone::test::TempDir dir;
     const auto ini = dir.file("bad.ini");
-    std::ifstream in(kConfigDir + "/office.ini");
+    std::ifstream in(kConfigDir + "/scenarios/office.ini");
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     text.replace(text.find("laps      = 1"), 13, "lapz      = 1");
     std::ofstream(ini) << text;

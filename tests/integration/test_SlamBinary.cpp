@@ -66,8 +66,8 @@ void expectOutputsParse(const lodestone::test::TempDir& dir) {
 TEST(SlamBinary, SimulatedOfficeOdometryOnly) {
     lodestone::test::TempDir dir;
     const auto r = lodestone::test::runCommand(
-        kSlam + " --sim " + kConfigDir + "/office.ini --config " + kConfigDir +
-        "/odometry_only.ini --max-seconds 8 --quiet --out " + dir.path().string());
+        kSlam + " --sim " + kConfigDir + "/scenarios/office.ini --config " + kConfigDir +
+        "/slam/odometry_only.ini --max-seconds 8 --quiet --out " + dir.path().string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
     expectOutputsParse(dir);
     EXPECT_TRUE(fs::exists(dir.file("ground_truth.tum")));
@@ -83,7 +83,7 @@ TEST(SlamBinary, BundledRawlogWithGroundTruth) {
     const std::string gt = std::regex_replace(kOfficeRawlog, std::regex("rawlog.gz$"), "gt.tum");
     const auto r = lodestone::test::runCommand(kSlam + " --rawlog " + kOfficeRawlog +
                                                " --ground-truth " + gt + " --config " + kConfigDir +
-                                               "/slam.ini --out " + dir.path().string());
+                                               "/slam/slam.ini --out " + dir.path().string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
     expectOutputsParse(dir);
     const double ate = ateOf(r.output);
@@ -132,7 +132,7 @@ TEST(SlamBinary, ARawlogWithoutTheNeededObservationsIsRefused) {
     if (!fs::exists(laserOnly)) GTEST_SKIP() << "MRPT's sample datasets are not installed";
     lodestone::test::TempDir dir;
     const auto r = lodestone::test::runCommand(kSlam + " --rawlog '" + laserOnly + "' --config " +
-                                               kConfigDir + "/slam.ini --out " + dir.file("out"));
+                                               kConfigDir + "/slam/slam.ini --out " + dir.file("out"));
     EXPECT_EQ(r.exitCode, 1);
     EXPECT_NE(r.output.find("no CObservation3DRangeScan"), std::string::npos) << r.output;
     EXPECT_FALSE(fs::exists(dir.file("out")));
@@ -147,7 +147,7 @@ TEST(SlamBinary, ACorruptRawlogStopsAtTheFaultAndKeepsWhatWasProcessed) {
     }
     const auto r = lodestone::test::runCommand(kSlam + " --rawlog " + dir.file("cut.rawlog.gz") +
                                                " --config " + kConfigDir +
-                                               "/slam.ini --quiet --out " + dir.file("out"));
+                                               "/slam/slam.ini --quiet --out " + dir.file("out"));
     EXPECT_EQ(r.exitCode, 1) << r.output;
     EXPECT_NE(r.output.find("cut.rawlog.gz"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("writing what was processed"), std::string::npos) << r.output;
@@ -173,7 +173,7 @@ TEST(SlamBinary, MrptsGraphSlamToolReadsTheGraph) {
     }
     lodestone::test::TempDir dir;
     const auto r = lodestone::test::runCommand(kSlam + " --rawlog " + kOfficeRawlog + " --config " +
-                                               kConfigDir + "/slam.ini --quiet --out " +
+                                               kConfigDir + "/slam/slam.ini --quiet --out " +
                                                dir.path().string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
     const auto nodes = lodestone::io::readTumTrajectory(dir.file("trajectory.tum")).size();
@@ -190,14 +190,14 @@ TEST(SlamBinary, DecodingAheadChangesNothingButTheTime) {
     // byte.
     lodestone::test::TempDir dir;
     const auto sim = lodestone::test::runCommand(std::string(LODESTONE_SIM_BINARY) + " -c " +
-                                                 kConfigDir + "/office.ini -o " +
+                                                 kConfigDir + "/scenarios/office.ini -o " +
                                                  dir.file("office.rawlog") + " --camera 320x240@15");
     ASSERT_EQ(sim.exitCode, 0) << sim.output;
     ASSERT_TRUE(fs::is_directory(dir.file("office_Images")));  // external images indeed
     for (const char* ahead : {"0", "8"}) {
         const auto r = lodestone::test::runCommand(
             kSlam + " --rawlog " + dir.file("office.rawlog") + " --config " + kConfigDir +
-            "/slam.ini --quiet --decode-ahead " + ahead + " --out " + dir.file(std::string("ahead") + ahead));
+            "/slam/slam.ini --quiet --decode-ahead " + ahead + " --out " + dir.file(std::string("ahead") + ahead));
         ASSERT_EQ(r.exitCode, 0) << r.output;
     }
     for (const char* f : {"trajectory.tum", "graph.graph", "closures.csv"}) {
@@ -218,7 +218,7 @@ TEST(SlamBinary, ABadGroundTruthIsNamedBeforeAnyWorkAndNoStaleReportStays) {
     std::ofstream(dir.file("bad.tum")) << "1.0 0 0 0 0 0 0 1\n2.0 0 0 0 x 0 0 1\n";
     const auto r = lodestone::test::runCommand(kSlam + " --rawlog " + kOfficeRawlog +
                                                " --ground-truth " + dir.file("bad.tum") +
-                                               " --config " + kConfigDir + "/slam.ini --out " + out);
+                                               " --config " + kConfigDir + "/slam/slam.ini --out " + out);
     EXPECT_EQ(r.exitCode, 1);
     EXPECT_NE(r.output.find("bad.tum"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("line 2"), std::string::npos) << r.output;
@@ -227,7 +227,7 @@ TEST(SlamBinary, ABadGroundTruthIsNamedBeforeAnyWorkAndNoStaleReportStays) {
     EXPECT_TRUE(fs::exists(dir.file("out/report.json")));
     // ... and are gone once a run starts, so none stays beside this run's results.
     const auto ok = lodestone::test::runCommand(kSlam + " --rawlog " + kOfficeRawlog + " --config " +
-                                                kConfigDir + "/slam.ini --max-seconds 2 --quiet --out " + out);
+                                                kConfigDir + "/slam/slam.ini --max-seconds 2 --quiet --out " + out);
     ASSERT_EQ(ok.exitCode, 0) << ok.output;
     EXPECT_FALSE(fs::exists(dir.file("out/trajectory.png"))) << "no ground truth: no plot of it";
     EXPECT_EQ(lodestone::test::readTextFile(dir.file("out/report.json")).find("an earlier run"), std::string::npos);
@@ -242,7 +242,7 @@ TEST(SlamBinary, MrptsStockActionsAndSensoryFramesRawlogBecomesMotion) {
     if (!fs::exists(stock)) GTEST_SKIP() << "MRPT's sample datasets are not installed";
     lodestone::test::TempDir dir;
     const auto r = lodestone::test::runCommand(kSlam + " --rawlog " + stock + " --config " +
-                                               kConfigDir + "/odometry_only.ini --quiet --out " +
+                                               kConfigDir + "/slam/odometry_only.ini --quiet --out " +
                                                dir.file("out"));
     ASSERT_EQ(r.exitCode, 0) << r.output;
     std::smatch m;

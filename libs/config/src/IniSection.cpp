@@ -143,6 +143,7 @@ void checkSections(const mrpt::config::CConfigFileBase& cfg, const std::set<std:
 
 }  // namespace lodestone::config
 
+#include <lodestone/config/IniOverlay.h>
 #include <mrpt/config/CConfigFile.h>
 
 namespace lodestone::config {
@@ -150,6 +151,7 @@ std::string sourceName(const mrpt::config::CConfigFileBase& cfg) {
     if (const auto* file = dynamic_cast<const mrpt::config::CConfigFile*>(&cfg)) {
         return file->getAssociatedFile();
     }
+    if (const auto* overlay = dynamic_cast<const IniOverlay*>(&cfg)) return overlay->name();
     return "config";
 }
 }  // namespace lodestone::config

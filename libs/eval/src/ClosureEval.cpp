@@ -1,6 +1,5 @@
 #include <lodestone/eval/ClosureEval.h>
 #include <lodestone/eval/TrajectoryError.h>
-#include <lodestone/io/CsvTable.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -64,42 +63,6 @@ std::vector<RevisitPass> revisitPasses(const std::vector<io::TumPose>& trajector
         i = j + 1;
     }
     return passes;
-}
-
-std::vector<ReportedClosure> readClosureLog(const std::string& path) {
-    {
-        std::ifstream in(path);
-        std::string header;
-        if (!in) throw std::runtime_error(path + ": cannot open closure log");
-        if (!std::getline(in, header) || header.rfind("from_node,to_node,", 0) != 0)
-            throw std::runtime_error(path + ": line 1: not a lodestone-slam closures.csv header");
-    }
-    constexpr std::size_t kSource = 4;
-    const auto table = io::CsvTable::read(path, 16, 1, {kSource});
-    std::vector<ReportedClosure> out;
-    for (std::size_t i = 0; i < table.rows(); ++i) {
-        const auto v = [&](std::size_t column) {
-            const double x = table.at(i, column);
-            if (!std::isfinite(x)) {
-                throw std::runtime_error(path + ": line " + std::to_string(table.lineOf(i)) +
-                                         ": column " + std::to_string(column + 1) +
-                                         " is not a finite number");
-            }
-            return x;
-        };
-        ReportedClosure r;
-        r.fromNode = static_cast<long long>(v(0));
-        r.toNode = static_cast<long long>(v(1));
-        r.fromTime = v(2);
-        r.toTime = v(3);
-        r.source = table.text(i, kSource);
-        r.score = v(6);
-        r.hypothesis = v(8) != 0;
-        r.kept = v(9) != 0;
-        r.measured = mrpt::poses::CPose3D(v(10), v(11), v(12), v(13), v(14), v(15));
-        out.push_back(r);
-    }
-    return out;
 }
 
 std::vector<MatcherQuality> evaluateClosures(const std::vector<ReportedClosure>& closures,

@@ -7,13 +7,13 @@ namespace lodestone::eval {
 
 TrajectoryInterpolator::TrajectoryInterpolator(std::vector<io::TumPose> trajectory, double maxGap,
                                                double stillRadius)
-    : poses_(std::move(trajectory)), maxGap_(maxGap), stillRadius_(stillRadius) {
+    : poses_(std::move(trajectory)), max_gap_(maxGap), still_radius_(stillRadius) {
     std::stable_sort(poses_.begin(), poses_.end(),
                      [](const io::TumPose& a, const io::TumPose& b) { return a.timestamp < b.timestamp; });
 }
 
 bool TrajectoryInterpolator::bridges(const io::TumPose& a, const io::TumPose& b) const {
-    return b.timestamp - a.timestamp <= maxGap_ || a.pose.distanceTo(b.pose) <= stillRadius_;
+    return b.timestamp - a.timestamp <= max_gap_ || a.pose.distanceTo(b.pose) <= still_radius_;
 }
 
 std::vector<std::vector<cv::Point2d>> TrajectoryInterpolator::pieces() const {

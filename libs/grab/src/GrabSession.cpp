@@ -73,6 +73,138 @@ class StatusLine {
     double last_{0};
     std::vector<std::size_t> counts_;
 };
+// The reorder window: as set, or twice the slowest sensor's period (a sensor delivers what it
+// grabbed at its next doProcess), at least 50 ms.
+double reorderWindow(const GrabConfig& config) {
+    if (config.reorderWindow >= 0) return config.reorderWindow;
+    double window = 0.05;
+    for (const auto& s : config.sensors) window = std::max(window, 2.0 / s.processRate);
+    return std::min(window, 0.9);
+}
+
+/** Live SLAM: lodestone-slam's run on a thread of its own, reading what the writer writes.
+ * Whatever happens (a write error throws), the thread is ended and joined. */
+class LiveSlam {
+  public:
+    LiveSlam(const GrabOptions& options, const std::string& prefix, const std::string& imagesDir,
+             ReorderingWriter& writer, StatusLine& status)
+        : feed_(std::make_shared<LiveSlamFeed>(options.maxLag)) {
+        // Colour images go to the images folder as they are grabbed; SLAM reads them there.
+        mrpt::img::CImage::setImagesPathBase(imagesDir);
+        auto feed = feed_;
+        writer.onWritten([feed](const mrpt::serialization::CSerializable::Ptr& o, double newest) {
+            if (auto obs = std::dynamic_pointer_cast<mrpt::obs::CObservation>(o)) feed->push(obs, newest);
+        });
+        slamapp::SlamRunOptions so;
+        so.live = feed_;
+        so.config = options.slamConfig;
+        so.outDir = options.slamOut.empty() ? prefix + "_slam" : options.slamOut;
+        so.decodeAhead = 0;  // the observations arrive decoded
+        so.quiet = true;
+        so.onProgress = [&status](std::size_t nodes, std::size_t closures) {
+            status.slamNodes = nodes;
+            status.slamClosures = closures;
+        };
+        thread_ = std::thread([this, so, feed] {
+            result_ = slamapp::runSlam(so, out_, err_);
+            feed->abandon();  // if the run ended early, the grab must not queue for it
+        });
+    }
+    ~LiveSlam() { join(); }
+    LiveSlam(const LiveSlam&) = delete;
+    LiveSlam& operator=(const LiveSlam&) = delete;
+
+    const LiveSlamFeed* feed() const { return feed_.get(); }
+
+    /** Closes the feed and waits: the run drains it, optimizes and writes its outputs. Then its
+     * figures go into `result`. */
+    void finish(GrabResult& result) {
+        join();
+        const auto f = feed_->stats();
+        result.slam = true;
+        result.slamExitCode = result_.exitCode;
+        result.slamNodes = result_.nodes;
+        result.slamClosures = result_.loopClosures;
+        result.skippedFrames = f.skippedFrames;
+        result.frames = f.frames;
+        result.lagP50 = f.lagP50;
+        result.lagP99 = f.lagP99;
+        result.lagMax = f.lagMax;
+    }
+    std::string output() const { return out_.str(); }
+    std::string errors() const { return err_.str(); }
+
+  private:
+    void join() {
+        feed_->close();
+        if (thread_.joinable()) thread_.join();
+    }
+    std::shared_ptr<LiveSlamFeed> feed_;
+    std::thread thread_;
+    slamapp::SlamRunResult result_;
+    std::ostringstream out_, err_;
+};
+
+/** Writes what the sensors queue until a signal, the duration or every sensor finished; says
+ * which ended it. A sensor that dies is reported once, with its section; the others go on. */
+std::string grabUntilStopped(const GrabConfig& config, const GrabOptions& options,
+                             const std::atomic<bool>& stop, ObservationQueue& queue,
+                             const std::vector<std::unique_ptr<SensorRunner>>& runners,
+                             ReorderingWriter& writer, StatusLine& status, const LiveSlamFeed* feed,
+                             Clock::time_point t0, std::ostream& err) {
+    double nextStatus = config.statusPeriod;
+    std::vector<bool> reported(runners.size(), false);
+    while (true) {
+        for (auto& o : queue.takeAll(std::chrono::milliseconds(50))) writer.add(std::move(o));
+        writer.writeDue();
+        const double elapsed = since(t0);
+        bool anyRunning = false;
+        for (std::size_t i = 0; i < runners.size(); ++i) {
+            const auto state = runners[i]->state();
+            anyRunning |= state == SensorRunner::State::Running;
+            if (state == SensorRunner::State::Died && !reported[i]) {
+                reported[i] = true;
+                status.end();
+                err << "lodestone-grab: sensor section '" << runners[i]->section()
+                    << "' died while grabbing: " << runners[i]->error() << " (the others go on)\n";
+            }
+        }
+        if (elapsed >= nextStatus) {
+            status.print(elapsed, runners, writer, feed);
+            nextStatus += config.statusPeriod;
+        }
+        if (stop.load()) return "signal";
+        if (elapsed >= options.duration) return "duration";
+        if (!anyRunning) return "sensors finished";
+    }
+}
+
+/** The summary lines of a finished grab. */
+void printSummary(const GrabResult& result, const LiveSlam* slam, std::ostream& out,
+                  std::ostream& err) {
+    out << "lodestone-grab: " << result.written << " observations in " << result.seconds
+        << " s -> " << result.rawlog << " (stopped by " << result.stoppedBy << ")\n";
+    for (const auto& s : result.sensors) {
+        out << "  " << s.section << " (" << s.driver << "): " << s.produced << " observations, "
+            << s.state << (s.error.empty() ? "" : ": " + s.error) << "\n";
+    }
+    if (result.slam) {
+        char line[256];
+        std::snprintf(line, sizeof line,
+                      "  live SLAM: %zu nodes, %zu loop closures; lag behind the newest "
+                      "observation p50 %.3f s, p99 %.3f s, max %.3f s; %zu of %zu RGB-D frames "
+                      "skipped\n",
+                      result.slamNodes, result.slamClosures, result.lagP50, result.lagP99,
+                      result.lagMax, result.skippedFrames, result.frames);
+        out << line << slam->output();
+        err << slam->errors();
+    }
+    if (result.late) {
+        out << "  " << result.late << " observation(s) arrived later than reorder_window and were "
+            << "written out of time order\n";
+    }
+}
+
 }  // namespace
 
 GrabResult runGrab(const GrabOptions& options, const std::atomic<bool>& stop, std::ostream& out,
@@ -101,109 +233,24 @@ GrabResult runGrab(const GrabOptions& options, const std::atomic<bool>& stop, st
             return result;
         }
     }
-    // The reorder window: as set, or twice the slowest sensor's period (a sensor delivers what
-    // it grabbed at its next doProcess), at least 50 ms.
-    double window = config.reorderWindow;
-    if (window < 0) {
-        window = 0.05;
-        for (const auto& s : config.sensors) window = std::max(window, 2.0 / s.processRate);
-        window = std::min(window, 0.9);
-    }
-    ReorderingWriter writer(result.rawlog, config.gzipLevel, window);
+    ReorderingWriter writer(result.rawlog, config.gzipLevel, reorderWindow(config));
     StatusLine status(err, options.terminal, options.quiet);
-
-    // Live SLAM: lodestone-slam's run on a thread, reading what the writer writes.
-    std::shared_ptr<LiveSlamFeed> feed;
-    std::thread slamThread;
-    slamapp::SlamRunResult slamResult;
-    std::ostringstream slamOut, slamErr;
+    std::unique_ptr<LiveSlam> slam;
     if (!options.slamConfig.empty()) {
-        // Colour images go to the images folder as they are grabbed; SLAM reads them there.
-        mrpt::img::CImage::setImagesPathBase(imagesDir);
-        feed = std::make_shared<LiveSlamFeed>(options.maxLag);
-        writer.onWritten([feed](const mrpt::serialization::CSerializable::Ptr& o, double newest) {
-            if (auto obs = std::dynamic_pointer_cast<mrpt::obs::CObservation>(o)) feed->push(obs, newest);
-        });
-        slamapp::SlamRunOptions so;
-        so.live = feed;
-        so.config = options.slamConfig;
-        so.outDir = options.slamOut.empty() ? prefix + "_slam" : options.slamOut;
-        so.decodeAhead = 0;  // the observations arrive decoded
-        so.quiet = true;
-        so.onProgress = [&status](std::size_t nodes, std::size_t closures) {
-            status.slamNodes = nodes;
-            status.slamClosures = closures;
-        };
-        slamThread = std::thread([so, &slamResult, &slamOut, &slamErr, feed] {
-            slamResult = slamapp::runSlam(so, slamOut, slamErr);
-            feed->abandon();  // if the run ended early, the grab must not queue for it
-        });
+        slam = std::make_unique<LiveSlam>(options, prefix, imagesDir, writer, status);
     }
-    // Whatever happens below (a write error throws), the SLAM thread is ended and joined.
-    struct JoinSlam {
-        std::shared_ptr<LiveSlamFeed>& feed;
-        std::thread& thread;
-        ~JoinSlam() {
-            if (feed) feed->close();
-            if (thread.joinable()) thread.join();
-        }
-    } joinSlam{feed, slamThread};
+    const LiveSlamFeed* feed = slam ? slam->feed() : nullptr;
     const auto t0 = Clock::now();
     for (auto& r : runners) r->start();
-    double nextStatus = config.statusPeriod;
-    std::vector<bool> reported(runners.size(), false);
-    while (true) {
-        for (auto& o : queue.takeAll(std::chrono::milliseconds(50))) writer.add(std::move(o));
-        writer.writeDue();
-        const double elapsed = since(t0);
-        bool anyRunning = false;
-        for (std::size_t i = 0; i < runners.size(); ++i) {
-            const auto state = runners[i]->state();
-            anyRunning |= state == SensorRunner::State::Running;
-            if (state == SensorRunner::State::Died && !reported[i]) {
-                reported[i] = true;
-                status.end();
-                err << "lodestone-grab: sensor section '" << runners[i]->section()
-                    << "' died while grabbing: " << runners[i]->error() << " (the others go on)\n";
-            }
-        }
-        if (elapsed >= nextStatus) {
-            status.print(elapsed, runners, writer, feed.get());
-            nextStatus += config.statusPeriod;
-        }
-        if (stop.load()) {
-            result.stoppedBy = "signal";
-            break;
-        }
-        if (elapsed >= options.duration) {
-            result.stoppedBy = "duration";
-            break;
-        }
-        if (!anyRunning) {
-            result.stoppedBy = "sensors finished";
-            break;
-        }
-    }
+    result.stoppedBy =
+        grabUntilStopped(config, options, stop, queue, runners, writer, status, feed, t0, err);
     for (auto& r : runners) r->stop();  // joined: each queued what it had
     for (auto& o : queue.takeAll(std::chrono::milliseconds(0))) writer.add(std::move(o));
     writer.close();
     result.seconds = since(t0);
-    status.print(result.seconds, runners, writer, feed.get());
+    status.print(result.seconds, runners, writer, feed);
     status.end();
-    if (feed) {
-        feed->close();
-        slamThread.join();  // it drains the feed, optimizes and writes its outputs
-        const auto f = feed->stats();
-        result.slam = true;
-        result.slamExitCode = slamResult.exitCode;
-        result.slamNodes = slamResult.nodes;
-        result.slamClosures = slamResult.loopClosures;
-        result.skippedFrames = f.skippedFrames;
-        result.frames = f.frames;
-        result.lagP50 = f.lagP50;
-        result.lagP99 = f.lagP99;
-        result.lagMax = f.lagMax;
-    }
+    if (slam) slam->finish(result);
 
     result.written = writer.written();
     result.late = writer.late();
@@ -212,28 +259,8 @@ GrabResult runGrab(const GrabOptions& options, const std::atomic<bool>& stop, st
         result.sensors.push_back({r.section(), config.sensors[i].driver, toString(r.state()), r.error(), r.produced()});
         if (r.state() == SensorRunner::State::Died) result.exitCode = 1;
     }
-    out << "lodestone-grab: " << result.written << " observations in " << result.seconds
-        << " s -> " << result.rawlog << " (stopped by " << result.stoppedBy << ")\n";
-    for (const auto& s : result.sensors) {
-        out << "  " << s.section << " (" << s.driver << "): " << s.produced << " observations, "
-            << s.state << (s.error.empty() ? "" : ": " + s.error) << "\n";
-    }
-    if (result.slam) {
-        char line[256];
-        std::snprintf(line, sizeof line,
-                      "  live SLAM: %zu nodes, %zu loop closures; lag behind the newest "
-                      "observation p50 %.3f s, p99 %.3f s, max %.3f s; %zu of %zu RGB-D frames "
-                      "skipped\n",
-                      result.slamNodes, result.slamClosures, result.lagP50, result.lagP99,
-                      result.lagMax, result.skippedFrames, result.frames);
-        out << line << slamOut.str();
-        err << slamErr.str();
-        if (result.slamExitCode != 0) result.exitCode = 1;
-    }
-    if (result.late) {
-        out << "  " << result.late << " observation(s) arrived later than reorder_window and were "
-            << "written out of time order\n";
-    }
+    printSummary(result, slam.get(), out, err);
+    if (result.slam && result.slamExitCode != 0) result.exitCode = 1;
     return result;
 }
 

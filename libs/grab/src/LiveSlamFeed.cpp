@@ -5,7 +5,7 @@
 
 namespace lodestone::grab {
 
-LiveSlamFeed::LiveSlamFeed(double maxLag) : maxLag_(maxLag) {}
+LiveSlamFeed::LiveSlamFeed(double maxLag) : max_lag_(maxLag) {}
 
 void LiveSlamFeed::push(mrpt::obs::CObservation::Ptr obs, double newest) {
     {
@@ -33,10 +33,10 @@ mrpt::obs::CObservation::Ptr LiveSlamFeed::next() {
         auto obs = std::move(queue_.front());
         queue_.pop_front();
         const double lag = newest_ - mrpt::Clock::toDouble(obs->timestamp);
-        lagNow_ = lag;
+        lag_now_ = lag;
         const bool frame = IS_CLASS(*obs, mrpt::obs::CObservation3DRangeScan);
         frames_ += frame;
-        if (frame && lag > maxLag_ && !closed_) {
+        if (frame && lag > max_lag_ && !closed_) {
             ++skipped_;  // behind: this frame would only make it later
             continue;
         }
@@ -57,7 +57,7 @@ LiveSlamFeed::Stats LiveSlamFeed::current() const {
     s.handed = lags_.size();
     s.skippedFrames = skipped_;
     s.frames = frames_;
-    s.lagNow = lagNow_;
+    s.lagNow = lag_now_;
     return s;
 }
 
@@ -67,7 +67,7 @@ LiveSlamFeed::Stats LiveSlamFeed::stats() const {
     s.handed = lags_.size();
     s.skippedFrames = skipped_;
     s.frames = frames_;
-    s.lagNow = lagNow_;
+    s.lagNow = lag_now_;
     if (!lags_.empty()) {
         std::vector<float> v = lags_;
         const auto at = [&](double q) {

@@ -14,7 +14,7 @@ void ReorderingWriter::add(mrpt::serialization::CSerializable::Ptr object) {
     if (!object) return;
     const auto t = io::entryTimestamp(*object);
     if (!t) {  // nothing to order it by: now
-        write({lastWritten_, arrivals_++, std::move(object)});
+        write({last_written_, arrivals_++, std::move(object)});
         return;
     }
     const double time = mrpt::Clock::toDouble(*t);
@@ -23,13 +23,13 @@ void ReorderingWriter::add(mrpt::serialization::CSerializable::Ptr object) {
 }
 
 void ReorderingWriter::write(const Item& item) {
-    if (item.time < lastWritten_) ++late_;
-    lastWritten_ = std::max(lastWritten_, item.time);
+    if (item.time < last_written_) ++late_;
+    last_written_ = std::max(last_written_, item.time);
     writer_.write(*item.object);
     if (const auto* obs = dynamic_cast<const mrpt::obs::CObservation*>(item.object.get())) {
-        ++byLabel_[obs->sensorLabel];
+        ++by_label_[obs->sensorLabel];
     } else {
-        ++byLabel_[item.object->GetRuntimeClass()->className];
+        ++by_label_[item.object->GetRuntimeClass()->className];
     }
     if (on_written_) on_written_(item.object, newest_);
 }

@@ -50,9 +50,9 @@ RawlogSummaryBuilder::RawlogSummaryBuilder(std::string path, std::uint64_t fileB
 void RawlogSummaryBuilder::add(const io::RawlogEntry& entry) {
     auto& summary = summary_;
     const bool isActions = IS_CLASS(*entry.object, mrpt::obs::CActionCollection);
-    const bool unpaired = IS_CLASS(*entry.object, mrpt::obs::CSensoryFrame) && !previousWasActions_;
-    summary.unpairedActions += previousWasActions_ && isActions;
-    previousWasActions_ = isActions;
+    const bool unpaired = IS_CLASS(*entry.object, mrpt::obs::CSensoryFrame) && !previous_was_actions_;
+    summary.unpairedActions += previous_was_actions_ && isActions;
+    previous_was_actions_ = isActions;
     summary.unpairedFrames += unpaired;
     ++summary.entries;
     ++summary.entryClasses[entry.object->GetRuntimeClass()->className];
@@ -76,7 +76,7 @@ void RawlogSummaryBuilder::add(const io::RawlogEntry& entry) {
 RawlogSummary RawlogSummaryBuilder::finish(std::optional<std::string> error,
                                            std::uint64_t uncompressedBytes) {
     summary_.error = std::move(error);
-    summary_.unpairedActions += previousWasActions_ && !summary_.error;
+    summary_.unpairedActions += previous_was_actions_ && !summary_.error;
     summary_.uncompressedBytes = uncompressedBytes;
     return summary_;
 }

@@ -39,11 +39,11 @@ class GzipFileReader {
     std::string path_;
     std::FILE* file_{nullptr};
     bool compressed_{false};
-    bool memberEnded_{false};  // between two gzip members (or at the end of the last)
+    bool member_ended_{false};  // between two gzip members (or at the end of the last)
     bool failed_{false};
     std::vector<unsigned char> in_;
-    std::size_t inStart_{0}, inEnd_{0};  // unconsumed input: in_[inStart_, inEnd_)
-    std::uint64_t fileRead_{0};          // bytes read from the file into in_
+    std::size_t in_start_{0}, in_end_{0};  // unconsumed input: in_[in_start_, in_end_)
+    std::uint64_t file_read_{0};          // bytes read from the file into in_
     struct Inflater;
     std::unique_ptr<Inflater> z_;
     std::string error_;

@@ -51,7 +51,7 @@ PrefetchingSource::PrefetchingSource(std::unique_ptr<DataSource> inner, std::siz
     : inner_(std::move(inner)),
       name_(inner_->name()),
       depth_(std::max<std::size_t>(depth, 1)),
-      progressOf_(std::move(progress)) {
+      progress_of_(std::move(progress)) {
     for (std::size_t k = 0; k < std::max<std::size_t>(threads, 1); ++k) {
         workers_.emplace_back([this] { run(); });
     }
@@ -76,7 +76,7 @@ void PrefetchingSource::run() {
         };
         work_.wait(lock, [&] {
             return stop_ || undecoded() != queue_.end() ||
-                   (!reading_ && !done_ && framesQueued_ < depth_ &&
+                   (!reading_ && !done_ && frames_queued_ < depth_ &&
                     queue_.size() < kLightPerFrame * depth_);
         });
         if (stop_) return;
@@ -107,7 +107,7 @@ void PrefetchingSource::run() {
             fault = std::current_exception();
         }
         const double t1 = threadCpuSeconds();
-        if (progressOf_) progress_ = progressOf_();
+        if (progress_of_) progress_ = progress_of_();
         lock.lock();
         reading_ = false;
         time_.readSeconds += t1 - t0;
@@ -119,7 +119,7 @@ void PrefetchingSource::run() {
             continue;  // (other workers may still be decoding; this one waits for stop)
         }
         const bool heavy = isFrame(*obs);
-        framesQueued_ += heavy;
+        frames_queued_ += heavy;
         queue_.push_back({obs, false, false, heavy});
         work_.notify_all();
     }
@@ -135,7 +135,7 @@ mrpt::obs::CObservation::Ptr PrefetchingSource::next() {
     ready_.wait(lock, [&] { return (!queue_.empty() && queue_.front().decoded) || (queue_.empty() && done_); });
     if (!queue_.empty()) {
         auto obs = std::move(queue_.front().obs);
-        framesQueued_ -= queue_.front().heavy;
+        frames_queued_ -= queue_.front().heavy;
         queue_.pop_front();
         work_.notify_all();
         return obs;

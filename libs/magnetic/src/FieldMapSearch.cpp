@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <vector>
 
 namespace lodestone::magnetic {
@@ -85,109 +86,93 @@ Eigen::MatrixX2d moved(const Eigen::MatrixX2d& points, const Eigen::Vector2d& pi
         out.row(i) = (pivot + R * (points.row(i).transpose() - pivot) + x.head<2>()).transpose();
     return out;
 }
-}  // namespace
 
-double gateRadius(const Eigen::Matrix2d& gateCovariance, double gateChi2) {
-    return std::sqrt(gateChi2 *
-                     Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(gateCovariance).eigenvalues().maxCoeff());
-}
+/** One search: the stretch (`points`, `query`) against the map inside the gate, with what its
+ * steps share - the pivot, the gate, the rasters. */
+class Search {
+  public:
+    Search(const GaussianProcess2D& map, const Eigen::MatrixX2d& points, const Eigen::MatrixXd& query,
+           const Eigen::Matrix2d& gateCovariance, const FieldMapSearchParams& params, double reach)
+        : map_(map),
+          points_(points),
+          query_(query),
+          params_(params),
+          pivot_(points.colwise().mean().transpose()),
+          gateInfo_(gateCovariance.inverse()),
+          // The gate is the uncertainty of where the robot is now - the stretch's last point:
+          // its move (the turn about the centroid included) is what must lie inside.
+          lastArm_(points.row(points.rows() - 1).transpose() - pivot_),
+          R_(reach),
+          h_(params.gridStep),
+          half_(static_cast<int>(std::floor(R_ / h_))),
+          rasterStep_(std::min(h_, map.hyperparameters().lengthScale / 3)),
+          raster_(map,
+                  points.colwise().minCoeff().transpose() - Eigen::Vector2d::Constant(R_ + h_),
+                  points.colwise().maxCoeff().transpose() + Eigen::Vector2d::Constant(R_ + h_),
+                  rasterStep_),
+          channels_(static_cast<double>(query.cols())),
+          side_(2 * half_ + 1),
+          grid_(static_cast<std::size_t>(side_ * side_), std::numeric_limits<double>::infinity()) {}
 
-FieldMapMatch searchFieldMap(const GaussianProcess2D& map, const Eigen::MatrixX2d& points,
-                             const Eigen::MatrixXd& query, const Eigen::Matrix2d& gateCovariance,
-                             const FieldMapSearchParams& params) {
-    FieldMapMatch result;
-    if (points.rows() < 3 || points.rows() != query.rows() || map.size() == 0) return result;
-    const double reach = gateRadius(gateCovariance, params.gateChi2);
-    if (!(reach <= params.maxRadius)) {
-        result.verdict = FieldMapVerdict::GateTooWide;
-        return result;
-    }
-    const Eigen::Vector2d pivot = points.colwise().mean().transpose();
-    result.alignment.pivot = pivot;
-    result.nullLogLikelihood = map.priorLogLikelihood(points, query);
+    const Eigen::Vector2d& pivot() const { return pivot_; }
+    double rasterStep() const { return rasterStep_; }
 
-    // 1. Translations on a grid inside the gate, scored by the map's predictive
-    //    density of each reading (one by one: a ranking, not yet the verdict).
-    const Eigen::Matrix2d gateInfo = gateCovariance.inverse();
-    // The gate is the uncertainty of where the robot is now - the stretch's last point: its
-    // move (the turn about the centroid included) is what must lie inside.
-    const Eigen::Vector2d lastArm = points.row(points.rows() - 1).transpose() - pivot;
-    const auto lastMove = [&](const Eigen::Vector3d& x) -> Eigen::Vector2d {
-        return x.head<2>() + Eigen::Rotation2Dd(x[2]).toRotationMatrix() * lastArm - lastArm;
-    };
-    const auto gate2 = [&](const Eigen::Vector3d& x) {
-        const Eigen::Vector2d d = lastMove(x);
-        return d.dot(gateInfo * d);
-    };
-    const double R = reach, h = params.gridStep;
-    const int half = static_cast<int>(std::floor(R / h));
-    const double rasterStep = std::min(h, map.hyperparameters().lengthScale / 3);
-    const Eigen::Vector2d lo = points.colwise().minCoeff().transpose() - Eigen::Vector2d::Constant(R + h),
-                          hi = points.colwise().maxCoeff().transpose() + Eigen::Vector2d::Constant(R + h);
-    const PredictiveRaster raster(map, lo, hi, rasterStep);
-    const auto channels = static_cast<double>(query.cols());
-    // -2 log of each reading's predictive density (constants dropped), the stretch moved by x.
-    const auto score = [&](const Eigen::Vector3d& x) {
-        const Eigen::Matrix2d Rx = Eigen::Rotation2Dd(x[2]).toRotationMatrix();
-        double nll = 0;
-        for (Eigen::Index k = 0; k < points.rows(); ++k) {
-            const Eigen::Vector2d p = pivot + Rx * (points.row(k).transpose() - pivot) + x.head<2>();
-            const double var = raster.variance(p);
-            nll += (query.row(k).transpose() - raster.mean(p)).squaredNorm() / var + channels * std::log(var);
+    /** 1. Translations on a grid inside the gate, scored by the map's predictive density of
+     * each reading (one by one: a ranking, not yet the verdict). Returns how many were tried. */
+    std::size_t scoreGrid() {
+        std::size_t tried = 0;
+        for (int j = -half_; j <= half_; ++j) {
+            for (int i = -half_; i <= half_; ++i) {
+                const Eigen::Vector2d d(i * h_, j * h_);
+                if (d.dot(gateInfo_ * d) > params_.gateChi2) continue;
+                ++tried;
+                cell(i, j) = score(Eigen::Vector3d(d.x(), d.y(), 0));
+            }
         }
-        return nll;
-    };
-    const int side = 2 * half + 1;
-    std::vector<double> grid(static_cast<std::size_t>(side * side),
-                             std::numeric_limits<double>::infinity());
-    const auto cell = [&](int i, int j) -> double& {
-        return grid[static_cast<std::size_t>((j + half) * side + (i + half))];
-    };
-    for (int j = -half; j <= half; ++j) {
-        for (int i = -half; i <= half; ++i) {
-            const Eigen::Vector2d d(i * h, j * h);
-            if (d.dot(gateInfo * d) > params.gateChi2) continue;
-            ++result.hypotheses;
-            cell(i, j) = score(Eigen::Vector3d(d.x(), d.y(), 0));
-        }
+        return tried;
     }
-    // 2. Its local optima (no better neighbour), the best first.
-    std::vector<std::pair<double, Eigen::Vector2d>> optima;
-    for (int j = -half; j <= half; ++j) {
-        for (int i = -half; i <= half; ++i) {
-            const double s = cell(i, j);
-            if (!std::isfinite(s)) continue;
-            bool best = true;
-            for (int dj = -1; dj <= 1 && best; ++dj)
-                for (int di = -1; di <= 1 && best; ++di) {
-                    if ((di || dj) && std::abs(i + di) <= half && std::abs(j + dj) <= half)
-                        best = !(cell(i + di, j + dj) < s);
-                }
-            if (best) optima.emplace_back(s, Eigen::Vector2d(i * h, j * h));
-        }
-    }
-    std::sort(optima.begin(), optima.end(),
-              [](const auto& a, const auto& b) { return a.first < b.first; });
-    if (optima.size() > params.refined) optima.resize(params.refined);
 
-    // 3. Each refined (pattern search on the same density, the heading free within its prior
-    //    range - a gradient step on the mean alone would slide onto the earlier pass, where the
-    //    map is surest, rather than beside it, where the readings were taken), then judged by
-    //    the joint likelihood given the map.
-    std::vector<Optimum> kept;
-    const double yawRange = 2 * params.plane.priorSigmaYaw;
-    for (const auto& [s0, d] : optima) {
+    /** 2. The grid's local optima (no better neighbour), the best first, at most `refined`. */
+    std::vector<std::pair<double, Eigen::Vector2d>> localOptima() {
+        std::vector<std::pair<double, Eigen::Vector2d>> optima;
+        for (int j = -half_; j <= half_; ++j) {
+            for (int i = -half_; i <= half_; ++i) {
+                const double s = cell(i, j);
+                if (!std::isfinite(s)) continue;
+                bool best = true;
+                for (int dj = -1; dj <= 1 && best; ++dj)
+                    for (int di = -1; di <= 1 && best; ++di) {
+                        if ((di || dj) && std::abs(i + di) <= half_ && std::abs(j + dj) <= half_)
+                            best = !(cell(i + di, j + dj) < s);
+                    }
+                if (best) optima.emplace_back(s, Eigen::Vector2d(i * h_, j * h_));
+            }
+        }
+        std::sort(optima.begin(), optima.end(),
+                  [](const auto& a, const auto& b) { return a.first < b.first; });
+        if (optima.size() > params_.refined) optima.resize(params_.refined);
+        return optima;
+    }
+
+    /** 3. One optimum refined (pattern search on the same density, the heading free within its
+     * prior range - a gradient step on the mean alone would slide onto the earlier pass, where
+     * the map is surest, rather than beside it, where the readings were taken), then judged by
+     * the joint likelihood given the map. Nothing when it converged onto one already `kept`,
+     * fits worse than the noise allows, or has no finite likelihood. */
+    std::optional<Optimum> refine(double s0, const Eigen::Vector2d& d,
+                                  const std::vector<Optimum>& kept) const {
+        const double yawRange = 2 * params_.plane.priorSigmaYaw;
         Eigen::Vector3d x(d.x(), d.y(), 0);
         double best = s0;
-        for (Eigen::Vector3d step(h / 2, h / 2, yawRange / 8); step[0] > 0.005; step /= 2) {
+        for (Eigen::Vector3d step(h_ / 2, h_ / 2, yawRange / 8); step[0] > 0.005; step /= 2) {
             for (bool moved = true; moved;) {
                 moved = false;
                 for (int axis = 0; axis < 3; ++axis) {
                     for (double sign : {-1.0, 1.0}) {
                         Eigen::Vector3d y = x;
                         y[axis] += sign * step[axis];
-                        if ((y.head<2>() - d).norm() > params.plane.maxShift ||
-                            gate2(y) > params.gateChi2 ||
+                        if ((y.head<2>() - d).norm() > params_.plane.maxShift ||
+                            gate2(y) > params_.gateChi2 ||
                             std::abs(y[2]) > yawRange)
                             continue;
                         const double c = score(y);
@@ -203,39 +188,79 @@ FieldMapMatch searchFieldMap(const GaussianProcess2D& map, const Eigen::MatrixX2
         Optimum o;
         o.x = x;
         // Held by the gate rather than by the field? Then the place may lie outside it.
-        if (gate2(x) > 0.5 * params.gateChi2) {
+        if (gate2(x) > 0.5 * params_.gateChi2) {
             Eigen::Vector3d out = x;
-            out.head<2>() += h * lastMove(x).normalized();
+            out.head<2>() += h_ * lastMove(x).normalized();
             o.onEdge = score(out) < best;
         }
         const Eigen::Vector2d t = x.head<2>();
         if (std::any_of(kept.begin(), kept.end(), [&](const Optimum& k) {
-                return (k.x.head<2>() - t).norm() < 0.5 * h;  // converged to one already kept
+                return (k.x.head<2>() - t).norm() < 0.5 * h_;  // converged to one already kept
             }))
-            continue;
-        const Eigen::MatrixX2d at = moved(points, pivot, x);
+            return std::nullopt;
+        const Eigen::MatrixX2d at = moved(points_, pivot_, x);
         {
-            const Eigen::VectorXd var = map.variances(at);
+            const Eigen::VectorXd var = map_.variances(at);
             double sum = 0;
             for (Eigen::Index k = 0; k < at.rows(); ++k)
-                sum += (query.row(k).transpose() - map.mean(at.row(k).transpose())).squaredNorm() / var[k];
-            o.normalizedRms = std::sqrt(sum / double(query.size()));
+                sum += (query_.row(k).transpose() - map_.mean(at.row(k).transpose())).squaredNorm() / var[k];
+            o.normalizedRms = std::sqrt(sum / double(query_.size()));
         }
-        if (!(o.normalizedRms <= params.maxNormalizedRms)) continue;
+        if (!(o.normalizedRms <= params_.maxNormalizedRms)) return std::nullopt;
         Eigen::Matrix3d info;
-        o.logLikelihood = map.jointLogLikelihood(at, query, pivot + t, &info);
+        o.logLikelihood = map_.jointLogLikelihood(at, query_, pivot_ + t, &info);
         o.logPrior = -0.5 * gate2(x);
         // The curvature under the readings' joint covariance, held weakly by the search region
         // and the heading prior where the field says nothing (a straight pass: along it);
         // a fit worse than the noise model makes it less sure.
-        info.diagonal() += Eigen::Vector3d(1 / (R * R), 1 / (R * R),
-                                           1 / (params.plane.priorSigmaYaw * params.plane.priorSigmaYaw));
+        info.diagonal() += Eigen::Vector3d(1 / (R_ * R_), 1 / (R_ * R_),
+                                           1 / (params_.plane.priorSigmaYaw * params_.plane.priorSigmaYaw));
         o.covariance = info.inverse() * std::max(1.0, o.normalizedRms * o.normalizedRms);
-        if (!std::isfinite(o.logLikelihood)) continue;
-        kept.push_back(o);
+        if (!std::isfinite(o.logLikelihood)) return std::nullopt;
+        return o;
     }
-    result.optima = kept.size();
-    if (kept.empty()) return result;
+
+  private:
+    Eigen::Vector2d lastMove(const Eigen::Vector3d& x) const {
+        return x.head<2>() + Eigen::Rotation2Dd(x[2]).toRotationMatrix() * lastArm_ - lastArm_;
+    }
+    double gate2(const Eigen::Vector3d& x) const {
+        const Eigen::Vector2d d = lastMove(x);
+        return d.dot(gateInfo_ * d);
+    }
+    /** -2 log of each reading's predictive density (constants dropped), the stretch moved by x. */
+    double score(const Eigen::Vector3d& x) const {
+        const Eigen::Matrix2d Rx = Eigen::Rotation2Dd(x[2]).toRotationMatrix();
+        double nll = 0;
+        for (Eigen::Index k = 0; k < points_.rows(); ++k) {
+            const Eigen::Vector2d p = pivot_ + Rx * (points_.row(k).transpose() - pivot_) + x.head<2>();
+            const double var = raster_.variance(p);
+            nll += (query_.row(k).transpose() - raster_.mean(p)).squaredNorm() / var + channels_ * std::log(var);
+        }
+        return nll;
+    }
+    double& cell(int i, int j) { return grid_[static_cast<std::size_t>((j + half_) * side_ + (i + half_))]; }
+
+    const GaussianProcess2D& map_;
+    const Eigen::MatrixX2d& points_;
+    const Eigen::MatrixXd& query_;
+    const FieldMapSearchParams& params_;
+    const Eigen::Vector2d pivot_;
+    const Eigen::Matrix2d gateInfo_;
+    const Eigen::Vector2d lastArm_;
+    const double R_, h_;
+    const int half_;
+    const double rasterStep_;
+    const PredictiveRaster raster_;
+    const double channels_;
+    const int side_;
+    std::vector<double> grid_;
+};
+
+/** 4.-7. The best optimum's place as a mixture of its optima, and the verdict on it. */
+void judge(const std::vector<Optimum>& kept, const FieldMapSearchParams& params, double rasterStep,
+           FieldMapMatch& result) {
+    const double h = params.gridStep;
     const auto best = std::max_element(kept.begin(), kept.end(), [](const Optimum& a, const Optimum& b) {
         return a.logLikelihood + a.logPrior < b.logLikelihood + b.logPrior;
     });
@@ -278,19 +303,19 @@ FieldMapMatch searchFieldMap(const GaussianProcess2D& map, const Eigen::MatrixX2
                          std::log(std::min(1.0, posteriorArea / region));
     if (result.logEvidence < params.minLogRatio) {
         result.verdict = FieldMapVerdict::NotAboveNull;
-        return result;
+        return;
     }
     // 6. Another place that fits about as well, or one beyond the gate's edge that might:
     //    no verdict between them.
     if (best->onEdge) {
         result.verdict = FieldMapVerdict::Ambiguous;
-        return result;
+        return;
     }
     for (const auto& o : kept) {
         if (elsewhere(o) &&
             (best->logLikelihood - o.logLikelihood) / dispersion < params.ambiguityLogRatio) {
             result.verdict = FieldMapVerdict::Ambiguous;
-            return result;
+            return;
         }
     }
     // 7. Too loose to say anything the gate did not.
@@ -299,6 +324,36 @@ FieldMapMatch searchFieldMap(const GaussianProcess2D& map, const Eigen::MatrixX2
                               .maxCoeff();
     result.verdict = std::sqrt(widest) > params.maxSigma ? FieldMapVerdict::TooLoose
                                                           : FieldMapVerdict::Accepted;
+}
+
+}  // namespace
+
+double gateRadius(const Eigen::Matrix2d& gateCovariance, double gateChi2) {
+    return std::sqrt(gateChi2 *
+                     Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(gateCovariance).eigenvalues().maxCoeff());
+}
+
+FieldMapMatch searchFieldMap(const GaussianProcess2D& map, const Eigen::MatrixX2d& points,
+                             const Eigen::MatrixXd& query, const Eigen::Matrix2d& gateCovariance,
+                             const FieldMapSearchParams& params) {
+    FieldMapMatch result;
+    if (points.rows() < 3 || points.rows() != query.rows() || map.size() == 0) return result;
+    const double reach = gateRadius(gateCovariance, params.gateChi2);
+    if (!(reach <= params.maxRadius)) {
+        result.verdict = FieldMapVerdict::GateTooWide;
+        return result;
+    }
+    Search search(map, points, query, gateCovariance, params, reach);
+    result.alignment.pivot = search.pivot();
+    result.nullLogLikelihood = map.priorLogLikelihood(points, query);
+    result.hypotheses = search.scoreGrid();
+    std::vector<Optimum> kept;
+    for (const auto& [s0, d] : search.localOptima()) {
+        if (auto o = search.refine(s0, d, kept)) kept.push_back(*o);
+    }
+    result.optima = kept.size();
+    if (kept.empty()) return result;
+    judge(kept, params, search.rasterStep(), result);
     return result;
 }
 

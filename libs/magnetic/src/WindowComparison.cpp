@@ -111,22 +111,22 @@ WindowNullModel::WindowNullModel(std::size_t n, const PassNoise& noise, double s
         }
     }
     const Eigen::LLT<Eigen::MatrixXd> a(same), b(unrelated);
-    sameInverse_ = a.solve(Eigen::MatrixXd::Identity(m, m));
-    nullInverse_ = b.solve(Eigen::MatrixXd::Identity(m, m));
+    same_inverse_ = a.solve(Eigen::MatrixXd::Identity(m, m));
+    null_inverse_ = b.solve(Eigen::MatrixXd::Identity(m, m));
     const auto logDet = [](const Eigen::LLT<Eigen::MatrixXd>& l) {
         return 2 * l.matrixLLT().diagonal().array().log().sum();
     };
     // Per component: -1/2 log det(2 pi C1) + 1/2 log det(2 pi C0); three components.
-    logNormalizers_ = 3 * 0.5 * (logDet(b) - logDet(a));
+    log_normalizers_ = 3 * 0.5 * (logDet(b) - logDet(a));
 }
 
 double WindowNullModel::logLikelihoodRatio(const Eigen::MatrixX3d& d) const {
     double same = 0, unrelated = 0;
     for (int c = 0; c < 3; ++c) {
-        same += d.col(c).dot(sameInverse_ * d.col(c));
-        unrelated += d.col(c).dot(nullInverse_ * d.col(c));
+        same += d.col(c).dot(same_inverse_ * d.col(c));
+        unrelated += d.col(c).dot(null_inverse_ * d.col(c));
     }
-    return -0.5 * same + 0.5 * unrelated + logNormalizers_;
+    return -0.5 * same + 0.5 * unrelated + log_normalizers_;
 }
 
 double windowExcitation(const std::vector<TrackSample>& samples, std::size_t first, std::size_t n,

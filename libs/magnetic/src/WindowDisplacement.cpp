@@ -36,7 +36,7 @@ WindowDisplacementModel::WindowDisplacementModel(std::size_t n, const PassNoise&
 
 WindowDisplacementModel::WindowDisplacementModel(std::shared_ptr<const Basis> basis, double sigmaF,
                                                  double priorSigma, double radius)
-    : basis_(std::move(basis)), sigmaF2_(sigmaF * sigmaF), radius_(radius) {
+    : basis_(std::move(basis)), sigma_f2_(sigmaF * sigmaF), radius_(radius) {
     if (!basis_ || !(sigmaF >= 0))
         throw std::invalid_argument("WindowDisplacementModel: no basis, or a negative amplitude");
     if (!(priorSigma > 0) || !(radius > 0))
@@ -45,27 +45,27 @@ WindowDisplacementModel::WindowDisplacementModel(std::shared_ptr<const Basis> ba
 
     // The half-normal prior's bins of radius / 10, out to where its mass is gone; each bin's
     // likelihood taken at its middle. One more column: unrelated places.
-    const double h = radius / nearBins_;
+    const double h = radius / near_bins_;
     bins_ = static_cast<int>(std::ceil(std::max(2 * radius, 6 * priorSigma) / h));
     const auto cdf = [&](double x) { return std::erf(x / (priorSigma * std::sqrt(2.0))); };
-    binFactors_.resize(m, bins_ + 1);
-    binLogConstants_.resize(bins_);
-    binDelta2_.resize(bins_);
+    bin_factors_.resize(m, bins_ + 1);
+    bin_log_constants_.resize(bins_);
+    bin_delta2_.resize(bins_);
     for (int k = 0; k < bins_; ++k) {
         const double delta = (k + 0.5) * h;
         const double mass = (k + 1 == bins_ ? 1.0 : cdf((k + 1) * h)) - cdf(k * h);
-        binFactors_.col(k) = inverseFactors(delta);
-        binLogConstants_[k] = (mass > 0 ? std::log(mass) : -INFINITY) + logDeterminantTerm(delta);
-        binDelta2_[k] = delta * delta;
+        bin_factors_.col(k) = inverseFactors(delta);
+        bin_log_constants_[k] = (mass > 0 ? std::log(mass) : -INFINITY) + logDeterminantTerm(delta);
+        bin_delta2_[k] = delta * delta;
     }
-    binFactors_.col(bins_) = inverseFactors(INFINITY);
-    unrelatedLogDeterminant_ = logDeterminantTerm(INFINITY);
+    bin_factors_.col(bins_) = inverseFactors(INFINITY);
+    unrelated_log_determinant_ = logDeterminantTerm(INFINITY);
 }
 
 double WindowDisplacementModel::amplitude(double delta) const {
-    if (std::isinf(delta)) return 2 * sigmaF2_;
+    if (std::isinf(delta)) return 2 * sigma_f2_;
     const double r = delta / basis_->lengthScale;
-    return 2 * sigmaF2_ * -std::expm1(-0.5 * r * r);
+    return 2 * sigma_f2_ * -std::expm1(-0.5 * r * r);
 }
 
 Eigen::VectorXd WindowDisplacementModel::inverseFactors(double delta) const {
@@ -110,14 +110,14 @@ WindowDisplacementModel::Evidence WindowDisplacementModel::evidence(const Eigen:
 WindowDisplacementModel::Evidence WindowDisplacementModel::evidenceProjected(
     const Eigen::MatrixX3d& projectedD, double nearRadius) const {
     const int nearBins = std::clamp(
-        static_cast<int>(std::floor(nearRadius / radius_ * nearBins_ + 1e-9)), 1, nearBins_);
-    const double h = radius_ / nearBins_;
+        static_cast<int>(std::floor(nearRadius / radius_ * near_bins_ + 1e-9)), 1, near_bins_);
+    const double h = radius_ / near_bins_;
     // Every bin's quadratic form in one product.
     const Eigen::VectorXd p2 = projectedD.rowwise().squaredNorm();
-    const Eigen::VectorXd q = binFactors_.transpose() * p2;
-    const double unrelated = -0.5 * q[bins_] + unrelatedLogDeterminant_;
+    const Eigen::VectorXd q = bin_factors_.transpose() * p2;
+    const double unrelated = -0.5 * q[bins_] + unrelated_log_determinant_;
     const Eigen::ArrayXd logTerms =
-        binLogConstants_.array() - 0.5 * q.head(bins_).array() - unrelated;
+        bin_log_constants_.array() - 0.5 * q.head(bins_).array() - unrelated;
     const double nearMax = logTerms.head(nearBins).maxCoeff();
     const double farMax = logTerms.tail(bins_ - nearBins).maxCoeff();
     const Eigen::ArrayXd near = (logTerms.head(nearBins) - nearMax).exp();
@@ -125,7 +125,7 @@ WindowDisplacementModel::Evidence WindowDisplacementModel::evidenceProjected(
     Evidence e;
     e.logNear = nearMax + std::log(near.sum());
     e.logFar = std::isfinite(farMax) ? farMax + std::log(far) : -INFINITY;
-    e.nearDelta2 = (near * binDelta2_.head(nearBins).array()).sum() / near.sum();
+    e.nearDelta2 = (near * bin_delta2_.head(nearBins).array()).sum() / near.sum();
     e.chi2AtRadius = p2.dot(inverseFactors(nearBins * h));
     return e;
 }

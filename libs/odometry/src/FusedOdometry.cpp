@@ -218,7 +218,7 @@ FusedOdometry::Estimate FusedOdometry::resolve(const Pending& p) {
     e.visual = p.vo;
     // VO's reference from now on is this frame's reference, or this frame when VO (re)started
     // on it (no reference then): older frames are never needed again.
-    oldestReference_ = p.vo.referenceTimestamp > 0 ? p.vo.referenceTimestamp : p.t;
+    oldest_reference_ = p.vo.referenceTimestamp > 0 ? p.vo.referenceTimestamp : p.t;
     const Eigen::Vector2d travel = travelAt(p.t);
     const bool first = !last_frame_time_;
     if (first) {
@@ -256,7 +256,7 @@ FusedOdometry::Estimate FusedOdometry::resolve(const Pending& p) {
                                      : fusions_[m]->lastIncrement());
         recent_[m][p.t] = fusions_[m]->pose().mean;
         // Only frames VO may still use as its reference are kept.
-        while (!recent_[m].empty() && recent_[m].begin()->first < oldestReference_) {
+        while (!recent_[m].empty() && recent_[m].begin()->first < oldest_reference_) {
             recent_[m].erase(recent_[m].begin());
         }
     }

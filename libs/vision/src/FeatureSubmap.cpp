@@ -29,14 +29,14 @@ double yawOf(const Eigen::Isometry3d& T) { return std::atan2(T.linear()(1, 0), T
 FeatureSubmap::FeatureSubmap() : FeatureSubmap(Params{}) {}
 FeatureSubmap::FeatureSubmap(Params params) : params_(params) {}
 
-std::size_t FeatureSubmap::add(std::int64_t node, const Eigen::Isometry3d& poseInSubmap,
-                               const Eigen::Isometry3d& cameraOnRobot,
+std::size_t FeatureSubmap::add(std::int64_t node, const Eigen::Isometry3d& T_submap_robot,
+                               const Eigen::Isometry3d& T_robot_camera,
                                std::shared_ptr<const FrameFeatures> features) {
-    members_.push_back({node, poseInSubmap, cameraOnRobot, features});
+    members_.push_back({node, T_submap_robot, T_robot_camera, features});
     strongest_.clear();
     if (!features || features->size() == 0) return 0;
     // Eq. (1): the keyframe's points in the submap frame.
-    const Eigen::Isometry3f T = (poseInSubmap * cameraOnRobot).cast<float>();
+    const Eigen::Isometry3f T = (T_submap_robot * T_robot_camera).cast<float>();
     const std::size_t before = points_.size();
     std::size_t merged = 0;
     PointCloud cloud{points_};
@@ -92,7 +92,7 @@ const std::vector<int>& FeatureSubmap::strongestFirst() const {
 
 Eigen::Vector3d FeatureSubmap::centre() const {
     Eigen::Vector3d c = Eigen::Vector3d::Zero();
-    for (const auto& m : members_) c += m.poseInSubmap.translation();
+    for (const auto& m : members_) c += m.T_submap_robot.translation();
     return members_.empty() ? c : Eigen::Vector3d(c / static_cast<double>(members_.size()));
 }
 
@@ -107,8 +107,8 @@ const FeatureSubmap::Member& FeatureSubmap::nearestMember(const Eigen::Isometry3
     double bestCost = std::numeric_limits<double>::max();
     const double yaw = yawOf(pose);
     for (const auto& m : members_) {
-        const double dyaw = std::abs(std::remainder(yawOf(m.poseInSubmap) - yaw, 2 * M_PI));
-        const double cost = (m.poseInSubmap.translation() - pose.translation()).norm() + 0.5 * dyaw;
+        const double dyaw = std::abs(std::remainder(yawOf(m.T_submap_robot) - yaw, 2 * M_PI));
+        const double cost = (m.T_submap_robot.translation() - pose.translation()).norm() + 0.5 * dyaw;
         if (cost < bestCost) {
             bestCost = cost;
             best = &m;

@@ -52,7 +52,7 @@ SubmapMatcher::SubmapMatcher(Params params)
       phase2_(params_.phase2) {}
 
 SubmapMatcher::Result SubmapMatcher::match(const FeatureSubmap& submap, const FrameFeatures& query,
-                                           const Eigen::Isometry3d& queryCameraOnRobot,
+                                           const Eigen::Isometry3d& T_robot_queryCamera,
                                            std::uint64_t seed) const {
     Result r;
     const auto t0 = Clock::now();
@@ -62,7 +62,7 @@ SubmapMatcher::Result SubmapMatcher::match(const FeatureSubmap& submap, const Fr
         return r;
     }
     // Phase 1: keyframe (robot frame) -> submap frame.
-    const Eigen::Matrix3Xd queryRobot = queryCameraOnRobot * query.points.cast<double>();
+    const Eigen::Matrix3Xd queryRobot = T_robot_queryCamera * query.points.cast<double>();
     // The features seen most often first, at most phase1MaxFeatures of them: the stable ones,
     // and a bounded matching cost however large the submap grew.
     const std::vector<int>& order = submap.strongestFirst();
@@ -98,7 +98,7 @@ SubmapMatcher::Result SubmapMatcher::match(const FeatureSubmap& submap, const Fr
     const auto t1 = Clock::now();
     const FeatureSubmap::Member& m = submap.nearestMember(p1.transform);
     r.node = m.node;
-    const Eigen::Isometry3d fromPhase1 = m.poseInSubmap.inverse() * p1.transform;
+    const Eigen::Isometry3d fromPhase1 = m.T_submap_robot.inverse() * p1.transform;
     if (m.features && m.features->size() > 0) {
         const auto m2 = matcher_.match(query.descriptors, m.features->descriptors);
         r.phase2Matches = m2.size();
@@ -108,7 +108,7 @@ SubmapMatcher::Result SubmapMatcher::match(const FeatureSubmap& submap, const Fr
             if (p2.success) {
                 // Optical to robot frames: T_mr_qr = C_m T_mo_qo C_q^-1.
                 const Eigen::Isometry3d T =
-                    m.cameraOnRobot * p2.transform * queryCameraOnRobot.inverse();
+                    m.T_robot_camera * p2.transform * T_robot_queryCamera.inverse();
                 const Eigen::Isometry3d diff = fromPhase1.inverse() * T;
                 if (diff.translation().norm() <= params_.agreementDistance &&
                     angleOf(diff) <= params_.agreementAngle) {
@@ -117,7 +117,7 @@ SubmapMatcher::Result SubmapMatcher::match(const FeatureSubmap& submap, const Fr
                     r.nodeToQuery = T;
                     // RigidEstimate's covariance: left perturbation of p2.transform in the
                     // member's optical frame; into its robot frame, then about T's own frame.
-                    const Eigen::Matrix<double, 6, 6> Ad = adjoint(m.cameraOnRobot);
+                    const Eigen::Matrix<double, 6, 6> Ad = adjoint(m.T_robot_camera);
                     r.covariance = leftToRightCovariance(T, Ad * p2.covariance * Ad.transpose());
                 }
             }
@@ -131,7 +131,7 @@ SubmapMatcher::Result SubmapMatcher::match(const FeatureSubmap& submap, const Fr
             return r;
         }
         r.nodeToQuery = fromPhase1;
-        const Eigen::Matrix<double, 6, 6> Ad = adjoint(m.poseInSubmap.inverse());
+        const Eigen::Matrix<double, 6, 6> Ad = adjoint(m.T_submap_robot.inverse());
         r.covariance = params_.fallbackInflation *
                        leftToRightCovariance(fromPhase1, Ad * p1.covariance * Ad.transpose());
     }

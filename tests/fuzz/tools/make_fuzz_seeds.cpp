@@ -169,8 +169,8 @@ void textSeeds() {
           "# depth maps\n1305031102.160407 depth/1305031102.160407.png\n"
           "1305031102.226738 depth/1305031102.226738.png\n%%\n"
           "1305031102.1758 1.3405 0.6266 1.6575 0.6574 0.6126 -0.2949 -0.3248\n");
-    write("corpus", "fuzz_ini", "slam.ini", std::string(1, '\0') + fileBytes(repoRoot / "config_ini/slam.ini"));
-    write("corpus", "fuzz_ini", "office_scenario.ini", "\x01" + fileBytes(repoRoot / "config_ini/office.ini"));
+    write("corpus", "fuzz_ini", "slam.ini", std::string(1, '\0') + fileBytes(repoRoot / "config_ini/slam/slam.ini"));
+    write("corpus", "fuzz_ini", "office_scenario.ini", "\x01" + fileBytes(repoRoot / "config_ini/scenarios/office.ini"));
     write("regression", "fuzz_tum_trajectory", "zero_quaternion.tum", "1.0 0 0 0 0 0 0 0\n");
     write("regression", "fuzz_tum_trajectory", "huge_x.tum", "1.0 1e308 0 0 0 0 0 1\n");
     write("regression", "fuzz_tum_trajectory", "time_backwards.tum", "2.0 0 0 0 0 0 0 1\n1.0 0 0 0 0 0 0 1\n");

@@ -14,7 +14,7 @@ class CFailingSensor : public mrpt::hwdrivers::CGenericSensor {
 
   public:
     void doProcess() override {
-        if (++calls_ >= failAfter_) throw std::runtime_error("the test sensor's cable came out");
+        if (++calls_ >= fail_after_) throw std::runtime_error("the test sensor's cable came out");
         auto c = mrpt::obs::CObservationComment::Create();
         c->timestamp = mrpt::Clock::now();
         c->sensorLabel = m_sensorLabel;
@@ -25,11 +25,11 @@ class CFailingSensor : public mrpt::hwdrivers::CGenericSensor {
   protected:
     void loadConfig_sensorSpecific(const mrpt::config::CConfigFileBase& c,
                                    const std::string& section) override {
-        failAfter_ = c.read_int(section, "fail_after", 10);
+        fail_after_ = c.read_int(section, "fail_after", 10);
     }
 
   private:
-    int calls_{0}, failAfter_{10};
+    int calls_{0}, fail_after_{10};
 };
 
 }  // namespace lodestone::test

@@ -20,7 +20,7 @@ using lodestone::drivers::CSimulatedRobot;
 namespace fs = std::filesystem;
 
 namespace {
-const std::string kOffice = std::string(LODESTONE_CONFIG_INI_DIR) + "/office.ini";
+const std::string kOffice = std::string(LODESTONE_CONFIG_INI_DIR) + "/scenarios/office.ini";
 
 mrpt::hwdrivers::CGenericSensor::Ptr configured(const std::string& ini) {
     lodestone::registerAllClasses();

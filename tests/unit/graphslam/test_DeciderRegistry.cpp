@@ -55,7 +55,7 @@ TEST(DeciderRegistry, ShippedConfigsLoadAndMatchTheDefaults) {
     const auto& reg = DeciderRegistry::instance();
     for (const auto& [name, children] : shipped) {
         SCOPED_TRACE(name);
-        const mrpt::config::CConfigFile ini(std::string(LODESTONE_CONFIG_INI_DIR) + "/" + name);
+        const mrpt::config::CConfigFile ini(std::string(LODESTONE_CONFIG_INI_DIR) + "/slam/" + name);
         const auto engine = graphslam::SlamEngine::fromConfig(ini);
         auto composite = std::make_unique<graphslam::CompositeERD>();
         for (const auto& c : children) composite->addChild(reg.makeEdgeDecider(c, ""));

@@ -4,6 +4,8 @@
 #include <lodestone/graphslam/nrd/FusedOdometryNRD.h>
 #include <lodestone/graphslam/SlamEngine.h>
 #include <lodestone/obs/CObservationWheelDrop.h>
+#include <lodestone/sim/RobotConfig.h>
+#include <mrpt/config/CConfigFileMemory.h>
 #include <lodestone/sim/SimulatorSource.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
@@ -21,7 +23,7 @@ constexpr double kSeconds = 12.0;
 /** The first seconds of the office scenario at QVGA, simulated once for all tests. */
 const std::vector<mrpt::obs::CObservation::Ptr>& officeObservations(sim::Scenario* scenarioOut = nullptr) {
     static sim::Scenario scenario = [] {
-        auto sc = sim::Scenario::load(std::string(LODESTONE_CONFIG_INI_DIR) + "/office.ini");
+        auto sc = sim::Scenario::load(std::string(LODESTONE_CONFIG_INI_DIR) + "/scenarios/office.ini");
         sc.camera.resize(320, 240);
         return sc;
     }();
@@ -40,7 +42,9 @@ const std::vector<mrpt::obs::CObservation::Ptr>& officeObservations(sim::Scenari
 
 std::unique_ptr<graphslam::SlamEngine> odometryEngine(const sim::Scenario& sc) {
     auto nrd = std::make_unique<graphslam::FusedOdometryNRD>();
-    nrd->setWheelGeometry(sc.motion.wheelBase, sc.motion.wheelRadius, sc.encoders.ticksPerRev);
+    // The simulated robot's wheels, through the decider's own INI keys.
+    const mrpt::config::CConfigFileMemory empty;
+    nrd->configure(sim::withScenarioWheels(empty, sc, "test"));
     return std::make_unique<graphslam::SlamEngine>(std::move(nrd),
                                                    std::make_unique<graphslam::CompositeERD>(),
                                                    std::make_unique<graphslam::CeresGSO>());
@@ -85,7 +89,7 @@ TEST(FusedOdometryNRD, NodesSitOnTheFusedOdometryAtTheirTimes) {
             ASSERT_TRUE(rec.features);
             EXPECT_GT(rec.features->size(), 50u);
             // The camera looks forward from above the base: optical z along robot x.
-            EXPECT_NEAR(rec.cameraOnRobot.linear()(0, 2), 1.0, 1e-6);
+            EXPECT_NEAR(rec.T_robot_camera.linear()(0, 2), 1.0, 1e-6);
         } else {
             EXPECT_FALSE(rec.cloud);
             EXPECT_FALSE(rec.features);

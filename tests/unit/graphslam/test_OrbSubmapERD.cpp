@@ -46,7 +46,7 @@ LoopRun runLoop(const test::FeatureWorld& world) {
         r.keyframe = i % 2 == 0;
         if (r.keyframe) {
             r.features = test::view(world, run.truth.back(), 0.003, 1000 + i);
-            r.cameraOnRobot = test::forwardCamera();
+            r.T_robot_camera = test::forwardCamera();
         }
         records.push_back(r);
         if (i > 0) steps.push_back({s.graph.edges.find({i - 1, i})->second, 0});
@@ -103,7 +103,7 @@ TEST(OrbSubmapERD, ARoomItHasNeverSeenGivesNoClosures) {
         r.keyframe = true;
         const auto other = test::FeatureWorld::room(300, 5000 + i);
         r.features = test::view(other, test::planarPose(0, 0, 0.1 * static_cast<double>(i)), 0.003, i);
-        r.cameraOnRobot = test::forwardCamera();
+        r.T_robot_camera = test::forwardCamera();
         records.push_back(r);
         if (i > 0) steps.push_back({s.graph.edges.find({i - 1, i})->second, 0});
     }

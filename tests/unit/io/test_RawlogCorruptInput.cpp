@@ -25,7 +25,7 @@ class RawlogCorruptInput : public ::testing::Test {
         // Offsets where each entry starts, from the reader itself on the clean file.
         io::RawlogReader reader(clean_);
         while (auto e = reader.next()) offsets_.push_back(e->byteOffset);
-        fileSize_ = test::readBytes(clean_).size();
+        file_size_ = test::readBytes(clean_).size();
     }
 
     /** Checks what a source on `path` yields: `goodEntries` observations, then an error at
@@ -54,7 +54,7 @@ class RawlogCorruptInput : public ::testing::Test {
     std::vector<mrpt::obs::CObservation::Ptr> observations_;
     std::vector<std::uint64_t> offsets_;
     std::string clean_;
-    std::size_t fileSize_{0};
+    std::size_t file_size_{0};
 };
 
 TEST_F(RawlogCorruptInput, CleanFileHasNoError) {

@@ -17,7 +17,7 @@ struct OfficeRun {
 };
 
 OfficeRun runOffice(const std::string& surface = "") {
-    sim::Scenario sc = sim::Scenario::load(std::string(LODESTONE_CONFIG_INI_DIR) + "/office.ini");
+    sim::Scenario sc = sim::Scenario::load(std::string(LODESTONE_CONFIG_INI_DIR) + "/scenarios/office.ini");
     sc.camera.resize(320, 240);
     sc.camera.rate = 15;
     if (!surface.empty()) {
@@ -96,7 +96,7 @@ TEST(FusedOdometry, ParamsFromIniAndUnknownMethod) {
 }
 
 TEST(FusedOdometry, ShippedIniLoadsWithItsDefaults) {
-    mrpt::config::CConfigFile ini(std::string(LODESTONE_CONFIG_INI_DIR) + "/odometry.ini");
+    mrpt::config::CConfigFile ini(std::string(LODESTONE_CONFIG_INI_DIR) + "/slam/odometry.ini");
     odometry::FusedOdometry::Params p;
     p.loadFromConfigFile(ini, "odometry_fusion");
     const odometry::FusedOdometry::Params defaults;

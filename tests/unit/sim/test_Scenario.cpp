@@ -20,7 +20,7 @@ std::string readFile(const std::string& path) {
 // office.ini with `from` replaced by `to` (appended when `from` is empty); returns the error
 // message of loading it.
 std::string loadError(const std::string& from, const std::string& to) {
-    std::string text = readFile(kConfigDir + "/office.ini");
+    std::string text = readFile(kConfigDir + "/scenarios/office.ini");
     if (from.empty()) {
         text += to;
     } else {
@@ -44,16 +44,16 @@ TEST(Scenario, EveryShippedScenarioLoads) {
     for (const char* name :
          {"office", "paper_loop", "paper_loop_qvga", "paper_kidnap", "paper_kidnap_unmapped",
           "corridor", "corridor_kidnap"}) {
-        const auto path = kConfigDir + "/" + name + ".ini";
+        const auto path = kConfigDir + "/scenarios/" + name + ".ini";
         Scenario sc;
         ASSERT_NO_THROW(sc = Scenario::load(path)) << path;
         EXPECT_EQ(sc.name, name);
         EXPECT_EQ(sc.magnetometers.size(), 2u);
         EXPECT_GE(sc.motion.waypoints.size(), 4u);
     }
-    const auto kidnap = Scenario::load(kConfigDir + "/paper_kidnap.ini");
+    const auto kidnap = Scenario::load(kConfigDir + "/scenarios/paper_kidnap.ini");
     EXPECT_EQ(kidnap.kidnaps.size(), 5u);
-    const auto qvga = Scenario::load(kConfigDir + "/paper_loop_qvga.ini");
+    const auto qvga = Scenario::load(kConfigDir + "/scenarios/paper_loop_qvga.ini");
     EXPECT_EQ(qvga.camera.width, 320);
     EXPECT_NEAR(qvga.camera.fx, 570.3 / 2, 1e-9);
 }

@@ -23,7 +23,7 @@ const std::string kConfigDir = LODESTONE_CONFIG_INI_DIR;
 
 // office.ini with a tiny, slow camera: the whole run in well under a second.
 Scenario quickOffice() {
-    Scenario sc = Scenario::load(kConfigDir + "/office.ini");
+    Scenario sc = Scenario::load(kConfigDir + "/scenarios/office.ini");
     sc.camera.resize(64, 48);
     sc.camera.rate = 2;
     sc.camera.externalImages = false;

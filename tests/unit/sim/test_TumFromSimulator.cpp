@@ -20,7 +20,7 @@ namespace fs = std::filesystem;
 
 TEST(TumFromSimulator, RenderedSequenceImportsWithItsGroundTruth) {
     registerAllClasses();
-    sim::Scenario sc = sim::Scenario::load(std::string(LODESTONE_CONFIG_INI_DIR) + "/office.ini");
+    sim::Scenario sc = sim::Scenario::load(std::string(LODESTONE_CONFIG_INI_DIR) + "/scenarios/office.ini");
     sc.camera.resize(160, 120);
     sim::SimulatorSource source(sc, 1);
     const sim::RgbdRenderer renderer(source.world(), sc.camera, 1);

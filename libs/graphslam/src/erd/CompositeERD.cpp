@@ -5,7 +5,7 @@
 
 namespace lodestone::graphslam {
 
-CompositeERD::CompositeERD(ChildFactory makeChild) : makeChild_(std::move(makeChild)) {
+CompositeERD::CompositeERD(ChildFactory makeChild) : make_child_(std::move(makeChild)) {
     setClassName("CompositeERD");
 }
 
@@ -18,8 +18,8 @@ void CompositeERD::configure(const mrpt::config::CConfigFileBase& ini) {
     children_.clear();
     for (const auto& name : wanted) {
         if (name == "CompositeERD") s.fail("children", "a CompositeERD cannot host itself");
-        if (!makeChild_) s.fail("children", "this CompositeERD was made without a decider factory");
-        addChild(makeChild_(name, s.where("children")));
+        if (!make_child_) s.fail("children", "this CompositeERD was made without a decider factory");
+        addChild(make_child_(name, s.where("children")));
         children_.back()->configure(ini);
     }
 }

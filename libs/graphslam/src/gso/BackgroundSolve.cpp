@@ -6,7 +6,7 @@ namespace lodestone::graphslam {
 
 BackgroundSolve::BackgroundSolve(const PoseGraphSolver::Options& options, const Graph& graph,
                                  const std::vector<LoopClosure>& closures, std::size_t mergeAtNodes)
-    : launchedAt_(graph.nodes.size()), mergeAt_(mergeAtNodes), closuresAtLaunch_(closures.size()) {
+    : launched_at_(graph.nodes.size()), merge_at_(mergeAtNodes), closures_at_launch_(closures.size()) {
     if (!graph.nodes.empty()) last_ = graph.nodes.rbegin()->first;
     // The snapshot is copied here, on the caller's thread; the worker owns its copy.
     outcome_ = std::async(std::launch::async, [options, snapshot = graph, list = closures]() mutable {

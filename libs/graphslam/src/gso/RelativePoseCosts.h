@@ -23,7 +23,7 @@ T wrapAngle(const T& a) {
 /** Nodes as (x, y, yaw). */
 struct PlanarRelativePoseCost {
     PlanarRelativePoseCost(const Eigen::Vector3d& z, const Eigen::Matrix3d& sqrtInfo)
-        : z_(z), sqrtInfo_(sqrtInfo) {}
+        : z_(z), sqrt_info_(sqrtInfo) {}
 
     template <typename T>
     bool operator()(const T* a, const T* b, T* residual) const {
@@ -37,13 +37,13 @@ struct PlanarRelativePoseCost {
         Eigen::Matrix<T, 3, 1> e;
         e << T(cz) * px + T(sz) * py, T(-sz) * px + T(cz) * py, wrapAngle(b[2] - a[2] - T(z_.z()));
         Eigen::Map<Eigen::Matrix<T, 3, 1>> out(residual);
-        out = sqrtInfo_.cast<T>() * e;
+        out = sqrt_info_.cast<T>() * e;
         return true;
     }
 
   private:
     Eigen::Vector3d z_;
-    Eigen::Matrix3d sqrtInfo_;
+    Eigen::Matrix3d sqrt_info_;
 };
 
 /** Nodes as translation (3) + unit quaternion (Eigen order x, y, z, w). The rotation error is
@@ -52,7 +52,7 @@ struct PlanarRelativePoseCost {
 struct Se3RelativePoseCost {
     Se3RelativePoseCost(const Eigen::Vector3d& zt, const Eigen::Quaterniond& zq,
                         const Eigen::Matrix<double, 6, 6>& sqrtInfo)
-        : zt_(zt), zqInv_(zq.conjugate()), sqrtInfo_(sqrtInfo) {}
+        : zt_(zt), zq_inv_(zq.conjugate()), sqrt_info_(sqrtInfo) {}
 
     template <typename T>
     bool operator()(const T* ta, const T* qa, const T* tb, const T* qb, T* residual) const {
@@ -60,7 +60,7 @@ struct Se3RelativePoseCost {
         const Eigen::Map<const Eigen::Quaternion<T>> rotA(qa), rotB(qb);
         const Eigen::Quaternion<T> aInv = rotA.conjugate();
         const Eigen::Matrix<T, 3, 1> pab = aInv * (pb - pa);
-        const Eigen::Quaternion<T> zInv = zqInv_.cast<T>();
+        const Eigen::Quaternion<T> zInv = zq_inv_.cast<T>();
         Eigen::Quaternion<T> dq = zInv * (aInv * rotB);
         // q and -q are one rotation: take the short way.
         if (dq.w() < T(0)) dq.coeffs() = -dq.coeffs();
@@ -68,14 +68,14 @@ struct Se3RelativePoseCost {
         e.template head<3>() = zInv * (pab - zt_.cast<T>());
         e.template tail<3>() = T(2) * dq.vec();
         Eigen::Map<Eigen::Matrix<T, 6, 1>> out(residual);
-        out = sqrtInfo_.cast<T>() * e;
+        out = sqrt_info_.cast<T>() * e;
         return true;
     }
 
   private:
     Eigen::Vector3d zt_;
-    Eigen::Quaterniond zqInv_;
-    Eigen::Matrix<double, 6, 6> sqrtInfo_;
+    Eigen::Quaterniond zq_inv_;
+    Eigen::Matrix<double, 6, 6> sqrt_info_;
 };
 
 /** S with S^T S = info, for an information matrix that may be only semi-definite (a weak or

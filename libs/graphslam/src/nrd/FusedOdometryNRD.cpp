@@ -33,13 +33,6 @@ void FusedOdometryNRD::configure(const mrpt::config::CConfigFileBase& ini) {
         detector_ = std::make_unique<kidnap::KidnapDetector>(params_.detection);
 }
 
-void FusedOdometryNRD::setWheelGeometry(double wheelBase, double wheelRadius, double ticksPerRev) {
-    params_.odometry.wheels.wheelBase = wheelBase;
-    params_.odometry.wheels.wheelRadius = wheelRadius;
-    params_.odometry.wheels.ticksPerRev = ticksPerRev;
-    odometry_ = std::make_unique<odometry::FusedOdometry>(params_.odometry);
-}
-
 std::set<std::string> FusedOdometryNRD::requiredObservations() const {
     // Encoder ticks with RGB-D frames (frames give the node times, encoder samples resolve
     // them), or pose-only odometry on its own (FusedOdometry); the latter needs no frames.
@@ -256,7 +249,7 @@ NodeRecord FusedOdometryNRD::recordFor(double timestamp, bool keyframe) {
     if (f != recent_features_.end()) r.features = f->second;
     for (const auto& frame : recent_frames_) {
         if (std::abs(mrpt::Clock::toDouble(frame->timestamp) - timestamp) > 1e-6) continue;
-        r.cameraOnRobot = odometry::opticalFrameOnRobot(frame->sensorPose);
+        r.T_robot_camera = odometry::opticalFrameOnRobot(frame->sensorPose);
         if (params_.mapPixelStep > 0) {
             r.cloud = std::make_shared<KeyframeCloud>(
                 makeKeyframeCloud(*frame, params_.mapPixelStep, params_.mapMaxDepth));

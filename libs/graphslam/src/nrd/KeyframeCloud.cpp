@@ -16,7 +16,7 @@ KeyframeCloud makeKeyframeCloud(const mrpt::obs::CObservation3DRangeScan& obs, i
     }
     const bool sameSize = !colour.empty() && colour.rows == frame.depth.rows &&
                           colour.cols == frame.depth.cols;
-    const Eigen::Isometry3f T = odometry::opticalFrameOnRobot(obs.sensorPose).cast<float>();
+    const Eigen::Isometry3f T_robot_optical = odometry::opticalFrameOnRobot(obs.sensorPose).cast<float>();
     const auto& K = frame.intrinsics;
     for (int v = 0; v < frame.depth.rows; v += pixelStep) {
         const float* row = frame.depth.ptr<float>(v);
@@ -25,7 +25,7 @@ KeyframeCloud makeKeyframeCloud(const mrpt::obs::CObservation3DRangeScan& obs, i
             if (!(z > 0) || z > maxDepth) continue;  // also drops NaN
             const Eigen::Vector3f optical(static_cast<float>((u - K.cx) * z / K.fx),
                                           static_cast<float>((v - K.cy) * z / K.fy), z);
-            const Eigen::Vector3f p = T * optical;
+            const Eigen::Vector3f p = T_robot_optical * optical;
             KeyframeCloud::Point pt{p.x(), p.y(), p.z(), 128, 128, 128};
             if (sameSize && colour.channels() == 3) {
                 const auto bgr = colour.at<cv::Vec3b>(v, u);

@@ -44,7 +44,7 @@ KidnapDetector::Params KidnapDetector::readParams(const mrpt::config::CConfigFil
 std::optional<KidnapDetector::Event> KidnapDetector::lift(double t, const char* by) {
     lifted_ = true;
     inconsistent_ = 0;
-    drivingSince_.reset();
+    driving_since_.reset();
     field_.clear();
     ++stats_.lifts;
     const std::string b = by;
@@ -82,17 +82,17 @@ std::optional<KidnapDetector::Event> KidnapDetector::onFrame(
     frames_[t] = now;
     while (!frames_.empty() && frames_.begin()->first < t - 10.0) frames_.erase(frames_.begin());
     if (still) {
-        if (!stillSince_) {
-            stillSince_ = lastFrameTime_ >= 0 ? lastFrameTime_ : t;
+        if (!still_since_) {
+            still_since_ = last_frame_time_ >= 0 ? last_frame_time_ : t;
             field_.clear();
         }
-        drivingSince_.reset();
+        driving_since_.reset();
     } else {
-        stillSince_.reset();
+        still_since_.reset();
         field_.clear();
-        if (!drivingSince_) drivingSince_ = t;
+        if (!driving_since_) driving_since_ = t;
     }
-    lastFrameTime_ = t;
+    last_frame_time_ = t;
 
     // Since `from` (the frame at or before it): did the camera move as the wheels did, and
     // stay down? Empty when VO has no answer now.
@@ -142,46 +142,46 @@ std::optional<KidnapDetector::Event> KidnapDetector::onFrame(
             return std::nullopt;
         }
         // The disagreement built up over the window: the lift is at most that far back.
-        if (inconsistent_++ == 0) firstInconsistent_ = t;
+        if (inconsistent_++ == 0) first_inconsistent_ = t;
         if (inconsistent_ < params_.persistence) return std::nullopt;
         // The disagreement took a while to pass the gate: a carried robot's wheels stopped
         // at the lift, so that is when it was, if it is recent enough to be this lift.
         const bool wheelsStopped =
-            stillSince_ && *stillSince_ >= firstInconsistent_ - params_.window;
-        return lift(wheelsStopped ? *stillSince_ : firstInconsistent_, rose ? "rise" : "motion");
+            still_since_ && *still_since_ >= first_inconsistent_ - params_.window;
+        return lift(wheelsStopped ? *still_since_ : first_inconsistent_, rose ? "rise" : "motion");
     }
     // Lifted: put down once the wheels drive again, VO (when it answers) agreeing with them
     // since they started.
-    if (drivingSince_) {
-        const auto disagree = disagreeSince(*drivingSince_);
-        if (disagree && *disagree) drivingSince_ = t;
+    if (driving_since_) {
+        const auto disagree = disagreeSince(*driving_since_);
+        if (disagree && *disagree) driving_since_ = t;
     }
-    if (drivingSince_ && t - *drivingSince_ >= params_.settle) {
+    if (driving_since_ && t - *driving_since_ >= params_.settle) {
         lifted_ = false;
         inconsistent_ = 0;
         ++stats_.putDowns;
-        return Event{false, *drivingSince_, "wheels"};
+        return Event{false, *driving_since_, "wheels"};
     }
     return std::nullopt;
 }
 
 std::optional<KidnapDetector::Event> KidnapDetector::onMagnetic(double t, double magnitude) {
-    if (!params_.magnetic || lifted_ || !stillSince_ || t < *stillSince_ ||
+    if (!params_.magnetic || lifted_ || !still_since_ || t < *still_since_ ||
         !std::isfinite(magnitude))
         return std::nullopt;
     // The first window after the wheels stopped against the latest one.
     field_.emplace_back(t, magnitude);
     const double w = params_.magneticWindow;
-    if (t - *stillSince_ < 2 * w) return std::nullopt;
+    if (t - *still_since_ < 2 * w) return std::nullopt;
     // Bounded: the first window and the latest one are all that is kept.
     const auto middle = std::find_if(field_.begin(), field_.end(),
-                                     [&](const auto& f) { return f.first > *stillSince_ + w; });
+                                     [&](const auto& f) { return f.first > *still_since_ + w; });
     field_.erase(middle, std::find_if(middle, field_.end(),
                                       [&](const auto& f) { return f.first >= t - w; }));
     double firstSum = 0, lastSum = 0;
     std::size_t firstN = 0, lastN = 0;
     for (const auto& [ti, m] : field_) {
-        if (ti <= *stillSince_ + w) {
+        if (ti <= *still_since_ + w) {
             firstSum += m;
             ++firstN;
         }

@@ -90,10 +90,10 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
     if (r.failure == vision::VoFailure::NoReference) {
         // VO (re)starts on this frame: the root, or after a loss a new segment.
         const bool first = m_prev_registered_nodeID == mrpt::graphs::INVALID_NODEID;
-        const double gap = first ? 0.0 : t - lastTracked_.t;
+        const double gap = first ? 0.0 : t - last_tracked_.t;
         if (!first) {
             ++gaps_;
-            gapSeconds_.push_back(gap);
+            gap_seconds_.push_back(gap);
         }
         std::optional<mrpt::poses::CPose3DPDFGaussian> found;
         if (!first && r.frameFeatures) found = relocalize(*r.frameFeatures, A);
@@ -101,7 +101,7 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
             // The view came back: the graph goes on from where it was seen before.
             ++relocalized_;
             registerAt(*scan, t, r.frameFeatures, *found, false);
-        } else if (!first && gap <= params_.bridgeMaxSeconds && lastStepSeconds_ > 0) {
+        } else if (!first && gap <= params_.bridgeMaxSeconds && last_step_seconds_ > 0) {
             // A short gap: where the last velocity carries the camera, as sure as a
             // constant-velocity model is over that long.
             ++bridged_;
@@ -110,26 +110,26 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
             registerAt(*scan, t, r.frameFeatures, here, !first);
         }
         reference_ = {t, here};
-        lastTracked_ = {t, here};
-        lastTrackedFeatures_ = r.frameFeatures;
+        last_tracked_ = {t, here};
+        last_tracked_features_ = r.frameFeatures;
         return;
     }
     if (!r.success) {
-        ++failedFrames_;  // (VO keeps its reference; once LOST it restarts: NoReference above)
+        ++failed_frames_;  // (VO keeps its reference; once LOST it restarts: NoReference above)
         ++failures_[vision::toString(r.failure)];
         return;
     }
     // The reference is the one VO started from or the last tracked frame, which VO made its
     // new reference when the camera had moved far enough from the old one.
-    if (r.referenceTimestamp == lastTracked_.t) reference_ = lastTracked_;
+    if (r.referenceTimestamp == last_tracked_.t) reference_ = last_tracked_;
     if (r.referenceTimestamp != reference_.t) return;  // (cannot happen: VO keeps one reference)
     const auto motion = robotMotion(r, A);
     mrpt::poses::CPose3DPDFGaussian cur = reference_.pdf;
     cur += motion;
-    lastStep_ = cur.mean - lastTracked_.pdf.mean;  // (both relative to the same node)
-    lastStepSeconds_ = t - lastTracked_.t;
-    lastTracked_ = {t, cur};
-    lastTrackedFeatures_ = r.frameFeatures;
+    last_step_ = cur.mean - last_tracked_.pdf.mean;  // (both relative to the same node)
+    last_step_seconds_ = t - last_tracked_.t;
+    last_tracked_ = {t, cur};
+    last_tracked_features_ = r.frameFeatures;
     if (cur.mean.norm() < params_.nodeDistance && rotationAngle(cur.mean) < params_.nodeAngle) return;
     registerAt(*scan, t, r.frameFeatures, cur, false);
     // Seen from the new node, the reference lies where VO measured it - the motion inverted,
@@ -137,7 +137,7 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
     mrpt::poses::CPose3DPDFGaussian back;
     motion.inverse(back);
     reference_.pdf = back;
-    lastTracked_.pdf = here;
+    last_tracked_.pdf = here;
 }
 
 mrpt::poses::CPose3DPDFGaussian VisualOdometryNRD::relativeToLastNode(TNodeID from) const {
@@ -156,8 +156,8 @@ std::optional<mrpt::poses::CPose3DPDFGaussian> VisualOdometryNRD::relocalize(
     if (params_.relocalizeKeyframes == 0) return std::nullopt;
     // Newest first: the last tracked frame, then the keyframes.
     std::vector<std::pair<mrpt::poses::CPose3DPDFGaussian, const vision::FrameFeatures*>> tries;
-    if (lastTrackedFeatures_) tries.emplace_back(lastTracked_.pdf, lastTrackedFeatures_.get());
-    for (auto k = recentKeyframes_.rbegin(); k != recentKeyframes_.rend(); ++k) {
+    if (last_tracked_features_) tries.emplace_back(last_tracked_.pdf, last_tracked_features_.get());
+    for (auto k = recent_keyframes_.rbegin(); k != recent_keyframes_.rend(); ++k) {
         tries.emplace_back(relativeToLastNode(k->first), k->second.get());
     }
     std::uint64_t seed = params_.visual.seed + frames_ * 131;
@@ -176,8 +176,8 @@ std::optional<mrpt::poses::CPose3DPDFGaussian> VisualOdometryNRD::relocalize(
 
 mrpt::poses::CPose3DPDFGaussian VisualOdometryNRD::bridge(double gap) const {
     // The last step scaled to the gap (first order in its angles), from the last tracked frame.
-    const double k = gap / lastStepSeconds_;
-    const auto& s = lastStep_;
+    const double k = gap / last_step_seconds_;
+    const auto& s = last_step_;
     mrpt::poses::CPose3DPDFGaussian motion;
     motion.mean = mrpt::poses::CPose3D(k * s.x(), k * s.y(), k * s.z(), k * s.yaw(), k * s.pitch(),
                                        k * s.roll());
@@ -188,7 +188,7 @@ mrpt::poses::CPose3DPDFGaussian VisualOdometryNRD::bridge(double gap) const {
         motion.cov(i, i) = st * st;
         motion.cov(i + 3, i + 3) = sr * sr;
     }
-    mrpt::poses::CPose3DPDFGaussian edge = lastTracked_.pdf;
+    mrpt::poses::CPose3DPDFGaussian edge = last_tracked_.pdf;
     edge += motion;
     return edge;
 }
@@ -198,7 +198,7 @@ void VisualOdometryNRD::registerAt(const mrpt::obs::CObservation3DRangeScan& sca
                                    const mrpt::poses::CPose3DPDFGaussian& edge, bool restart) {
     bool keyframe = true;
     TNodeID id = m_graph->root;
-    const double lostAfter = lastTracked_.t;  // (lastTracked_ becomes this frame below)
+    const double lostAfter = last_tracked_.t;  // (last_tracked_ becomes this frame below)
     if (m_prev_registered_nodeID == mrpt::graphs::INVALID_NODEID) {
         m_graph->nodes[m_graph->root] = mrpt::poses::CPose3D();  // the camera starts the map
         m_prev_registered_nodeID = m_graph->root;
@@ -213,14 +213,14 @@ void VisualOdometryNRD::registerAt(const mrpt::obs::CObservation3DRangeScan& sca
         }
         m_since_prev_node_PDF = c;
         // MRPT's registerNewNodeAtEnd() places the node at getCurrentRobotPosEstimation(),
-        // the last node + lastTracked_: make that the edge's end first (across a gap the last
+        // the last node + last_tracked_: make that the edge's end first (across a gap the last
         // tracked frame is not the new node's frame).
-        lastTracked_ = {t, mrpt::poses::CPose3DPDFGaussian(c.mean)};
+        last_tracked_ = {t, mrpt::poses::CPose3DPDFGaussian(c.mean)};
         registerNewNodeAtEnd();
         id = m_prev_registered_nodeID;
-        sinceKeyframe_ = sinceKeyframe_ + c.mean;
-        keyframe = restart || sinceKeyframe_.norm() >= params_.keyframeDistance ||
-                   rotationAngle(sinceKeyframe_) >= params_.keyframeAngle;
+        since_keyframe_ = since_keyframe_ + c.mean;
+        keyframe = restart || since_keyframe_.norm() >= params_.keyframeDistance ||
+                   rotationAngle(since_keyframe_) >= params_.keyframeAngle;
     }
     if (nodes_) {
         NodeRecord rec;
@@ -233,7 +233,7 @@ void VisualOdometryNRD::registerAt(const mrpt::obs::CObservation3DRangeScan& sca
         }
         if (keyframe) {
             rec.features = features;
-            rec.cameraOnRobot = odometry::opticalFrameOnRobot(scan.sensorPose);
+            rec.T_robot_camera = odometry::opticalFrameOnRobot(scan.sensorPose);
             if (params_.mapPixelStep > 0) {
                 rec.cloud = std::make_shared<KeyframeCloud>(
                     makeKeyframeCloud(scan, params_.mapPixelStep, params_.mapMaxDepth));
@@ -241,13 +241,13 @@ void VisualOdometryNRD::registerAt(const mrpt::obs::CObservation3DRangeScan& sca
         }
         nodes_->add(id, std::move(rec));
     }
-    if (restart) recentKeyframes_.clear();  // (a new segment: nothing before it is related)
+    if (restart) recent_keyframes_.clear();  // (a new segment: nothing before it is related)
     if (keyframe) {
-        sinceKeyframe_ = mrpt::poses::CPose3D();
+        since_keyframe_ = mrpt::poses::CPose3D();
         ++keyframes_;
-        if (features) recentKeyframes_.emplace_back(id, features);
-        while (recentKeyframes_.size() > static_cast<std::size_t>(params_.relocalizeKeyframes))
-            recentKeyframes_.pop_front();
+        if (features) recent_keyframes_.emplace_back(id, features);
+        while (recent_keyframes_.size() > static_cast<std::size_t>(params_.relocalizeKeyframes))
+            recent_keyframes_.pop_front();
     }
     just_registered_ = id;
 }
@@ -263,7 +263,7 @@ VisualOdometryNRD::global_pose_t VisualOdometryNRD::getCurrentRobotPosEstimation
     global_pose_t pose;
     if (m_prev_registered_nodeID != mrpt::graphs::INVALID_NODEID)
         pose = m_graph->nodes.at(m_prev_registered_nodeID);
-    return global_pose_t(pose + lastTracked_.pdf.mean);
+    return global_pose_t(pose + last_tracked_.pdf.mean);
 }
 
 JsonObject VisualOdometryNRD::describe() const {
@@ -275,10 +275,10 @@ JsonObject VisualOdometryNRD::describe() const {
         .set("camera_label", params_.cameraLabel);
     JsonObject stats;
     stats.set("rgbd_frames", frames_)
-        .set("failed_frames", failedFrames_)
+        .set("failed_frames", failed_frames_)
         .set("keyframes", keyframes_)
         .set("vo_gaps", gaps_)
-        .set("vo_gap_seconds", gapSeconds_)
+        .set("vo_gap_seconds", gap_seconds_)
         .set("vo_gaps_bridged", bridged_)
         .set("vo_gaps_relocalized", relocalized_)
         .set("segments", segment_ + 1)

@@ -75,8 +75,8 @@ void Relocalizer::addNode(const Graph& graph, const NodeStore& nodes, TNodeID id
     }
     segment_.push_back(seg);
     travel_.push_back(starts ? 0.0 : travel_.back() + step);
-    positionVar_.push_back(starts ? 0.0 : positionVar_.back() + pv);
-    rotationVar_.push_back(starts ? 0.0 : rotationVar_.back() + rv);
+    position_var_.push_back(starts ? 0.0 : position_var_.back() + pv);
+    rotation_var_.push_back(starts ? 0.0 : rotation_var_.back() + rv);
     if (starts && id > 0) {
         if (kidnaps_.empty()) {
             for (TNodeID k = 0; k < id; ++k) {
@@ -102,8 +102,8 @@ typename S::Matrix Relocalizer::relativeCovariance(const Graph& graph, TNodeID i
     if (!moving || segment_[i] != segment_[j]) return c;
     // Within one segment of the moved group: its odometry since the segment began, summed
     // (position variance plus the rotation's lever arm over the distance between the nodes).
-    const double pv = std::abs(positionVar_[j] - positionVar_[i]);
-    const double rv = std::abs(rotationVar_[j] - rotationVar_[i]);
+    const double pv = std::abs(position_var_[j] - position_var_[i]);
+    const double rv = std::abs(rotation_var_[j] - rotation_var_[i]);
     const auto& a = graph.nodes.at(i);
     const auto& b = graph.nodes.at(j);
     double d2 = (a.x() - b.x()) * (a.x() - b.x()) + (a.y() - b.y()) * (a.y() - b.y());
@@ -261,7 +261,7 @@ std::optional<Relocalizer::Merge> Relocalizer::offerIn(const Graph& graph, const
 
 void Relocalizer::commit(const Merge& m, const Graph& graph, const NodeStore& nodes) {
     ++merges_;
-    rejectedTotal_ += m.rejected;
+    rejected_total_ += m.rejected;
     const bool intoMap = m.keptGroup == 0;
     for (auto& k : kidnaps_) {
         if (find(k.segment) != m.movedGroup) continue;
@@ -327,7 +327,7 @@ JsonObject Relocalizer::describe() const {
     JsonObject stats;
     stats.set("hypotheses_offered", offered_)
         .set("merges", merges_)
-        .set("rejected_hypotheses", rejectedTotal_)
+        .set("rejected_hypotheses", rejected_total_)
         .set("dropped_hypotheses", dropped_)
         .set("undetermined_merges", undetermined_)
         .set("pending_hypotheses", pending_.size());

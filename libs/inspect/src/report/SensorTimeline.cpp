@@ -31,7 +31,7 @@ double TimelineBuilder::StepHistogram::median() const {
     return 0;
 }
 
-TimelineBuilder::TimelineBuilder(double gapFactor) : gapFactor_(gapFactor) {}
+TimelineBuilder::TimelineBuilder(double gapFactor) : gap_factor_(gapFactor) {}
 
 void TimelineBuilder::add(const mrpt::obs::CObservation& obs, double time) {
     auto& s = sensors_[obs.sensorLabel];
@@ -71,7 +71,7 @@ bool TimelineBuilder::wouldBeGap(const std::string& label, double time) const {
     if (it == sensors_.end() || !it->second.any || !std::isfinite(time)) return false;
     const auto& s = it->second;
     if (s.timeline.eventDriven || s.steps.total < kStepsForMedian) return false;
-    return time - s.newest > gapFactor_ * s.steps.median();
+    return time - s.newest > gap_factor_ * s.steps.median();
 }
 
 std::vector<SensorTimeline> TimelineBuilder::finish() {
@@ -81,7 +81,7 @@ std::vector<SensorTimeline> TimelineBuilder::finish() {
         tl.medianStep = s.steps.median();
         if (!tl.eventDriven && tl.medianStep > 0) {
             for (const auto& c : s.candidates) {
-                if (c.size <= gapFactor_ * tl.medianStep) continue;
+                if (c.size <= gap_factor_ * tl.medianStep) continue;
                 ++tl.gapCount;
                 tl.largestGap = std::max(tl.largestGap, c.size);
                 if (tl.gaps.size() < kMaxListed) tl.gaps.push_back(c);

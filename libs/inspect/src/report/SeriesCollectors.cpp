@@ -55,10 +55,10 @@ void SeriesCollectors::addActions(const mrpt::serialization::CSerializable& entr
     for (const auto& a : *actions) {
         const auto* move = dynamic_cast<const mrpt::obs::CActionRobotMovement2D*>(a.get());
         if (!move || !move->poseChange) continue;
-        actionsPose_ = actionsPose_ + move->poseChange->getMeanVal();
+        actions_pose_ = actions_pose_ + move->poseChange->getMeanVal();
         auto& p = odometry_[kActionsLabel];
         p.label = kActionsLabel;
-        addPose(p, actionsPose_);
+        addPose(p, actions_pose_);
     }
 }
 

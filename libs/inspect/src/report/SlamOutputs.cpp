@@ -1,5 +1,6 @@
 #include <lodestone/inspect/report/ReportHtml.h>
 #include <lodestone/inspect/report/SlamOutputs.h>
+#include <lodestone/outputs/RunFiles.h>
 
 #include <nlohmann/json.hpp>
 
@@ -11,30 +12,7 @@
 namespace lodestone::inspect::report {
 
 namespace fs = std::filesystem;
-
-std::vector<NodeRow> readNodeTable(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw std::runtime_error(path + ": cannot open");
-    std::string line;
-    if (!std::getline(in, line) || line.rfind("node,timestamp,segment,keyframe,engine_ms", 0) != 0) {
-        throw std::runtime_error(path + ": line 1: not a nodes.csv header");
-    }
-    std::vector<NodeRow> rows;
-    for (std::size_t n = 2; std::getline(in, line); ++n) {
-        if (line.empty()) continue;
-        NodeRow r;
-        int keyframe = 0;
-        char ms[32] = {0};
-        if (std::sscanf(line.c_str(), "%lld,%lf,%d,%d,%31s", &r.node, &r.timestamp, &r.segment,
-                        &keyframe, ms) != 5) {
-            throw std::runtime_error(path + ": line " + std::to_string(n) + ": expected 5 fields");
-        }
-        r.keyframe = keyframe != 0;
-        r.engineMs = std::strtod(ms, nullptr);  // "nan" where the run did not time it
-        rows.push_back(r);
-    }
-    return rows;
-}
+using outputs::RunFile;
 
 namespace {
 // The handful of report.json figures a reader of the report wants first.
@@ -74,11 +52,10 @@ void readFacts(const std::string& path, SlamOutputs& out) {
 SlamOutputs readSlamOutputs(const std::string& dir, const std::string& groundTruth) {
     SlamOutputs out;
     out.dir = dir;
-    const fs::path d(dir);
-    if (!fs::is_directory(d)) throw std::runtime_error(dir + ": not a lodestone-slam output folder");
-    out.trajectory = io::readTumTrajectory((d / "trajectory.tum").string());
-    const auto optional = [&](const char* name, const auto& read) {
-        const fs::path p = d / name;
+    if (!fs::is_directory(dir)) throw std::runtime_error(dir + ": not a lodestone-slam output folder");
+    out.trajectory = io::readTumTrajectory(outputs::pathIn(dir, RunFile::Trajectory));
+    const auto optional = [&](RunFile file, const auto& read) {
+        const fs::path p = outputs::pathIn(dir, file);
         if (!fs::exists(p)) {
             out.missing.push_back(p.string() + ": absent");
             return;
@@ -89,17 +66,17 @@ SlamOutputs readSlamOutputs(const std::string& dir, const std::string& groundTru
             out.missing.push_back(e.what());
         }
     };
-    optional("closures.csv", [&](const std::string& p) { out.closures = eval::readClosureLog(p); });
-    optional("nodes.csv", [&](const std::string& p) { out.nodes = readNodeTable(p); });
-    optional("report.json", [&](const std::string& p) {
+    optional(RunFile::Closures, [&](const std::string& p) { out.closures = outputs::readClosureTable(p); });
+    optional(RunFile::Nodes, [&](const std::string& p) { out.nodes = outputs::readNodeTable(p); });
+    optional(RunFile::Report, [&](const std::string& p) {
         readFacts(p, out);
         out.kidnaps = eval::readReportedKidnaps(p);
     });
     if (!groundTruth.empty()) {
         out.groundTruth = io::readTumTrajectory(groundTruth);
         out.groundTruthPath = groundTruth;
-    } else if (fs::exists(d / "ground_truth.tum")) {
-        out.groundTruthPath = (d / "ground_truth.tum").string();
+    } else if (fs::exists(outputs::pathIn(dir, RunFile::GroundTruth))) {
+        out.groundTruthPath = outputs::pathIn(dir, RunFile::GroundTruth);
         out.groundTruth = io::readTumTrajectory(out.groundTruthPath);
     }
     return out;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <lodestone/io/TumTrajectory.h>
+#include <lodestone/outputs/ClosureTable.h>
 
 #include <cmath>
 #include <map>
@@ -9,18 +10,8 @@
 
 namespace lodestone::eval {
 
-/** One line of lodestone-slam's closures.csv (graphslam::writeClosureLog). */
-struct ReportedClosure {
-    long long fromNode{0}, toNode{0};
-    double fromTime{0}, toTime{0};
-    std::string source;
-    double score{0};
-    bool hypothesis{false}, kept{false};
-    mrpt::poses::CPose3D measured;  ///< `to` in the frame of `from`
-};
-
-/** Reads closures.csv; throws std::runtime_error naming the file and line when malformed. */
-std::vector<ReportedClosure> readClosureLog(const std::string& path);
+/** One line of lodestone-slam's closures.csv (outputs::readClosureTable reads them). */
+using ReportedClosure = outputs::ClosureRow;
 
 struct ClosureEvalOptions {
     double radius{0.5};  ///< [m] a detection is right within this of the truth

@@ -30,7 +30,7 @@ class TrajectoryInterpolator {
   private:
     bool bridges(const io::TumPose& a, const io::TumPose& b) const;
     std::vector<io::TumPose> poses_;  // sorted by time
-    double maxGap_, stillRadius_;
+    double max_gap_, still_radius_;
 };
 
 /** |B| over the floor: each magnetometer reading placed where its sensor was on the

@@ -45,10 +45,10 @@ class LiveSlamFeed : public io::DataSource {
     std::deque<mrpt::obs::CObservation::Ptr> queue_;
     double newest_{-1e300};
     bool closed_{false}, abandoned_{false};
-    double maxLag_;
+    double max_lag_;
     std::vector<float> lags_;
     std::size_t skipped_{0}, frames_{0};
-    double lagNow_{0};
+    double lag_now_{0};
 };
 
 }  // namespace lodestone::grab

@@ -34,7 +34,7 @@ class ReorderingWriter {
     std::size_t written() const { return writer_.entriesWritten(); }
     std::size_t late() const { return late_; }
     std::size_t waiting() const { return heap_.size(); }
-    const std::map<std::string, std::size_t>& writtenByLabel() const { return byLabel_; }
+    const std::map<std::string, std::size_t>& writtenByLabel() const { return by_label_; }
     /** Size of the file so far [bytes]. */
     std::uint64_t bytesOnDisk() const;
     const std::string& path() const { return writer_.path(); }
@@ -54,9 +54,9 @@ class ReorderingWriter {
     double window_;
     std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap_;
     std::uint64_t arrivals_{0};
-    double newest_{-1e300}, lastWritten_{-1e300};
+    double newest_{-1e300}, last_written_{-1e300};
     std::size_t late_{0};
-    std::map<std::string, std::size_t> byLabel_;
+    std::map<std::string, std::size_t> by_label_;
     std::function<void(const mrpt::serialization::CSerializable::Ptr&, double)> on_written_;
 };
 

@@ -36,7 +36,7 @@ struct NodeRecord {
     /** Keyframes: the ORB features of the node's frame (optical frame) and where that frame
      * sits on the robot: what the visual loop closer matches. */
     std::shared_ptr<const vision::FrameFeatures> features;
-    Eigen::Isometry3d cameraOnRobot{Eigen::Isometry3d::Identity()};
+    Eigen::Isometry3d T_robot_camera{Eigen::Isometry3d::Identity()};
     /** Magnetometer readings since the previous node, up to this node's time: what the
      * magnetic matcher builds its sequences from (none while the robot was carried). */
     std::vector<MagneticSample> magnetic;

@@ -45,6 +45,7 @@ class SlamEngine {
     NodeDecider& nodeDecider() { return *nrd_; }
     EdgeDecider& edgeDecider() { return *erd_; }
     GraphOptimizer& optimizer() { return *gso_; }
+    const GraphOptimizer& optimizer() const { return *gso_; }
     /** The run's true trajectory for the deciders' diagnostics (SlamComponent). */
     void setDiagnosticTruth(const std::shared_ptr<const std::vector<io::TumPose>>& truth);
     /** Union of the deciders' required observation classes. */

@@ -28,7 +28,7 @@ void MagneticGpERD::matchFieldMap(const magnetic::Supernode& q) {
     const auto& samples = track_->samples();
     const std::size_t qEnd = q.last;
     const double sEnd = samples[qEnd - 1].s;
-    if (sEnd - lastMapSearch_ < fm.every) return;
+    if (sEnd - last_map_search_ < fm.every) return;
     const auto qNode = static_cast<std::size_t>(samples[qEnd - 1].node);
     if (constrained_[qNode]) return;  // a sequence match placed it just now
     // The query: the last `window` metres of this segment, every plane_subsample-th reading.
@@ -37,7 +37,7 @@ void MagneticGpERD::matchFieldMap(const magnetic::Supernode& q) {
            samples[qBegin - 1].s >= sEnd - fm.window)
         --qBegin;
     if (sEnd - samples[qBegin].s < 0.9 * fm.window) return;  // the segment is younger than that
-    lastMapSearch_ = sEnd;
+    last_map_search_ = sEnd;
     ++stats_.mapSearches;
     // Where the robot can be: the pose uncertainty since the last closure plus the map's own
     // error (gate_floor), as for the sequence matcher's candidates. A gate wider than the
@@ -119,8 +119,13 @@ void MagneticGpERD::matchFieldMap(const magnetic::Supernode& q) {
         match.alignment.normalizedRms, match.alignment.delta[0], match.alignment.delta[1],
         match.alignment.delta[2], std::sqrt(match.alignment.covariance(0, 0)),
         std::sqrt(match.alignment.covariance(1, 1)), static_cast<long>(n));
-    if (!match.accepted()) return;
+    if (match.accepted()) addFieldMapEdges(q, match, qBegin, qNode, ai);
+}
 
+void MagneticGpERD::addFieldMapEdges(const magnetic::Supernode& q,
+                                     const magnetic::FieldMapMatch& match, std::size_t qBegin,
+                                     std::size_t qNode, const std::vector<std::size_t>& mapReadings) {
+    const auto& samples = track_->samples();
     // Each query node moved as its readings were, tied to the nearest earlier node.
     Record rec;
     rec.querySupernode = q.id;
@@ -130,7 +135,7 @@ void MagneticGpERD::matchFieldMap(const magnetic::Supernode& q) {
     rec.normalizedRms = match.alignment.normalizedRms;
     rec.logRatio = match.logEvidence;
     std::vector<std::size_t> mapNodes;
-    for (const std::size_t i : ai) {
+    for (const std::size_t i : mapReadings) {
         if (mapNodes.empty() || mapNodes.back() != samples[i].node) mapNodes.push_back(samples[i].node);
     }
     const std::size_t firstNode = samples[qBegin].node;

@@ -48,7 +48,7 @@ std::optional<MagneticWindowERD::Closure> MagneticWindowERD::measureClosure(
         const std::size_t start =
             best.direction == WindowDirection::Forward ? best.sample + 1 - n_ : best.sample;
         const double turn = windowTurn(*best.track, start);
-        sigmaAlong2 += sigmaCross2 * (turn * turn / 4 + correlatedSamples_ / (3.0 * double(n_)));
+        sigmaAlong2 += sigmaCross2 * (turn * turn / 4 + correlated_samples_ / (3.0 * double(n_)));
     }
     // The query node's place on the target's path: its travel past the newest reading, the
     // same way along (forward) or back (backward).
@@ -113,7 +113,7 @@ bool MagneticWindowERD::confirm(const Closure& c) {
     for (auto& e : pending_) {
         if (c.sQuery - e.sQuery < params_.window || !agree(e, c)) continue;
         ++stats_.confirmed;
-        if (commit(e) && e.truthRecord) truthQueries_[*e.truthRecord].stage = TruthStage::Closed;
+        if (commit(e) && e.truthRecord) truth_queries_[*e.truthRecord].stage = TruthStage::Closed;
         pending_.clear();
         confirmed_ = c;
         return commit(c);
@@ -123,11 +123,11 @@ bool MagneticWindowERD::confirm(const Closure& c) {
 }
 
 bool MagneticWindowERD::commit(const Closure& c) {
-    if (c.sQuery - lastClosure_ + 1e-9 < params_.closureEvery) return false;
+    if (c.sQuery - last_closure_ + 1e-9 < params_.closureEvery) return false;
     registerClosure(c.target, c.query, planarConstraint(c.z), stats_.edges, false, c.score);
     // The query node is now known as well as the closure says (in the map frame).
     path_.pinClosure(c.query, m_graph->nodes.at(c.target).yaw(), c.positionCov, c.z.cov(2, 2));
-    lastClosure_ = c.sQuery;
+    last_closure_ = c.sQuery;
     ++stats_.edges;
     ++(c.direction == WindowDirection::Forward ? stats_.forward : stats_.backward);
     return true;

@@ -24,13 +24,13 @@ void MagneticWindowERD::rebuild() {
     n_ = magnetic::SupernodeTrack({params_.step, params_.window, params_.step}, 3)
              .samplesPerSupernode();
     path_ = MagneticPath(params_.uncertainty);
-    projectedTargets_.clear();
+    projected_targets_.clear();
     basis_ = std::make_shared<const magnetic::WindowDisplacementModel::Basis>(n_, params_.noise,
                                                                               params_.lengthScale);
-    correlatedSamples_ = 0;  // the kernel's correlations summed over a window's offsets
+    correlated_samples_ = 0;  // the kernel's correlations summed over a window's offsets
     for (int j = 1 - int(n_); j < int(n_); ++j) {
         const double r = j * params_.step / params_.lengthScale;
-        correlatedSamples_ += std::exp(-0.5 * r * r);
+        correlated_samples_ += std::exp(-0.5 * r * r);
     }
 }
 
@@ -106,8 +106,8 @@ void MagneticWindowERD::onNode(TNodeID id) {
             if (m.sensorLabel != params_.sensorLabel) return;  // the mirror's: stored only
             for (const auto& w : windows) {
                 const double end = track.samples()[w.last - 1].s;
-                if (end - lastQuery_ + 1e-9 < params_.queryEvery) continue;
-                lastQuery_ = end;
+                if (end - last_query_ + 1e-9 < params_.queryEvery) continue;
+                last_query_ = end;
                 query(w.first);
             }
         });
@@ -384,10 +384,10 @@ Eigen::MatrixX3d MagneticWindowERD::projectedResiduals(const Candidate& k, std::
     const bool backward = k.direction == WindowDirection::Backward;
     const std::uint64_t key =
         (std::uint64_t(start) << 2) | (k.track == &queried() ? 0u : 2u) | (backward ? 1u : 0u);
-    auto it = projectedTargets_.find(key);
-    if (it == projectedTargets_.end()) {
-        if (projectedTargets_.size() >= kProjectionCache) projectedTargets_.clear();
-        it = projectedTargets_.emplace(key, projectedWindow(*k.track, start, backward)).first;
+    auto it = projected_targets_.find(key);
+    if (it == projected_targets_.end()) {
+        if (projected_targets_.size() >= kProjectionCache) projected_targets_.clear();
+        it = projected_targets_.emplace(key, projectedWindow(*k.track, start, backward)).first;
     }
     // The differences, as windowResiduals forms them, in the basis (a linear map).
     const Eigen::MatrixX3d& t = it->second;

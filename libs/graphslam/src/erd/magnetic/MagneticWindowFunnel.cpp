@@ -102,13 +102,13 @@ std::optional<std::size_t> MagneticWindowERD::diagnose(std::size_t first, const 
                   : r.fitChi2 > fitLimit       ? S::NoFit
                                                : S::LostToOther;
     }
-    truthQueries_.push_back(r);
-    return truthQueries_.size() - 1;
+    truth_queries_.push_back(r);
+    return truth_queries_.size() - 1;
 }
 
 JsonObject MagneticWindowERD::describeTruth() const {
     std::vector<FunnelRecord> records;
-    for (const auto& r : truthQueries_)
+    for (const auto& r : truth_queries_)
         records.push_back({r.queryNode, static_cast<int>(r.stage), r.backward, r.gate2, r.fitChi2});
     std::vector<std::string> names;
     for (int k = 0; k <= static_cast<int>(TruthStage::Closed); ++k)

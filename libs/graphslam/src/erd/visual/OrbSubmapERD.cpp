@@ -138,7 +138,7 @@ void OrbSubmapERD::query(TNodeID id, const NodeRecord& rec) {
     for (const auto& c : candidates) {
         ++stats_.candidatesTried;
         const auto t1 = Clock::now();
-        auto r = matcher_->match(catalog_->at(c.submap), *rec.features, rec.cameraOnRobot, id + 1);
+        auto r = matcher_->match(catalog_->at(c.submap), *rec.features, rec.T_robot_camera, id + 1);
         const double ms = msSince(t1);
         stats_.matchMs += ms;
         stats_.phase1Ms += r.phase1Ms;
@@ -175,7 +175,7 @@ void OrbSubmapERD::addToOpenSubmap(TNodeID id, const NodeRecord& rec) {
         open_variance_ = 0;
     }
     open_->add(static_cast<std::int64_t>(id), poseOf(open_first_).inverse() * poseOf(id),
-               rec.cameraOnRobot, rec.features);
+               rec.T_robot_camera, rec.features);
     stats_.buildMs += msSince(t0);
     if (open_->members().size() >= static_cast<std::size_t>(params_.submapMaxKeyframes) ||
         open_->size() >= params_.submapMaxFeatures) {

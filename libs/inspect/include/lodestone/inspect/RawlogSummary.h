@@ -56,7 +56,7 @@ class RawlogSummaryBuilder {
 
   private:
     RawlogSummary summary_;
-    bool previousWasActions_{false};
+    bool previous_was_actions_{false};
 };
 
 /** Reads `path` once (flat memory) and gathers its summary. A corrupt file yields the

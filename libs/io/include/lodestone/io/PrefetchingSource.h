@@ -68,13 +68,13 @@ class PrefetchingSource : public DataSource {
     std::unique_ptr<DataSource> inner_;
     const std::string name_;
     const std::size_t depth_;
-    std::function<double()> progressOf_;
+    std::function<double()> progress_of_;
     std::atomic<double> progress_{0};
     mutable std::mutex mutex_;
     std::condition_variable ready_;  // the front slot was decoded, or the end / a fault came
     std::condition_variable work_;   // a slot to decode, room to read, or stop
     std::deque<Slot> queue_;
-    std::size_t framesQueued_{0};
+    std::size_t frames_queued_{0};
     bool reading_{false};  // a worker is inside inner_->next()
     bool done_{false}, stop_{false};
     std::exception_ptr error_;

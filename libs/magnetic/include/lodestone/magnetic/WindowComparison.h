@@ -66,8 +66,8 @@ class WindowNullModel {
     double logLikelihoodRatio(const Eigen::MatrixX3d& d) const;
 
   private:
-    Eigen::MatrixXd sameInverse_, nullInverse_;
-    double logNormalizers_{0};
+    Eigen::MatrixXd same_inverse_, null_inverse_;
+    double log_normalizers_{0};
 };
 
 /** The PassNoise covariance of one component over `n` readings (C1 above). */

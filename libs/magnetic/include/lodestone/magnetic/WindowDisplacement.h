@@ -74,13 +74,13 @@ class WindowDisplacementModel {
     double logRatio(const Eigen::VectorXd& p2, double delta) const;
 
     std::shared_ptr<const Basis> basis_;
-    double sigmaF2_{0}, radius_{1};
+    double sigma_f2_{0}, radius_{1};
     // The prior's bins: columns of inverse factors at each bin's middle (then unrelated
     // places), and per bin log(mass) + its log-determinant term.
-    int bins_{0}, nearBins_{10};
-    Eigen::MatrixXd binFactors_;
-    Eigen::VectorXd binLogConstants_, binDelta2_;
-    double unrelatedLogDeterminant_{0};
+    int bins_{0}, near_bins_{10};
+    Eigen::MatrixXd bin_factors_;
+    Eigen::VectorXd bin_log_constants_, bin_delta2_;
+    double unrelated_log_determinant_{0};
 };
 
 }  // namespace lodestone::magnetic

@@ -124,7 +124,7 @@ class FusedOdometry {
     std::optional<mrpt::poses::CPose2D> last_pose_sample_;
     mrpt::poses::CPosePDFGaussian pose_estimate_;  // pose-only odometry composed
     std::size_t pose_samples_{0}, frames_ignored_{0};
-    double oldestReference_{0};  // frames before it cannot be VO's reference any more
+    double oldest_reference_{0};  // frames before it cannot be VO's reference any more
 };
 
 }  // namespace lodestone::odometry

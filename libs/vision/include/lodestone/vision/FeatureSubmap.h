@@ -24,19 +24,19 @@ class FeatureSubmap {
     /** One keyframe of the submap. */
     struct Member {
         std::int64_t node{0};
-        Eigen::Isometry3d poseInSubmap{Eigen::Isometry3d::Identity()};  ///< X_0^-1 X_i (robot)
-        Eigen::Isometry3d cameraOnRobot{Eigen::Isometry3d::Identity()};  ///< T_C^R
+        Eigen::Isometry3d T_submap_robot{Eigen::Isometry3d::Identity()};  ///< X_0^-1 X_i (robot)
+        Eigen::Isometry3d T_robot_camera{Eigen::Isometry3d::Identity()};  ///< T_C^R
         std::shared_ptr<const FrameFeatures> features;                    ///< optical frame
     };
 
     FeatureSubmap();
     explicit FeatureSubmap(Params params);
 
-    /** Adds keyframe `node` at `poseInSubmap` (X_0^-1 X_i; identity for the first) with its
+    /** Adds keyframe `node` at `T_submap_robot` (X_0^-1 X_i; identity for the first) with its
      * features in the optical frame and the camera's pose on the robot. Returns how many of its
      * features were merged into existing ones. */
-    std::size_t add(std::int64_t node, const Eigen::Isometry3d& poseInSubmap,
-                    const Eigen::Isometry3d& cameraOnRobot,
+    std::size_t add(std::int64_t node, const Eigen::Isometry3d& T_submap_robot,
+                    const Eigen::Isometry3d& T_robot_camera,
                     std::shared_ptr<const FrameFeatures> features);
 
     std::size_t size() const { return points_.size(); }

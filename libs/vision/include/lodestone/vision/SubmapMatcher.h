@@ -51,7 +51,7 @@ class SubmapMatcher {
     SubmapMatcher();
     explicit SubmapMatcher(Params params);
     Result match(const FeatureSubmap& submap, const FrameFeatures& query,
-                 const Eigen::Isometry3d& queryCameraOnRobot, std::uint64_t seed = 1) const;
+                 const Eigen::Isometry3d& T_robot_queryCamera, std::uint64_t seed = 1) const;
     const Params& params() const { return params_; }
 
   private:

@@ -41,7 +41,7 @@ class CompositeERD : public EdgeDecider {
     JsonObject describe() const override;
 
   private:
-    ChildFactory makeChild_;
+    ChildFactory make_child_;
     std::vector<std::unique_ptr<EdgeDecider>> children_;
 };
 

@@ -26,9 +26,9 @@ class BackgroundSolve {
     BackgroundSolve(const BackgroundSolve&) = delete;
     BackgroundSolve& operator=(const BackgroundSolve&) = delete;
 
-    std::size_t launchedAtNodes() const { return launchedAt_; }
-    std::size_t mergeAtNodes() const { return mergeAt_; }
-    std::size_t closuresAtLaunch() const { return closuresAtLaunch_; }
+    std::size_t launchedAtNodes() const { return launched_at_; }
+    std::size_t mergeAtNodes() const { return merge_at_; }
+    std::size_t closuresAtLaunch() const { return closures_at_launch_; }
 
     /** Waits for the solve (`waitedSeconds`: how long), then merges it; its report. */
     PoseGraphSolver::Report mergeInto(Graph& graph, std::vector<LoopClosure>& closures,
@@ -40,7 +40,7 @@ class BackgroundSolve {
         std::vector<LoopClosure> closures;
         PoseGraphSolver::Report report;
     };
-    std::size_t launchedAt_, mergeAt_, closuresAtLaunch_;
+    std::size_t launched_at_, merge_at_, closures_at_launch_;
     TNodeID last_{0};  // the snapshot's last node
     std::future<Outcome> outcome_;
 };

@@ -42,8 +42,6 @@ class FusedOdometryNRD : public NodeDecider {
 
     FusedOdometryNRD();
     void configure(const mrpt::config::CConfigFileBase& ini) override;
-    /** Replaces the wheel geometry read from the INI (the simulator knows its robot's). */
-    void setWheelGeometry(double wheelBase, double wheelRadius, double ticksPerRev);
     const Params& params() const { return params_; }
 
     bool updateState(mrpt::obs::CActionCollection::Ptr action,

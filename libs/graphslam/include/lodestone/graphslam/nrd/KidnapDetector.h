@@ -85,9 +85,9 @@ class KidnapDetector {
     FrameState last_;
     bool lifted_{false};
     int inconsistent_{0};
-    double firstInconsistent_{0};
-    std::optional<double> stillSince_, drivingSince_;
-    double lastFrameTime_{-1};
+    double first_inconsistent_{0};
+    std::optional<double> still_since_, driving_since_;
+    double last_frame_time_{-1};
     std::deque<std::pair<double, double>> field_;  // (t, |B|) since the wheels stood still
     Stats stats_;
 };

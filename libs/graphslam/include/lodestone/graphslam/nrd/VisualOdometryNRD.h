@@ -82,7 +82,7 @@ class VisualOdometryNRD : public NodeDecider {
     /** The restart frame aligned with a recent frame of the segment: the edge from the last
      * node to it, if one aligns. */
     std::optional<mrpt::poses::CPose3DPDFGaussian> relocalize(
-        const vision::FrameFeatures& current, const Eigen::Isometry3d& cameraOnRobot);
+        const vision::FrameFeatures& current, const Eigen::Isometry3d& T_robot_camera);
     /** Node `from`'s pose relative to the last node, with covariance (the segment's edges). */
     mrpt::poses::CPose3DPDFGaussian relativeToLastNode(TNodeID from) const;
     void registerAt(const mrpt::obs::CObservation3DRangeScan& scan, double t,
@@ -98,15 +98,15 @@ class VisualOdometryNRD : public NodeDecider {
     Params params_;
     vision::RgbdVisualOdometry vo_;
     Anchor reference_;    // VO's reference frame
-    Anchor lastTracked_;  // the last frame VO tracked (it may become the reference)
-    std::shared_ptr<const vision::FrameFeatures> lastTrackedFeatures_;
-    std::deque<std::pair<TNodeID, std::shared_ptr<const vision::FrameFeatures>>> recentKeyframes_;
-    mrpt::poses::CPose3D sinceKeyframe_;  // the last node relative to the last keyframe
+    Anchor last_tracked_;  // the last frame VO tracked (it may become the reference)
+    std::shared_ptr<const vision::FrameFeatures> last_tracked_features_;
+    std::deque<std::pair<TNodeID, std::shared_ptr<const vision::FrameFeatures>>> recent_keyframes_;
+    mrpt::poses::CPose3D since_keyframe_;  // the last node relative to the last keyframe
     int segment_{0};
-    std::size_t frames_{0}, failedFrames_{0}, keyframes_{0}, gaps_{0}, bridged_{0}, relocalized_{0};
-    mrpt::poses::CPose3D lastStep_;  // the last motion between tracked frames ...
-    double lastStepSeconds_{0};      // ... and how long it took
-    std::vector<double> gapSeconds_;  // from the last tracked frame to VO's restart
+    std::size_t frames_{0}, failed_frames_{0}, keyframes_{0}, gaps_{0}, bridged_{0}, relocalized_{0};
+    mrpt::poses::CPose3D last_step_;  // the last motion between tracked frames ...
+    double last_step_seconds_{0};      // ... and how long it took
+    std::vector<double> gap_seconds_;  // from the last tracked frame to VO's restart
     std::map<std::string, std::size_t> failures_;  // failed frames by VO's reason
 };
 

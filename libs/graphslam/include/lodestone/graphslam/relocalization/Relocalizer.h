@@ -142,12 +142,12 @@ class Relocalizer {
     std::vector<int> segment_;        // per node
     std::vector<double> travel_;      // per node, along its segment [m]
     // per node, odometry variance sums in the segment: position (trace), rotation (per axis)
-    std::vector<double> positionVar_, rotationVar_;
+    std::vector<double> position_var_, rotation_var_;
     std::vector<int> parent_;         // union-find over segments
     std::deque<Pending> pending_;
     std::vector<KidnapRecord> kidnaps_;
     std::vector<std::pair<TNodeID, mrpt::poses::CPose3D>> map_at_first_kidnap_;
-    std::size_t offered_{0}, merges_{0}, rejectedTotal_{0}, dropped_{0}, undetermined_{0};
+    std::size_t offered_{0}, merges_{0}, rejected_total_{0}, dropped_{0}, undetermined_{0};
 };
 
 }  // namespace lodestone::graphslam::relocalization

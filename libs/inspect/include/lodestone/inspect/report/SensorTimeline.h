@@ -64,7 +64,7 @@ class TimelineBuilder {
         StepHistogram steps;
         std::vector<TimeEvent> candidates;  // steps long enough that they may be gaps
     };
-    double gapFactor_;
+    double gap_factor_;
     std::map<std::string, State> sensors_;
 };
 

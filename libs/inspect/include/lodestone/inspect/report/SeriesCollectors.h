@@ -47,7 +47,7 @@ class SeriesCollectors {
     void addPose(OdometryPath& path, const mrpt::poses::CPose2D& pose);
     std::map<std::string, MagnetometerSeries> magnetometers_;
     std::map<std::string, OdometryPath> odometry_;
-    mrpt::poses::CPose2D actionsPose_;  // the integrated action increments
+    mrpt::poses::CPose2D actions_pose_;  // the integrated action increments
 };
 
 }  // namespace lodestone::inspect::report

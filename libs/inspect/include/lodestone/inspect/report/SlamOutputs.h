@@ -3,6 +3,7 @@
 #include <lodestone/eval/ClosureEval.h>
 #include <lodestone/eval/RelocationEval.h>
 #include <lodestone/io/TumTrajectory.h>
+#include <lodestone/outputs/NodeTable.h>
 
 #include <optional>
 #include <string>
@@ -10,14 +11,8 @@
 
 namespace lodestone::inspect::report {
 
-/** One line of lodestone-slam's nodes.csv. */
-struct NodeRow {
-    long long node{0};
-    double timestamp{0};
-    int segment{0};
-    bool keyframe{false};
-    double engineMs{0};
-};
+/** One line of lodestone-slam's nodes.csv (outputs::readNodeTable reads them). */
+using NodeRow = outputs::NodeRow;
 
 /** What a lodestone-slam output folder holds, for the report. Only trajectory.tum is needed;
  * what else is missing is listed in `missing` and its section left out. */
@@ -37,8 +32,5 @@ struct SlamOutputs {
 /** Reads `dir` (a lodestone-slam --out folder). Throws std::runtime_error naming the file when
  * trajectory.tum is absent or malformed, or a ground truth given explicitly cannot be read. */
 SlamOutputs readSlamOutputs(const std::string& dir, const std::string& groundTruth = "");
-
-/** nodes.csv; throws naming the file and line when malformed. */
-std::vector<NodeRow> readNodeTable(const std::string& path);
 
 }  // namespace lodestone::inspect::report

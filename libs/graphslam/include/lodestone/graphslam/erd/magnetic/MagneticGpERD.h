@@ -198,6 +198,11 @@ class MagneticGpERD : public EdgeDecider {
                           const magnetic::PlanarAlignmentResult& r, Record& rec);
     /** The field map's search for the stretch ending with supernode `q`. */
     void matchFieldMap(const magnetic::Supernode& q);
+    /** An accepted field-map match as edges: each query node from `qBegin`'s to `qNode` moved
+     * as its readings were, tied to the nearest node of the map readings `mapReadings`. */
+    void addFieldMapEdges(const magnetic::Supernode& q, const magnetic::FieldMapMatch& match,
+                          std::size_t qBegin, std::size_t qNode,
+                          const std::vector<std::size_t>& mapReadings);
     void countVerdict(magnetic::FieldMapVerdict v);
     bool positionAtTravel(double s, int segment, Eigen::Vector2d& p) const;
     bool nodeAtTravel(double s, int segment, TNodeID& k, double& frac) const;
@@ -212,7 +217,7 @@ class MagneticGpERD : public EdgeDecider {
     std::optional<std::size_t> previous_supernode_;
     std::deque<std::size_t> unindexed_;  // supernodes too recent to be matched yet
     TNodeID seen_{0};
-    double lastMapSearch_{-1e18};  // [m] travel at the last field-map search
+    double last_map_search_{-1e18};  // [m] travel at the last field-map search
     std::vector<Record> records_;
     Stats stats_;
     std::vector<FunnelRecord> funnel_;

@@ -135,7 +135,7 @@ class MagneticWindowERD : public EdgeDecider {
     }
     JsonObject describe() const override;
     const Stats& stats() const { return stats_; }
-    const std::vector<TruthQuery>& truthQueries() const { return truthQueries_; }
+    const std::vector<TruthQuery>& truthQueries() const { return truth_queries_; }
 
   private:
     /** The best fit of one stored sample as the query's newest reading's place. */
@@ -226,7 +226,7 @@ class MagneticWindowERD : public EdgeDecider {
         magnetic::WindowDirection direction{magnetic::WindowDirection::Forward};
         double sQuery{0}, sTarget{0};  ///< [m] travel of the query's newest reading and its match
         int targetSegment{0};
-        std::optional<std::size_t> truthRecord;  ///< in truthQueries_
+        std::optional<std::size_t> truthRecord;  ///< in truth_queries_
     };
     /** The edge from the target's path to the query node (nullopt: not measurable). */
     std::optional<Closure> measureClosure(const Candidate& best, const std::vector<Candidate>& all,
@@ -252,7 +252,7 @@ class MagneticWindowERD : public EdgeDecider {
     std::size_t n_{0};  // samples per window (rebuild)
     // what the displacement model keeps for every window of n_ samples (rebuild)
     std::shared_ptr<const magnetic::WindowDisplacementModel::Basis> basis_;
-    double correlatedSamples_{0};  // sum of the field kernel's correlations over a window (rebuild)
+    double correlated_samples_{0};  // sum of the field kernel's correlations over a window (rebuild)
     struct Sensor {
         std::unique_ptr<magnetic::SupernodeTrack> track;
         Eigen::Vector3d position;  ///< on the robot [m]
@@ -262,15 +262,15 @@ class MagneticWindowERD : public EdgeDecider {
     MagneticPath path_;                               // travel, segment, pose uncertainty per node
     std::vector<const Graph::global_pose_t*> poses_;  // per node, in the graph
     TNodeID seen_{0};
-    double lastQuery_{-1e18}, lastClosure_{-1e18};  // [m] travel
+    double last_query_{-1e18}, last_closure_{-1e18};  // [m] travel
     Stats stats_;
     std::deque<Closure> pending_;       // accepted, waiting for confirmation
     std::optional<Closure> confirmed_;  // the last closure of a confirmed match
-    std::vector<TruthQuery> truthQueries_;
+    std::vector<TruthQuery> truth_queries_;
     // Stored windows in the displacement model's basis, by (start, track, direction); cleared
     // whole when full (20 000 windows of 2 m: about 19 MB).
     static constexpr std::size_t kProjectionCache = 20000;
-    mutable std::unordered_map<std::uint64_t, Eigen::MatrixX3d> projectedTargets_;
+    mutable std::unordered_map<std::uint64_t, Eigen::MatrixX3d> projected_targets_;
 };
 
 }  // namespace lodestone::graphslam

@@ -1,0 +1,94 @@
+#include "RunParts.h"
+
+#include <lodestone/config/ProgressBar.h>
+#include <lodestone/obs/CObservationMagnetometer.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace lodestone::slamapp::detail {
+
+namespace {
+
+/** Keeps a magnetometer reading for field_map.png (drawn on the optimized trajectory). */
+void keep(const obs::CObservationMagnetometer& m, double t, LoopOutcome& loop) {
+    auto& labels = loop.magneticLabels;
+    const auto label = static_cast<std::size_t>(
+        std::find(labels.begin(), labels.end(), m.sensorLabel) - labels.begin());
+    if (label == labels.size()) labels.push_back(m.sensorLabel);
+    loop.magnetic.push_back({t, m.sensorPose.translation(), m.magnitude(), label});
+}
+
+}  // namespace
+
+LoopOutcome runLoop(RunInputs& in, const SlamRunOptions& options, std::ostream& err,
+                    SlamRunResult& result) {
+    LoopOutcome loop;
+    auto& engine = *in.engine;
+    config::ProgressBar progress(err, options.terminal, options.quiet);
+    const auto wall0 = std::chrono::steady_clock::now();
+    double t0 = NAN;
+    const auto timedNext = [&] {
+        const auto before = std::chrono::steady_clock::now();
+        auto obs = in.source->next();
+        loop.sourceSeconds +=
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - before).count();
+        return obs;
+    };
+    try {
+        while (auto obs = timedNext()) {
+            const double t = mrpt::Clock::toDouble(obs->timestamp);
+            if (std::isnan(t0)) t0 = t;
+            if (t - t0 > options.maxSeconds) break;
+            loop.dataSeconds = std::max(loop.dataSeconds, t - t0);
+            if (in.simulator) {
+                in.simTruth->write(t, in.simulator->truePose3D(in.simulator->lastTime()));
+            }
+            if (const auto* m = dynamic_cast<const obs::CObservationMagnetometer*>(obs.get())) {
+                keep(*m, t, loop);
+            }
+            engine.process(obs);
+            if (options.onProgress) {
+                options.onProgress(engine.graph().nodes.size(),
+                                   engine.optimizer().loopClosures().size());
+            }
+            const double fraction =
+                in.fractionRead ? in.fractionRead()
+                : in.simulator  ? loop.dataSeconds /
+                                     std::min(in.simulator->duration(), options.maxSeconds)
+                                : 0.0;  // live: no end known
+            progress.update(fraction, loop.dataSeconds);
+        }
+    } catch (const std::exception& e) {
+        // A fault in the data: stop here, keep and write what was processed.
+        result.error = e.what();
+        result.exitCode = 1;
+        if (!options.quiet) err << "\n";
+        err << "lodestone-slam: error: " << e.what() << "\n"
+            << "lodestone-slam: writing what was processed before the fault\n";
+    }
+    try {
+        engine.finish();
+    } catch (const std::exception& e) {
+        err << "lodestone-slam: error while finishing: " << e.what() << "\n";
+        result.exitCode = 1;
+        if (result.error.empty()) result.error = e.what();
+    }
+    if (result.error.empty() && engine.graph().nodes.empty()) {
+        // Exit 0 with an empty map would read as success.
+        result.error = "the run made no nodes: the node decider got no motion from the " +
+                       std::to_string(engine.stats().observations) + " observations (" +
+                       std::to_string(engine.stats().frames) +
+                       " RGB-D frames) - is this the recording the configured deciders need?";
+        result.exitCode = 1;
+        err << "lodestone-slam: error: " << result.error << "\n";
+    }
+    loop.wallSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+    progress.finish(loop.dataSeconds);
+    if (in.simTruth) in.simTruth->close();  // the truth of what was run, even if it stopped early
+    return loop;
+}
+
+}  // namespace lodestone::slamapp::detail

@@ -1,0 +1,186 @@
+#include "RunParts.h"
+
+#include <lodestone/config/IniSection.h>
+#include <lodestone/graphslam/DeciderRegistry.h>
+#include <lodestone/io/KidnapEvents.h>
+#include <lodestone/io/RawlogPaths.h>
+#include <lodestone/io/RawlogSource.h>
+#include <lodestone/outputs/RunFiles.h>
+#include <lodestone/sim/RobotConfig.h>
+#include <mrpt/config/CConfigFile.h>
+
+#include <algorithm>
+#include <deque>
+#include <filesystem>
+#include <thread>
+
+#include <sched.h>
+
+namespace lodestone::slamapp::detail {
+
+namespace {
+
+namespace fs = std::filesystem;
+using outputs::RunFile;
+
+// How far into a rawlog to look for the observation classes the deciders need: every sensor
+// of a recording shows up within its first seconds.
+constexpr std::size_t kPrescanObservations = 3000;
+
+std::string join(const std::set<std::string>& items) {
+    std::string out;
+    for (const auto& i : items) out += (out.empty() ? "" : ", ") + i;
+    return out;
+}
+
+/** A rawlog whose first observations were read to check that the deciders' observation
+ * classes are there (until each has shown up), then handed out again before the rest: the file
+ * is opened and read once. */
+class PrescannedRawlog : public io::DataSource {
+  public:
+    /** Throws InputError naming the classes missing from the first kPrescanObservations. */
+    PrescannedRawlog(const std::string& path, const std::set<std::string>& required)
+        : source_(path) {
+        std::set<std::string> missing = required, classes;
+        while (!missing.empty() && ahead_.size() < kPrescanObservations) {
+            auto obs = source_.next();
+            if (!obs) break;
+            // MRPT names classes with their namespace; deciders ask by the bare class name.
+            const std::string name = obs->GetRuntimeClass()->className;
+            const auto colons = name.rfind("::");
+            const std::string bare = colons == std::string::npos ? name : name.substr(colons + 2);
+            missing.erase(bare);
+            classes.insert(bare);
+            ahead_.push_back(std::move(obs));
+        }
+        if (!missing.empty()) {
+            // RGB-D frames and no wheels: a camera-only recording, which has its own INI.
+            const bool cameraOnly = missing.count("CObservationOdometry") &&
+                                    classes.count("CObservation3DRangeScan");
+            throw InputError(
+                path + ": no " + join(missing) + " among its first " +
+                std::to_string(ahead_.size()) + " observations; the configured deciders need " +
+                join(required) +
+                (cameraOnly ? ". A camera-only recording (RGB-D, no wheel odometry) runs "
+                              "with config_ini/slam/rgbd_only.ini"
+                            : ""));
+        }
+    }
+
+    mrpt::obs::CObservation::Ptr next() override {
+        if (ahead_.empty()) return source_.next();
+        auto obs = std::move(ahead_.front());
+        ahead_.pop_front();
+        return obs;
+    }
+    std::string name() const override { return source_.name(); }
+    double fractionRead() const { return source_.fractionRead(); }
+
+  private:
+    io::RawlogSource source_;
+    std::deque<mrpt::obs::CObservation::Ptr> ahead_;
+};
+
+/** The cores this process may run on (taskset / cgroup affinity), not the machine's. */
+std::size_t usableCores() {
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    if (sched_getaffinity(0, sizeof(set), &set) == 0) {
+        return std::max(1, CPU_COUNT(&set));
+    }
+    return std::max(1u, std::thread::hardware_concurrency());
+}
+
+// A source the caller keeps too (lodestone-grab feeds it while the run reads it).
+class SharedSource : public io::DataSource {
+  public:
+    explicit SharedSource(std::shared_ptr<io::DataSource> s) : s_(std::move(s)) {}
+    mrpt::obs::CObservation::Ptr next() override { return s_->next(); }
+    std::string name() const override { return s_->name(); }
+
+  private:
+    std::shared_ptr<io::DataSource> s_;
+};
+
+/** The rawlog, read and decoded ahead on worker threads unless decodeAhead is 0. */
+void openRawlog(const SlamRunOptions& options, RunInputs& in) {
+    if (!fs::exists(options.rawlog)) throw InputError("cannot open rawlog '" + options.rawlog + "'");
+    auto rawlog = std::make_unique<PrescannedRawlog>(options.rawlog, in.engine->requiredObservations());
+    const PrescannedRawlog* inner = rawlog.get();
+    if (options.decodeAhead == 0) {
+        in.fractionRead = [inner] { return inner->fractionRead(); };
+        in.source = std::move(rawlog);
+        return;
+    }
+    in.decodeThreads = options.decodeThreads > 0 ? options.decodeThreads : usableCores();
+    auto prefetch = std::make_unique<io::PrefetchingSource>(
+        std::move(rawlog), options.decodeAhead, [inner] { return inner->fractionRead(); },
+        in.decodeThreads);
+    const io::PrefetchingSource* p = prefetch.get();
+    in.prefetcher = p;
+    in.fractionRead = [p] { return p->progress(); };
+    in.source = std::move(prefetch);
+}
+
+}  // namespace
+
+std::set<std::string> allowedSections() {
+    std::set<std::string> s{"graphslam",       "relocalization",  "kidnap_detection",
+                            "wheel_odometry",  "visual_odometry", "odometry_fusion"};
+    const auto& reg = graphslam::DeciderRegistry::instance();
+    for (const auto& names : {reg.nodeDeciders(), reg.edgeDeciders(), reg.optimizers()}) {
+        s.insert(names.begin(), names.end());
+    }
+    return s;
+}
+
+RunInputs openInputs(const SlamRunOptions& options) {
+    RunInputs in;
+    if (!fs::exists(options.config)) throw InputError("cannot open configuration file '" + options.config + "'");
+    const mrpt::config::CConfigFile ini(options.config);
+    config::checkSections(ini, allowedSections(), options.config);
+    in.engine = graphslam::SlamEngine::fromConfig(ini);  // the INI's mistakes first
+    if (options.live) {
+        in.source = std::make_unique<SharedSource>(options.live);
+    } else if (!options.scenario.empty()) {
+        const auto scenario = sim::Scenario::load(options.scenario);
+        // The simulated robot's wheels are the scenario's, whatever the INI says: the engine
+        // again, from the INI with the scenario's geometry in [wheel_odometry].
+        in.engine = graphslam::SlamEngine::fromConfig(
+            sim::withScenarioWheels(ini, scenario, options.config));
+        auto simulator = std::make_unique<sim::SimulatorSource>(scenario, scenario.seed);
+        in.simulator = simulator.get();
+        in.source = std::move(simulator);
+    } else {
+        openRawlog(options, in);
+    }
+    if (!options.groundTruth.empty()) {
+        if (!fs::exists(options.groundTruth)) {
+            throw InputError("cannot open ground truth '" + options.groundTruth + "'");
+        }
+        // Read now, not after the run: a bad line is named before any work. The deciders
+        // may report their diagnostics against it.
+        in.engine->setDiagnosticTruth(std::make_shared<const std::vector<io::TumPose>>(
+            io::readTumTrajectory(options.groundTruth)));
+    }
+    const fs::path dir(options.outDir);
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec || !fs::is_directory(dir)) {
+        throw InputError("cannot create output directory '" + options.outDir + "': " + ec.message());
+    }
+    // A previous run's outputs must not stay beside this one's if this one stops early.
+    for (const auto& file : outputs::runFiles()) {
+        fs::remove(dir / file.name, ec);
+        fs::remove(io::partialPath((dir / file.name).string()), ec);
+    }
+    if (in.simulator) {
+        in.simTruth = std::make_unique<io::TumTrajectoryWriter>(
+            outputs::pathIn(options.outDir, RunFile::GroundTruth));
+        io::writeKidnapEvents(outputs::pathIn(options.outDir, RunFile::Events),
+                              in.simulator->scenario().name, sim::kidnapRecords(*in.simulator));
+    }
+    return in;
+}
+
+}  // namespace lodestone::slamapp::detail
