@@ -11,8 +11,9 @@
 # Jobs: the demo's two runs (the bundled rawlog, office simulated on the fly); corridor_kidnap,
 # paper_kidnap (slam.ini) and corridor_shuttle (the window closer) recorded at 320x240 / 15 Hz
 # and run from disk, judged by lodestone-eval; a hand-held camera-only paper_loop; Kok's walks
-# and Aalto trials 1 and 9 imported (seed 1) and run with both magnetic closers, judged (skipped
-# when ../shared/data is absent). About 15 minutes a build on two cores.
+# and Aalto trials 1 and 9 imported (seed 1), run with both magnetic closers and judged, and
+# lodestone-magfit on each (skipped when ../shared/data is absent); lodestone-eval's ATE / RPE of
+# the bundled run. About 6 minutes a build on two cores.
 #
 # Usage: scripts/compare_outputs.sh [--compare-only] [REF]   (default HEAD: the working tree's
 # uncommitted change). Outputs stay in build-compare/{ref,new}-out/ for a closer look;
@@ -56,13 +57,14 @@ app() {  # BUILD_DIR NAME: the app's executable wherever the build put it
 # --- The jobs, run with one build into OUT; inputs always from the working tree --------------
 run_jobs() {
     local build=$1 out=$2
-    local slam sim imp ev insp tmp="$out/tmp"
+    local slam sim imp ev insp fit tmp="$out/tmp"
     local ini="$root/config_ini/slam" scenarios="$root/config_ini/scenarios"
     slam=$(app "$build" lodestone-slam)
     sim=$(app "$build" lodestone-sim)
     imp=$(app "$build" lodestone-import)
     ev=$(app "$build" lodestone-eval)
     insp=$(app "$build" lodestone-inspect)
+    fit=$(app "$build" lodestone-magfit)
     rm -rf "$out"
     mkdir -p "$out" "$tmp"
     "$root/scripts/bench/window_inis.sh" "$tmp" > /dev/null
@@ -73,6 +75,7 @@ run_jobs() {
     "$insp" summary "$sample" > "$out/summary.txt"
     "$slam" -q --rawlog "$sample" --ground-truth "${sample%.rawlog.gz}.gt.tum" \
         --config "$ini/slam.ini" --out "$out/bundled" > "$out/bundled.stdout"
+    "$ev" "$out/bundled/trajectory.tum" "${sample%.rawlog.gz}.gt.tum" > "$out/bundled.eval.txt"
     job office
     "$slam" -q --sim "$scenarios/office.ini" --config "$ini/slam.ini" --out "$out/office" \
         > "$out/office.stdout"
@@ -113,6 +116,7 @@ run_jobs() {
                 "$ev" closures "$out/$name-$cfg" -g "$out/$name.gt.tum" \
                     > "$out/$name-$cfg.closures.txt"
             done
+            "$fit" "$out/$name.rawlog" --config "$ini/magnetic_only.ini" > "$out/$name.magfit.txt"
         done
     else
         echo "  (the magnetic recordings are absent: $data; their jobs skipped)" >&2

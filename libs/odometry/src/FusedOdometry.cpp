@@ -93,9 +93,9 @@ std::vector<FusedOdometry::Estimate> FusedOdometry::process(
             return out;
         }
         vision::RgbdFrame frame = frameFromObservation(*scan);
-        const Eigen::Isometry3d A = opticalFrameOnRobot(scan->sensorPose);
-        const auto prior = wheelPrior(frame.timestamp, A);
-        Pending p{frame.timestamp, visual_.process(frame, prior ? &*prior : nullptr), A};
+        const Eigen::Isometry3d T_robot_optical = opticalFrameOnRobot(scan->sensorPose);
+        const auto prior = wheelPrior(frame.timestamp, T_robot_optical);
+        Pending p{frame.timestamp, visual_.process(frame, prior ? &*prior : nullptr), T_robot_optical};
         scan->unload();
         pending_.push_back(std::move(p));
         ++frames_;

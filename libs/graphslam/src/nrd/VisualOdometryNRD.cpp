@@ -84,7 +84,7 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
     if (scan->sensorLabel != params_.cameraLabel) return;
     ++frames_;
     const double t = mrpt::Clock::toDouble(scan->timestamp);
-    const auto A = odometry::opticalFrameOnRobot(scan->sensorPose);
+    const auto T_robot_optical = odometry::opticalFrameOnRobot(scan->sensorPose);
     const auto r = vo_.process(odometry::frameFromObservation(*scan));
     const mrpt::poses::CPose3DPDFGaussian here;  // a frame at the new node: identity, certain
     if (r.failure == vision::VoFailure::NoReference) {
@@ -96,7 +96,7 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
             gap_seconds_.push_back(gap);
         }
         std::optional<mrpt::poses::CPose3DPDFGaussian> found;
-        if (!first && r.frameFeatures) found = relocalize(*r.frameFeatures, A);
+        if (!first && r.frameFeatures) found = relocalize(*r.frameFeatures, T_robot_optical);
         if (found) {
             // The view came back: the graph goes on from where it was seen before.
             ++relocalized_;
@@ -123,7 +123,7 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
     // new reference when the camera had moved far enough from the old one.
     if (r.referenceTimestamp == last_tracked_.t) reference_ = last_tracked_;
     if (r.referenceTimestamp != reference_.t) return;  // (cannot happen: VO keeps one reference)
-    const auto motion = robotMotion(r, A);
+    const auto motion = robotMotion(r, T_robot_optical);
     mrpt::poses::CPose3DPDFGaussian cur = reference_.pdf;
     cur += motion;
     last_step_ = cur.mean - last_tracked_.pdf.mean;  // (both relative to the same node)

@@ -62,7 +62,7 @@ class SlamEngine {
     const Stats& stats() const { return stats_; }
 
     /** A loop closure as the edge decider proposed it, before the relocalizer or the optimizer
-     * judged it: what benchmarks score each matcher on (see ClosureLog.h). */
+     * judged it: what benchmarks score each matcher on (closures.csv: outputs::ClosureTable). */
     struct Proposal {
         LoopClosure closure;
         bool hypothesis{false};  ///< it joined two groups (a relocation hypothesis)
