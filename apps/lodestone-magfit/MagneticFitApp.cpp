@@ -157,8 +157,8 @@ FitArgs parseArgs(int argc, const char* const* argv) {
     if (sensorArg.isSet()) a.sensor = sensorArg.getValue();
     if (modeArg.isSet()) a.mode = modeArg.getValue();
     a.stretch = stretchArg.getValue();
-    a.step = stepArg.isSet() ? stepArg.getValue() : 0.0;
     const bool stepSet = stepArg.isSet();
+    a.step = stepSet ? stepArg.getValue() : 0.0;
     if (a.usage.empty() && !(a.stretch > 0)) a.usage = "--stretch must be > 0";
     if (a.usage.empty() && stepSet && !(a.step > 0)) a.usage = "--step must be > 0";
     // A stretch's GP costs the cube of its points: beyond this, a typo (1e-9) not a fit.
@@ -168,7 +168,6 @@ FitArgs parseArgs(int argc, const char* const* argv) {
                   std::to_string(a.stretch / a.step) + " points per --stretch; at most " +
                   std::to_string(int(kMaxPointsPerStretch));
     }
-    if (!stepSet) a.step = 0.0;
     return a;
 }
 

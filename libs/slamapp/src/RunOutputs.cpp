@@ -53,11 +53,17 @@ std::size_t writeMapPly(const std::string& path, const Graph& graph, const NodeS
     return count;
 }
 
-void writeNodeTrajectory(const std::string& path, const Graph& graph, const NodeStore& nodes) {
-    io::TumTrajectoryWriter w(path);
+std::vector<io::TumPose> nodeTrajectory(const Graph& graph, const NodeStore& nodes) {
+    std::vector<io::TumPose> out;
     for (TNodeID id = 0; id < nodes.size(); ++id) {
-        if (graph.nodes.count(id)) w.write(nodes.at(id).timestamp, graph.nodes.at(id));
+        if (graph.nodes.count(id)) out.push_back({nodes.at(id).timestamp, graph.nodes.at(id)});
     }
+    return out;
+}
+
+void writeTrajectory(const std::string& path, const std::vector<io::TumPose>& trajectory) {
+    io::TumTrajectoryWriter w(path);
+    for (const auto& p : trajectory) w.write(p.timestamp, p.pose);
     w.close();
 }
 
@@ -116,17 +122,6 @@ using outputs::RunFile;
 // eye needs a few readings per cell at walking speed and 100 Hz.
 constexpr double kFieldMapCell = 0.1;
 
-std::vector<io::TumPose> nodeTrajectory(const graphslam::SlamEngine& engine) {
-    std::vector<io::TumPose> out;
-    const auto& nodes = engine.nodes();
-    for (TNodeID id = 0; id < nodes.size(); ++id) {
-        if (engine.graph().nodes.count(id)) {
-            out.push_back({nodes.at(id).timestamp, engine.graph().nodes.at(id)});
-        }
-    }
-    return out;
-}
-
 /** report.json, written last and whole: a report.json there means every output was written. */
 void writeReport(const JsonObject& report, const std::string& dir) {
     const std::string path = outputs::pathIn(dir, RunFile::Report);
@@ -151,7 +146,8 @@ void writeOutputs(const RunInputs& in, const LoopOutcome& loop, const SlamRunOpt
     const auto& closures = engine.optimizer().loopClosures();
     result.nodes = graph.nodes.size();
     result.loopClosures = closures.size();
-    writeNodeTrajectory(path(RunFile::Trajectory), graph, engine.nodes());
+    const auto trajectory = nodeTrajectory(graph, engine.nodes());  // every node, optimized
+    writeTrajectory(path(RunFile::Trajectory), trajectory);
     graph.saveToTextFile(path(RunFile::Graph));
     outputs::writeClosureTable(path(RunFile::Closures), closureRows(engine));
     outputs::writeNodeTable(path(RunFile::Nodes), nodeRows(engine.nodes(), engine.stats().nodeMs));
@@ -166,7 +162,7 @@ void writeOutputs(const RunInputs& in, const LoopOutcome& loop, const SlamRunOpt
     const std::size_t mapPoints = writeMapPly(path(RunFile::Map), graph, engine.nodes());
     cv::imwrite(path(RunFile::GraphPlot), plotGraph(graph, closures));
     if (!loop.magnetic.empty()) {
-        eval::FieldMapBuilder fieldMap(nodeTrajectory(engine), kFieldMapCell);
+        eval::FieldMapBuilder fieldMap(trajectory, kFieldMapCell);
         for (const auto& r : loop.magnetic) {
             fieldMap.add(r.time, r.sensorOffset, r.magnitude, loop.magneticLabels[r.label]);
         }
@@ -190,9 +186,8 @@ void writeOutputs(const RunInputs& in, const LoopOutcome& loop, const SlamRunOpt
 
     const std::string gtPath = in.simulator ? path(RunFile::GroundTruth) : options.groundTruth;
     if (!gtPath.empty()) {
-        const auto est = nodeTrajectory(engine);
         const auto gt = io::readTumTrajectory(gtPath);
-        const auto ate = eval::absoluteTrajectoryError(est, gt);
+        const auto ate = eval::absoluteTrajectoryError(trajectory, gt);
         if (ate.pairs >= 3) {
             result.ateRmse = ate.rmse;
             report.set("ate", JsonObject()
@@ -202,7 +197,7 @@ void writeOutputs(const RunInputs& in, const LoopOutcome& loop, const SlamRunOpt
                                   .set("mean_m", ate.mean)
                                   .set("median_m", ate.median)
                                   .set("max_m", ate.max));
-            cv::imwrite(path(RunFile::TrajectoryPlot), eval::plotTrajectories(est, gt, ate));
+            cv::imwrite(path(RunFile::TrajectoryPlot), eval::plotTrajectories(trajectory, gt, ate));
         } else {
             err << "lodestone-slam: warning: only " << ate.pairs << " nodes match " << gtPath
                 << " in time; no ATE\n";

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <lodestone/graphslam/SlamEngine.h>
+#include <lodestone/io/TumTrajectory.h>
 #include <lodestone/outputs/ClosureTable.h>
 #include <lodestone/outputs/NodeTable.h>
 
@@ -15,9 +16,12 @@ namespace lodestone::slamapp {
 std::size_t writeMapPly(const std::string& path, const graphslam::Graph& graph,
                         const graphslam::NodeStore& nodes);
 
-/** Writes every node as a TUM trajectory line (its record's timestamp, its pose). */
-void writeNodeTrajectory(const std::string& path, const graphslam::Graph& graph,
-                         const graphslam::NodeStore& nodes);
+/** Every node of the graph, in ID order: its record's timestamp, its (optimized) pose. */
+std::vector<io::TumPose> nodeTrajectory(const graphslam::Graph& graph,
+                                        const graphslam::NodeStore& nodes);
+
+/** Writes a trajectory as TUM lines (`.partial` until complete). */
+void writeTrajectory(const std::string& path, const std::vector<io::TumPose>& trajectory);
 
 /** Every loop closure the edge decider proposed (SlamEngine::proposals), for closures.csv: the
  * nodes' data timestamps, `hypothesis` when it joined two groups (after a kidnap), `kept` when
