@@ -1,6 +1,6 @@
 // Magnetic loop closers judged as place recognition (precision and recall against the truth),
 // side by side on every recording (bench/magnetic_recordings.h):
-//   bench_magnetic_recall DATA_DIR OUT_DIR SEEDS INI [INI ...] [--only NAME]
+//   bench_magnetic_recall DATA_DIR OUT_DIR SEEDS INI [INI ...] [--only NAME] [--drift-scale F]
 // Each recording is imported with the drift model for seeds 1..SEEDS and run through
 // lodestone-slam's code path (the rawlog written to disk and read back) with each INI (a
 // config_ini/ name, or a path); its closures.csv is judged by lodestone-eval closures' rules
@@ -10,6 +10,8 @@
 // wrong closures (> 0.5 m), ATE median / worst, real-time factor. Table 2, for deciders that
 // report a truth funnel (MagneticWindowERD): every pass missed, by the furthest stage its true
 // place reached in any query inside it; how often the truth lay inside the position gate.
+// --drift-scale F scales the drift model's heading bias and noise (0: odometry without error,
+// so what is left of the ATE is what the closures themselves do to the reference trajectory).
 #include <lodestone/outputs/ClosureTable.h>
 #include <lodestone/outputs/RunFiles.h>
 #include <lodestone/eval/ClosureEval.h>
@@ -20,6 +22,7 @@
 #include <lodestone/slamapp/SlamRun.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -105,16 +108,20 @@ std::string worstOf(double v) {
 int main(int argc, char** argv) {
     std::vector<std::string> inis;
     std::string only;
+    double driftScale = 1.0;
     for (int i = 4; i < argc; ++i) {
         if (std::string(argv[i]) == "--only" && i + 1 < argc) {
             only = argv[++i];
+        } else if (std::string(argv[i]) == "--drift-scale" && i + 1 < argc) {
+            driftScale = std::atof(argv[++i]);
         } else {
             inis.push_back(argv[i]);
         }
     }
     if (argc < 5 || inis.empty()) {
         std::cerr
-            << "usage: bench_magnetic_recall DATA_DIR OUT_DIR SEEDS INI [INI ...] [--only NAME]\n";
+            << "usage: bench_magnetic_recall DATA_DIR OUT_DIR SEEDS INI [INI ...] [--only NAME] "
+               "[--drift-scale F]\n";
         return 2;
     }
     const std::string data = argv[1], out = argv[2];
@@ -134,7 +141,7 @@ int main(int argc, char** argv) {
             for (int seed = 1; seed <= seeds; ++seed) {
                 std::string stem = rec.name + "_s" + std::to_string(seed);
                 std::replace(stem.begin(), stem.end(), ' ', '_');
-                const auto imported = importSeed(recording, out + "/" + stem + ".rawlog", seed);
+                const auto imported = importSeed(recording, out + "/" + stem + ".rawlog", seed, driftScale);
                 const auto run = runImported(imported, ini, out + "/" + stem + "_run");
                 if (!run.ok()) {
                     std::cerr << rec.name << " " << ini << ": " << run.errors;

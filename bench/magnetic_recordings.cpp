@@ -124,9 +124,13 @@ std::vector<Recording> benchRecordings(const std::string& data) {
 }
 
 datasets::MagneticImportResult importSeed(const datasets::MagneticRecording& recording, const std::string& path,
-                                    int seed) {
+                                    int seed, double driftScale) {
     datasets::OdometryDriftModel model;
     model.seed = static_cast<std::uint64_t>(seed);
+    // (the heading bias scales with the noise's standard deviations)
+    model.bias *= driftScale;
+    model.sp2 *= driftScale * driftScale;
+    model.sh2 *= driftScale * driftScale;
     return datasets::writeMagneticRecording(recording, path, model);
 }
 

@@ -30,9 +30,11 @@ lodestone::datasets::MagneticRecording syntheticCorridorWalk();
 std::vector<Recording> benchRecordings(const std::string& data);
 
 /** `recording` imported with the drift model of `seed` as the rawlog `path` (and its ground
- * truth beside it). */
+ * truth beside it); `driftScale` scales the model's heading bias and noise sigmas (0: the
+ * odometry is the reference trajectory). */
 lodestone::datasets::MagneticImportResult importSeed(const lodestone::datasets::MagneticRecording& recording,
-                                               const std::string& path, int seed);
+                                               const std::string& path, int seed,
+                                               double driftScale = 1.0);
 
 /** One quiet run of lodestone-slam's code path on an imported rawlog, read from disk: `config`
  * is a config_ini/ name, or a path when it names a folder. */
