@@ -20,6 +20,7 @@
 #include <cmath>
 #include <cstdio>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -151,6 +152,15 @@ void analyse(const std::string& csv) {
     const auto add = [](std::vector<Curve>& c, std::size_t bin, const Difference& d) {
         for (int m = 0; m < 2; ++m) c[m].add(bin, d.rms[m]);
     };
+    // Where along the field puts the later pass: the best of the shifts, by the differences
+    // as they are; per bin of its size, pairs, RMS at the reference's alignment and at the best,
+    // and the later passes' times.
+    struct Placed {
+        int n{0};
+        double atReference{0}, atBest{0};
+        std::set<int> seconds;
+    };
+    std::vector<Placed> placed(shifts);
     std::size_t pairs = 0;
     for (std::size_t i = 0; i < w.p.size(); ++i) {
         const double hi = travelDirection(w, i);
@@ -169,6 +179,20 @@ void analyse(const std::string& csv) {
             const auto base = difference(*target, *query, 0);
             if (!base) continue;
             ++pairs;
+            double best = base->rms[0], bestShift = 0;
+            for (double x = -kMaxShift; x <= kMaxShift + 1e-9; x += kStep) {
+                const auto r = difference(*target, *query, x);
+                if (r && r->rms[0] < best) {
+                    best = r->rms[0];
+                    bestShift = x;
+                }
+            }
+            auto& bin = placed[std::min(shifts - 1, static_cast<std::size_t>(
+                                                        std::abs(bestShift) / 0.1 + 1e-9))];
+            ++bin.n;
+            bin.atReference += base->rms[0];
+            bin.atBest += best;
+            bin.seconds.insert(static_cast<int>(rec.samples[j].t));
             add(across, static_cast<std::size_t>(std::abs(base->across) / 0.1), *base);
             if (std::abs(base->across) >= 0.1) continue;
             for (std::size_t k = 0; k < shifts; ++k) {
@@ -182,6 +206,25 @@ void analyse(const std::string& csv) {
                 }
             }
         }
+    }
+    std::printf("\n%s, %zu revisit pairs: where along the field places the later pass (the "
+                "best shift within %.1f m by the differences as they are)\n\n"
+                "| shift [m] | pairs | RMS difference at the reference's alignment [uT] | at the "
+                "best shift [uT] | the later passes' times [s] |\n|---|---|---|---|---|\n",
+                rec.name.c_str(), pairs, kMaxShift);
+    for (std::size_t k = 0; k < shifts; ++k) {
+        const auto& b = placed[k];
+        std::string times;
+        for (const int t : b.seconds) times += (times.empty() ? "" : " ") + std::to_string(t);
+        char range[32];
+        if (k + 1 == shifts) {
+            std::snprintf(range, sizeof range, "%.1f (the search's end)", kMaxShift);
+        } else {
+            std::snprintf(range, sizeof range, "%.1f - %.1f", 0.1 * double(k), 0.1 * double(k + 1));
+        }
+        std::printf("| %s | %d | %.2f | %.2f | %s |\n", range, b.n,
+                    b.n ? b.atReference / b.n : NAN, b.n ? b.atBest / b.n : NAN,
+                    k >= 2 ? times.c_str() : "");
     }
     for (int m = 0; m < 2; ++m) {
         std::printf("\n%s, %zu revisit pairs: RMS differences %s [uT]\n\n", rec.name.c_str(), pairs,

@@ -35,9 +35,14 @@ WindowDisplacementModel::WindowDisplacementModel(std::size_t n, const PassNoise&
                               radius) {}
 
 WindowDisplacementModel::WindowDisplacementModel(std::shared_ptr<const Basis> basis, double sigmaF,
-                                                 double priorSigma, double radius)
-    : basis_(std::move(basis)), sigma_f2_(sigmaF * sigmaF), radius_(radius) {
-    if (!basis_ || !(sigmaF >= 0))
+                                                 double priorSigma, double radius,
+                                                 double unrelatedSigmaF)
+    : basis_(std::move(basis)),
+      sigma_f2_(sigmaF * sigmaF),
+      unrelated_sigma_f2_(std::isnan(unrelatedSigmaF) ? sigmaF * sigmaF
+                                                      : unrelatedSigmaF * unrelatedSigmaF),
+      radius_(radius) {
+    if (!basis_ || !(sigmaF >= 0) || !(std::isnan(unrelatedSigmaF) || unrelatedSigmaF >= 0))
         throw std::invalid_argument("WindowDisplacementModel: no basis, or a negative amplitude");
     if (!(priorSigma > 0) || !(radius > 0))
         throw std::invalid_argument("WindowDisplacementModel: prior sigma and radius must be > 0");
@@ -63,7 +68,7 @@ WindowDisplacementModel::WindowDisplacementModel(std::shared_ptr<const Basis> ba
 }
 
 double WindowDisplacementModel::amplitude(double delta) const {
-    if (std::isinf(delta)) return 2 * sigma_f2_;
+    if (std::isinf(delta)) return 2 * unrelated_sigma_f2_;
     const double r = delta / basis_->lengthScale;
     return 2 * sigma_f2_ * -std::expm1(-0.5 * r * r);
 }

@@ -115,3 +115,39 @@ TEST(WindowDisplacement, UnrelatedIsTheLimitAndBadInputThrows) {
     EXPECT_THROW(WindowDisplacementModel(1, kNoise, kSigmaF, kLength, kPrior, kRadius),
                  std::invalid_argument);
 }
+
+TEST(WindowDisplacement, AFinePartOnABroadOneSeparatesBesideFromUnrelated) {
+    // Two scales: passes beside each other differ by a fine part of amplitude 1 uT only,
+    // unrelated places by the whole 5 uT. Passes 0.8 m beside then differ little: under one
+    // amplitude (5 uT for both) they look like passes on one line, under two the field cannot
+    // tell them from one line and the prior on the distance keeps them short of a sure "near".
+    const auto basis = std::make_shared<WindowDisplacementModel::Basis>(kN, kNoise, kLength);
+    const WindowDisplacementModel twoScales(basis, 1.0, kPrior, kRadius, kSigmaF);
+    const WindowDisplacementModel oneScale(basis, kSigmaF, kPrior, kRadius);
+    std::mt19937 rng(7);
+    std::normal_distribution<double> g(0, 1);
+    const Eigen::Index m = static_cast<Eigen::Index>(kN);
+    Eigen::MatrixXd C = passNoiseCovariance(kN, kNoise);
+    const double rho = std::exp(-0.5 * 0.8 * 0.8 / (kLength * kLength));
+    for (Eigen::Index i = 0; i < m; ++i)
+        for (Eigen::Index j = 0; j < m; ++j) {
+            const double r = double(i - j) * kNoise.step / kLength;
+            C(i, j) += 2 * 1.0 * (1 - rho) * std::exp(-0.5 * r * r);
+        }
+    const Eigen::MatrixXd L = C.llt().matrixL();
+    int nearTwo = 0, nearOne = 0;
+    for (int k = 0; k < 200; ++k) {
+        Eigen::MatrixX3d z(m, 3);
+        for (Eigen::Index i = 0; i < z.size(); ++i) z.data()[i] = g(rng);
+        const Eigen::MatrixX3d d = L * z;
+        nearTwo += nearPosterior(twoScales.evidence(d, kRadius)) > 0.9973;
+        nearOne += nearPosterior(oneScale.evidence(d, kRadius)) > 0.9973;
+    }
+    EXPECT_LE(nearTwo, 20);
+    EXPECT_GE(nearOne, 180);
+    // With the same amplitude given twice, the model is the one-amplitude model.
+    const auto d = Draws(0.0, 8).next();
+    const WindowDisplacementModel same(basis, kSigmaF, kPrior, kRadius, kSigmaF);
+    EXPECT_NEAR(same.evidence(d, kRadius).logNear, oneScale.evidence(d, kRadius).logNear, 1e-9);
+    EXPECT_THROW(WindowDisplacementModel(basis, 1.0, kPrior, kRadius, -1.0), std::invalid_argument);
+}

@@ -58,6 +58,7 @@ void MagneticWindowERD::configure(const mrpt::config::CConfigFileBase& ini) {
     p.closureEvery = s.getDouble("closure_every", p.closureEvery);
     p.confirm = s.getBool("confirm", p.confirm);
     p.passDisplacement = s.getBool("pass_displacement", p.passDisplacement);
+    p.fineAmplitude = s.getBool("fine_amplitude", p.fineAmplitude);
     p.sigmaAlongFloor = s.getDouble("sigma_along_floor", p.sigmaAlongFloor);
     p.sigmaCross = s.getDouble("sigma_cross", p.sigmaCross);
     p.turnFloorDeg = s.getDouble("turn_floor_deg", p.turnFloorDeg);
@@ -246,8 +247,13 @@ void MagneticWindowERD::decide(std::size_t first, double excitation,
         // Each frame adds its own artefact to the field's spread - the robot frame a turn's
         // turning of the earth's field, the map frame the graph's heading errors (a corner's
         // turn spread over the node interval): the smaller is the closer bound.
-        out.displacement.emplace(basis_, std::min(spread, mapFrameSpread(first)),
-                                 params_.sigmaCross, params_.distinctRadius);
+        const double whole = std::min(spread, mapFrameSpread(first));
+        if (params_.fineAmplitude) {
+            out.displacement.emplace(basis_, std::min(fineAmplitude(first), whole),
+                                     params_.sigmaCross, params_.distinctRadius, whole);
+        } else {
+            out.displacement.emplace(basis_, whole, params_.sigmaCross, params_.distinctRadius);
+        }
         weighDisplaced(candidates, first, *out.displacement);
     }
     out.best =
@@ -284,16 +290,37 @@ double MagneticWindowERD::windowSpread(double excitation) const {
     return std::sqrt(std::max(spread2, 1e-6));
 }
 
-double MagneticWindowERD::mapFrameSpread(std::size_t first) const {
+std::vector<Eigen::Vector3d> MagneticWindowERD::mapFrameWindow(std::size_t first) const {
     const auto& samples = queried().samples();
     std::vector<Eigen::Vector3d> b(n_);
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
     for (std::size_t k = 0; k < n_; ++k) {
         const Eigen::Vector3d v = samples[first + k].value.head<3>().cast<double>();
         const double yaw = yawAtSample(queried(), first + k), c = std::cos(yaw), s = std::sin(yaw);
         b[k] = {c * v.x() - s * v.y(), s * v.x() + c * v.y(), v.z()};
-        mean += b[k];
     }
+    return b;
+}
+
+double MagneticWindowERD::fineAmplitude(std::size_t first) const {
+    const auto lag = static_cast<std::size_t>(
+        std::clamp(std::lround(params_.lengthScale / params_.step), 1L, long(n_) - 1));
+    const double h = double(lag) * params_.step / params_.lengthScale;
+    const auto meanSquareStep = [&](const std::vector<Eigen::Vector3d>& b) {
+        double sum = 0;
+        for (std::size_t k = 0; k + lag < b.size(); ++k) sum += (b[k + lag] - b[k]).squaredNorm();
+        return sum / (3.0 * double(b.size() - lag));
+    };
+    std::vector<Eigen::Vector3d> robot(n_);
+    for (std::size_t k = 0; k < n_; ++k)
+        robot[k] = queried().samples()[first + k].value.head<3>().cast<double>();
+    const double d2 = std::min(meanSquareStep(robot), meanSquareStep(mapFrameWindow(first)));
+    return std::sqrt(std::max(d2 / (2 * -std::expm1(-0.5 * h * h)), 1e-6));
+}
+
+double MagneticWindowERD::mapFrameSpread(std::size_t first) const {
+    const auto b = mapFrameWindow(first);
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (const auto& v : b) mean += v;
     mean /= double(n_);
     double sum = 0;
     for (const auto& v : b) sum += (v - mean).squaredNorm();
@@ -438,6 +465,7 @@ JsonObject MagneticWindowERD::describe() const {
         .set("closure_every", params_.closureEvery)
         .set("confirm", params_.confirm)
         .set("pass_displacement", params_.passDisplacement)
+        .set("fine_amplitude", params_.fineAmplitude)
         .set("sigma_cross", params_.sigmaCross)
         .set("turn_floor_deg", params_.turnFloorDeg);
     JsonObject stats;

@@ -34,8 +34,13 @@ class WindowDisplacementModel {
         Eigen::VectorXd eigenvalues;
         double lengthScale{1};
     };
+    /** `unrelatedSigmaF` (NaN: `sigmaF`): the amplitude of the null alone. A field of two
+     * scales - a broad part that passes beside each other share and unrelated places do not,
+     * over a fine part of amplitude `sigmaF` that differs as they move apart - is this model
+     * with the broad part's scale taken as infinite: passes beside differ by the fine part
+     * only, unrelated places by the whole spread. */
     WindowDisplacementModel(std::shared_ptr<const Basis> basis, double sigmaF, double priorSigma,
-                            double radius);
+                            double radius, double unrelatedSigmaF = NAN);
     WindowDisplacementModel(std::size_t n, const PassNoise& noise, double sigmaF,
                             double lengthScale, double priorSigma, double radius);
 
@@ -74,7 +79,7 @@ class WindowDisplacementModel {
     double logRatio(const Eigen::VectorXd& p2, double delta) const;
 
     std::shared_ptr<const Basis> basis_;
-    double sigma_f2_{0}, radius_{1};
+    double sigma_f2_{0}, unrelated_sigma_f2_{0}, radius_{1};
     // The prior's bins: columns of inverse factors at each bin's middle (then unrelated
     // places), and per bin log(mass) + its log-determinant term.
     int bins_{0}, near_bins_{10};

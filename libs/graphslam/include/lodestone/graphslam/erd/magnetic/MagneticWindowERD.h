@@ -91,6 +91,11 @@ class MagneticWindowERD : public EdgeDecider {
          * place, and the closure's across-track sigma is the distance's posterior. false: the
          * same place means the same line (C1 alone), the across-track sigma is `sigma_cross`. */
         bool passDisplacement{true};
+        /** With pass_displacement: passes beside each other differ by the field's fine part
+         * only - its amplitude measured in the query window from readings `gp_length_scale`
+         * apart - while unrelated places differ by the window's whole spread (a broad part
+         * that passes a metre apart still share). false: one amplitude, the spread, for both. */
+        bool fineAmplitude{false};
         double sigmaAlongFloor{0.03};  ///< [m]
         double sigmaCross{0.20};       ///< [m]
         double turnFloorDeg{2.0};      ///< [deg] added to the field's turn sigma
@@ -190,6 +195,12 @@ class MagneticWindowERD : public EdgeDecider {
      * heading there): the field's own variation over the window, without the turning of the
      * robot-frame components that a turn in a uniform field shows. */
     double mapFrameSpread(std::size_t first) const;
+    /** The query window's readings, each horizontal part turned by the graph's heading. */
+    std::vector<Eigen::Vector3d> mapFrameWindow(std::size_t first) const;
+    /** The amplitude of the field's fine part in the query window (fine_amplitude): from the
+     * mean square difference of readings gp_length_scale apart, 2 sigma^2 (1 - exp(-1/2)) for
+     * the squared-exponential kernel; the smaller of the robot and map frames' (as the spread). */
+    double fineAmplitude(std::size_t first) const;
     /** log of the position prior's normalizer over the candidates. */
     static double logPriorNormalizer(const std::vector<Candidate>& all);
     /** With pass_displacement: every candidate's weight near and far, its total and fitStat. */
