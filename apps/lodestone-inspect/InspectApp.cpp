@@ -9,6 +9,7 @@
 #include <lodestone/io/ImagesDirectory.h>
 #include <lodestone/io/RawlogReadError.h>
 #include <lodestone/io/RawlogReader.h>
+#include <lodestone/maps/MapSummary.h>
 #include <lodestone/obs/registerAllClasses.h>
 #include <mrpt/img/CImage.h>
 #include <mrpt/obs/CActionCollection.h>
@@ -234,6 +235,17 @@ int reportCmd(const Args& args, std::ostream& out) {
     return kExitOk;
 }
 
+int mapCmd(const Args& args, std::ostream& out) {
+    TCLAP::CmdLine cmd("A saved map (lodestone-slam --map-out): sessions, nodes, keyframes, "
+                       "readings, extent, sensors, configuration, size on disk",
+                       ' ', "");
+    TCLAP::UnlabeledValueArg<std::string> dir("DIR", "map folder", true, "", "DIR", cmd);
+    if (!parse(cmd, "map", args)) return kExitOk;
+    const auto map = maps::readMap(dir.getValue());
+    maps::printMapSummary(maps::summarizeMap(map, dir.getValue()), out);
+    return kExitOk;
+}
+
 void printUsage(std::ostream& out) {
     out << "lodestone-inspect: look inside MRPT rawlogs (stock and Lodestone's)\n\n"
            "usage: lodestone-inspect <command> [options]   (<command> --help for its options)\n"
@@ -243,6 +255,7 @@ void printUsage(std::ostream& out) {
            "  export FILE --sensor LABEL --out DIR   CSV series / PNG frames of one sensor\n"
            "  to-imu FILE OUT [--unit gauss]      magnetometers as CObservationIMU\n"
            "  report FILE --out DIR [--slam SLAM_OUT] [--ground-truth GT.tum]   HTML report\n"
+           "  map DIR                             a saved map (lodestone-slam --map-out)\n"
            "exit codes: 0 ok, 1 bad input, 2 usage\n";
 }
 
@@ -256,7 +269,8 @@ int runInspectApp(int argc, const char* const* argv, std::ostream& out, std::ost
         {"show", show},
         {"export", exportCmd},
         {"to-imu", toImu},
-        {"report", reportCmd}};
+        {"report", reportCmd},
+        {"map", mapCmd}};
     if (argc < 2) {
         printUsage(err);
         return kExitUsage;

@@ -2,6 +2,8 @@
 #include <SlamApp.h>
 #include <lodestone/slamapp/SlamRun.h>
 
+#include <filesystem>
+
 namespace lodestone::slamapp {
 
 int runSlamApp(int argc, const char* const* argv, std::ostream& out, std::ostream& err,
@@ -20,6 +22,10 @@ int runSlamApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
                                         cmd);
     TCLAP::ValueArg<std::string> gt("g", "ground-truth", "TUM ground truth for the ATE", false, "",
                                     "GT.tum", cmd);
+    TCLAP::ValueArg<std::string> mapOut("", "map-out",
+                                        "save the map at the end in this folder (replaced whole; "
+                                        "lodestone-inspect map DIR describes it)",
+                                        false, "", "DIR", cmd);
     TCLAP::ValueArg<double> maxSeconds("", "max-seconds", "process only this much data [s]", false,
                                        0, "S", cmd);
     TCLAP::ValueArg<int> decodeAhead("", "decode-ahead",
@@ -37,6 +43,11 @@ int runSlamApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
     if (usage.empty() && rawlog.isSet() == sim.isSet()) usage = "give exactly one of --rawlog and --sim";
     if (usage.empty() && sim.isSet() && gt.isSet()) {
         usage = "--ground-truth is for --rawlog; --sim uses the simulator's own ground truth";
+    }
+    if (usage.empty() && mapOut.isSet() &&
+        (mapOut.getValue().empty() || std::filesystem::weakly_canonical(mapOut.getValue()) ==
+                                          std::filesystem::weakly_canonical(outDir.getValue()))) {
+        usage = "--map-out needs a folder of its own (not --out's)";
     }
     if (usage.empty() && maxSeconds.isSet() && !(maxSeconds.getValue() > 0)) {
         usage = "--max-seconds must be > 0";
@@ -57,6 +68,7 @@ int runSlamApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
     o.config = config.getValue();
     o.outDir = outDir.getValue();
     o.groundTruth = gt.getValue();
+    o.mapOut = mapOut.getValue();
     if (maxSeconds.isSet()) o.maxSeconds = maxSeconds.getValue();
     o.decodeAhead = static_cast<std::size_t>(decodeAhead.getValue());
     o.decodeThreads = static_cast<std::size_t>(decodeThreads.getValue());

@@ -4,6 +4,7 @@
 #include <lodestone/eval/TrajectoryError.h>
 #include <lodestone/eval/TrajectoryPlot.h>
 #include <lodestone/io/TumTrajectory.h>
+#include <lodestone/maps/MapSnapshot.h>
 #include <lodestone/outputs/RunFiles.h>
 #include <lodestone/slamapp/GraphPlot.h>
 #include <lodestone/slamapp/RunOutputs.h>
@@ -15,6 +16,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 namespace lodestone::slamapp {
@@ -137,6 +139,29 @@ void writeReport(const JsonObject& report, const std::string& dir) {
 
 }  // namespace
 
+/** The run's map saved in options.mapOut (after every other output: a map that cannot be written
+ * costs none of them); what was saved, for report.json. */
+JsonObject saveMap(const graphslam::SlamEngine& engine, const SlamRunOptions& options,
+                   std::ostream& err, SlamRunResult& result) {
+    JsonObject saved;
+    saved.set("dir", options.mapOut);
+    try {
+        std::ifstream config(options.config, std::ios::binary);
+        std::ostringstream text;
+        text << config.rdbuf();
+        const auto map = maps::mapOf(engine.graph(), engine.nodes(), text.str(),
+                                     std::string("lodestone-slam ") + LODESTONE_VERSION);
+        maps::writeMap(map, options.mapOut);
+        saved.set("nodes", map.nodes.size()).set("edges", map.graph.edges.size());
+    } catch (const std::exception& e) {
+        err << "lodestone-slam: " << e.what() << "\n";
+        saved.set("error", e.what());
+        result.exitCode = 1;
+        if (result.error.empty()) result.error = e.what();
+    }
+    return saved;
+}
+
 void writeOutputs(const RunInputs& in, const LoopOutcome& loop, const SlamRunOptions& options,
                   std::ostream& out, std::ostream& err, SlamRunResult& result) {
     const auto& engine = *in.engine;
@@ -203,6 +228,7 @@ void writeOutputs(const RunInputs& in, const LoopOutcome& loop, const SlamRunOpt
                 << " in time; no ATE\n";
         }
     }
+    if (!options.mapOut.empty()) report.set("map_out", saveMap(engine, options, err, result));
     if (!result.error.empty()) report.set("error", result.error);
     writeReport(report, dir);
 

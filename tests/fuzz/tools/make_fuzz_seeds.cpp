@@ -180,6 +180,18 @@ void textSeeds() {
 }
 }  // namespace
 
+// A saved map (lodestone-slam --map-out) as fuzz_map reads it: manifest.ini, config.ini,
+// graph.bin and nodes.bin of the golden map (tests/data/map_v1) joined by "%%" lines.
+void mapSeeds() {
+    const fs::path golden = repoRoot / "tests" / "data" / "map_v1";
+    std::string joined;
+    for (const char* name : {"manifest.ini", "config.ini", "graph.bin", "nodes.bin"}) {
+        if (!joined.empty()) joined += "\n%%\n";
+        joined += fileBytes(golden / name);
+    }
+    write("corpus", "fuzz_map", "map_v1", joined);
+}
+
 int main(int argc, char** argv) {
     if (argc != 3) {
         std::cerr << "usage: make_fuzz_seeds <tests/fuzz> <repository root>\n";
@@ -192,5 +204,6 @@ int main(int argc, char** argv) {
     regressionRawlogs();
     observationSeeds();
     textSeeds();
+    mapSeeds();
     return 0;
 }

@@ -24,6 +24,9 @@ struct SlamRunOptions {
     std::string config;       ///< the SLAM INI ([graphslam] and the deciders' sections)
     std::string outDir;
     std::string groundTruth;  ///< TUM file for the ATE (with --sim: the simulator's own)
+    /** Where the map is saved at the end (maps::writeMap: a folder, replaced whole); empty:
+     * not saved. */
+    std::string mapOut;
     double maxSeconds{std::numeric_limits<double>::infinity()};  ///< of data, from its start
     /** Frames read and decoded ahead on other threads (io::PrefetchingSource); 0: read and
      * decode in the frame loop. Results are the same either way. */
