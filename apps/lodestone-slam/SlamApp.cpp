@@ -26,6 +26,14 @@ int runSlamApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
                                         "save the map at the end in this folder (replaced whole; "
                                         "lodestone-inspect map DIR describes it)",
                                         false, "", "DIR", cmd);
+    TCLAP::ValueArg<std::string> mapIn("", "map-in",
+                                       "start in this saved map (lodestone-slam --map-out): "
+                                       "relocalize in it, then track against it",
+                                       false, "", "DIR", cmd);
+    TCLAP::ValueArg<std::string> mode("", "mode",
+                                      "with --map-in: localize (the map is held fixed; the "
+                                      "only mode so far)",
+                                      false, "localize", "MODE", cmd);
     TCLAP::ValueArg<double> maxSeconds("", "max-seconds", "process only this much data [s]", false,
                                        0, "S", cmd);
     TCLAP::ValueArg<int> decodeAhead("", "decode-ahead",
@@ -49,6 +57,13 @@ int runSlamApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
                                           std::filesystem::weakly_canonical(outDir.getValue()))) {
         usage = "--map-out needs a folder of its own (not --out's)";
     }
+    if (usage.empty() && mode.isSet() && !mapIn.isSet()) usage = "--mode is for --map-in";
+    if (usage.empty() && mapIn.isSet() && mapOut.isSet()) {
+        usage = "--map-out with --map-in is extending a map (--mode extend, not built yet)";
+    }
+    if (usage.empty() && mode.getValue() != "localize") {
+        usage = "--mode " + mode.getValue() + ": only localize so far (extend is not built yet)";
+    }
     if (usage.empty() && maxSeconds.isSet() && !(maxSeconds.getValue() > 0)) {
         usage = "--max-seconds must be > 0";
     }
@@ -69,6 +84,7 @@ int runSlamApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
     o.outDir = outDir.getValue();
     o.groundTruth = gt.getValue();
     o.mapOut = mapOut.getValue();
+    o.mapIn = mapIn.getValue();
     if (maxSeconds.isSet()) o.maxSeconds = maxSeconds.getValue();
     o.decodeAhead = static_cast<std::size_t>(decodeAhead.getValue());
     o.decodeThreads = static_cast<std::size_t>(decodeThreads.getValue());

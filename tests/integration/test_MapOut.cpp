@@ -1,12 +1,18 @@
 // lodestone-slam --map-out: the map a run leaves, described by lodestone-inspect map; its own
 // folder (never --out's); a map that cannot be written costs none of the run's other outputs.
+// --map-in: a later run relocalizes in the map and tracks against it without moving it; a map
+// from other deciders or a damaged one is refused before any work.
 #include <gtest/gtest.h>
 #include <lodestone/datasets/MagneticRecordingImport.h>
 #include <lodestone/maps/SavedMap.h>
 #include <lodestone/obs/registerAllClasses.h>
 
+#include <lodestone/io/TumTrajectory.h>
+#include <mrpt/graphs/CNetworkOfPoses.h>
+
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "StockTools.h"
 #include "TestPaths.h"
@@ -15,6 +21,13 @@ namespace {
 const std::string kSlam = LODESTONE_SLAM_BINARY;
 const std::string kInspect = LODESTONE_INSPECT_BINARY;
 const std::string kConfig = std::string(LODESTONE_CONFIG_INI_DIR) + "/slam/magnetic_window.ini";
+
+std::string slurp(const std::string& path) {
+    std::ifstream in(path);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
 
 /** Two laps of a 3 m x 2 m rectangle at 0.5 m/s, 10 Hz, through a field with a few bumps. */
 lodestone::datasets::MagneticRecording twoLaps() {
@@ -81,4 +94,74 @@ TEST(MapOut, ARunLeavesAMapThatInspectDescribes) {
     const auto notMap = lodestone::test::runCommand(kInspect + " map " + dir.file("out"));
     EXPECT_EQ(notMap.exitCode, 1) << notMap.output;
     EXPECT_NE(notMap.output.find("manifest.ini"), std::string::npos) << notMap.output;
+}
+
+TEST(MapIn, ALaterRunRelocalizesInTheMapAndNeverMovesIt) {
+    lodestone::registerAllClasses();
+    lodestone::test::TempDir dir;
+    lodestone::datasets::OdometryDriftModel other;
+    other.seed = 2;
+    lodestone::datasets::writeMagneticRecording(twoLaps(), dir.file("first.rawlog"), {});
+    lodestone::datasets::writeMagneticRecording(twoLaps(), dir.file("second.rawlog"), other);
+    const std::string common = " --config " + kConfig + " --quiet";
+    ASSERT_EQ(lodestone::test::runCommand(kSlam + " --rawlog " + dir.file("first.rawlog") + common +
+                                          " --out " + dir.file("first") + " --map-out " +
+                                          dir.file("map"))
+                  .exitCode,
+              0);
+    const auto map = lodestone::maps::readMap(dir.file("map"));
+    const auto run = lodestone::test::runCommand(
+        kSlam + " --rawlog " + dir.file("second.rawlog") + common + " --out " +
+        dir.file("second") + " --map-in " + dir.file("map") + " --ground-truth " +
+        dir.file("second.gt.tum"));
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    const std::string report = slurp(dir.file("second") + "/report.json");
+    EXPECT_NE(report.find("\"relocations\": 1"), std::string::npos) << report.substr(0, 600);
+    EXPECT_NE(report.find("\"map_nodes\": " + std::to_string(map.nodes.size())), std::string::npos);
+    // The map's nodes are where the map put them.
+    lodestone::graphslam::Graph after;
+    after.loadFromTextFile(dir.file("second") + "/graph.graph");
+    for (const auto& [id, pose] : map.graph.nodes) {
+        ASSERT_TRUE(after.nodes.count(id));
+        EXPECT_NEAR(after.nodes.at(id).x(), pose.x(), 1e-5) << id;
+        EXPECT_NEAR(after.nodes.at(id).y(), pose.y(), 1e-5) << id;
+    }
+    // The trajectory is the run's own nodes on the map, with an ATE.
+    const auto trajectory = lodestone::io::readTumTrajectory(dir.file("second") + "/trajectory.tum");
+    EXPECT_GT(trajectory.size(), 50u);
+    EXPECT_LT(trajectory.size(), after.nodes.size() - map.nodes.size() + 1);
+    EXPECT_NE(run.output.find("ATE RMSE"), std::string::npos) << run.output;
+}
+
+TEST(MapIn, AForeignOrDamagedMapIsRefusedBeforeAnyWork) {
+    lodestone::registerAllClasses();
+    lodestone::test::TempDir dir;
+    lodestone::datasets::writeMagneticRecording(twoLaps(), dir.file("laps.rawlog"), {});
+    const std::string rawlog = " --rawlog " + dir.file("laps.rawlog") + " --quiet";
+    ASSERT_EQ(lodestone::test::runCommand(kSlam + rawlog + " --config " + kConfig + " --out " +
+                                          dir.file("first") + " --map-out " + dir.file("map"))
+                  .exitCode,
+              0);
+    // Made with the window closer; this INI hosts the GP matcher.
+    const std::string gp = std::string(LODESTONE_CONFIG_INI_DIR) + "/slam/magnetic_only.ini";
+    const auto foreign = lodestone::test::runCommand(kSlam + rawlog + " --config " + gp +
+                                                     " --out " + dir.file("gp") + " --map-in " +
+                                                     dir.file("map"));
+    EXPECT_EQ(foreign.exitCode, 1) << foreign.output;
+    EXPECT_NE(foreign.output.find("MagneticWindowERD"), std::string::npos) << foreign.output;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("gp") + "/trajectory.tum"));
+    // A node file cut short: named, exit 1, nothing written.
+    const std::string nodes = dir.file("map") + "/nodes.bin";
+    std::filesystem::resize_file(nodes, std::filesystem::file_size(nodes) / 2);
+    const auto damaged = lodestone::test::runCommand(kSlam + rawlog + " --config " + kConfig +
+                                                     " --out " + dir.file("damaged") +
+                                                     " --map-in " + dir.file("map"));
+    EXPECT_EQ(damaged.exitCode, 1) << damaged.output;
+    EXPECT_NE(damaged.output.find("nodes.bin"), std::string::npos) << damaged.output;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("damaged") + "/trajectory.tum"));
+    // Modes: localize only, so far.
+    const auto extend = lodestone::test::runCommand(kSlam + rawlog + " --config " + kConfig +
+                                                    " --out " + dir.file("x") + " --map-in " +
+                                                    dir.file("map") + " --mode extend");
+    EXPECT_EQ(extend.exitCode, 2) << extend.output;
 }

@@ -6,6 +6,8 @@
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt/system/filesystem.h>
 
+#include <stdexcept>
+
 namespace lodestone::graphslam {
 
 namespace {
@@ -21,6 +23,14 @@ void NodeDecider::loadParams(const std::string& source_fname) { configureFromFil
 void EdgeDecider::loadParams(const std::string& source_fname) { configureFromFile(*this, source_fname); }
 void GraphOptimizer::loadParams(const std::string& source_fname) {
     configureFromFile(*this, source_fname);
+}
+
+void GraphOptimizer::holdFixed(TNodeID) {
+    throw std::logic_error(getClassName() + " cannot hold a map's nodes fixed");
+}
+
+void NodeDecider::continueAfterMap(TNodeID, int) {
+    throw std::logic_error(getClassName() + " cannot start in a saved map");
 }
 
 void EdgeDecider::registerNewEdge(const TNodeID& from, const TNodeID& to, const Constraint& c) {

@@ -3,6 +3,9 @@
 #include <lodestone/graphslam/SlamEngine.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 
+#include <algorithm>
+#include <stdexcept>
+
 #include "Stopwatch.h"
 
 namespace lodestone::graphslam {
@@ -60,6 +63,27 @@ std::set<std::string> SlamEngine::requiredObservations() const {
 
 mrpt::poses::CPose3D SlamEngine::currentPose() const {
     return nrd_->getCurrentRobotPosEstimation();
+}
+
+void SlamEngine::startInMap(const Graph& graph, std::vector<NodeRecord> records, bool frozen) {
+    if (!graph_.nodes.empty() || stats_.observations > 0)
+        throw std::logic_error("SlamEngine: a map is loaded before any data");
+    if (records.empty() || graph.nodes.size() != records.size())
+        throw std::logic_error("SlamEngine: a map's graph and node records disagree");
+    graph_.nodes = graph.nodes;
+    graph_.edges = graph.edges;
+    graph_.root = 0;
+    int segments = 0;
+    for (TNodeID id = 0; id < records.size(); ++id) {
+        segments = std::max(segments, records[id].segment + 1);
+        nodes_.add(id, std::move(records[id]));
+    }
+    map_nodes_ = nodes_.size();
+    relocalizer_.adoptMap(graph_, nodes_);
+    relocalizer_seen_ = map_nodes_;
+    erd_->setMapNodes(map_nodes_);
+    nrd_->continueAfterMap(map_nodes_ - 1, segments);
+    if (frozen) gso_->holdFixed(map_nodes_);
 }
 
 bool SlamEngine::process(const mrpt::obs::CObservation::Ptr& obs) {
@@ -159,6 +183,7 @@ JsonObject SlamEngine::describe() const {
         .set("observations", stats_.observations)
         .set("rgbd_frames", stats_.frames)
         .set("relocations", stats_.relocations);
+    if (map_nodes_ > 0) counts.set("map_nodes", map_nodes_);
     JsonObject timing;
     timing.set("node_decider_s", stats_.nrdSeconds)
         .set("edge_decider_s", stats_.erdSeconds)

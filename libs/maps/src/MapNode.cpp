@@ -1,4 +1,5 @@
 #include <lodestone/maps/MapNode.h>
+#include <lodestone/obs/SerializedBool.h>
 #include <mrpt/serialization/CArchive.h>
 
 #include <opencv2/core.hpp>
@@ -14,6 +15,16 @@ IMPLEMENTS_SERIALIZABLE(CMapNode, mrpt::serialization::CSerializable, lodestone:
 //      size, angle, response, octave, its 32-byte descriptor and 3D point); the magnetometer
 //      readings (count; timestamp, label, field x y z, the sensor's pose).
 uint8_t CMapNode::serializeGetVersion() const { return 0; }
+
+bool isMapLabel(const std::string& label) {
+    if (label.empty() || label.size() > 256) return false;
+    for (const unsigned char c : label)
+        if (c <= ' ' || c >= 127) return false;
+    return true;
+}
+
+// More segments than any map holds (a kidnap each): a damaged field.
+constexpr std::int32_t kMostSegments = 1 << 24;
 
 namespace {
 
@@ -60,13 +71,13 @@ void CMapNode::serializeFrom(mrpt::serialization::CArchive& in, uint8_t version)
         case 0: {
             graphslam::NodeRecord r;
             std::int32_t segment = 0;
-            in >> id >> session >> r.timestamp >> segment >> r.liftTime >> r.putDownTime >>
-                r.keyframe;
+            in >> id >> session >> r.timestamp >> segment >> r.liftTime >> r.putDownTime;
+            r.keyframe = obs::readBool(in, "CMapNode", "keyframe");
+            if (segment < 0 || segment > kMostSegments)
+                throw std::runtime_error("segment " + std::to_string(segment) + " out of range");
             r.segment = segment;
             r.T_robot_camera = readPose(in);
-            bool hasFeatures = false;
-            in >> hasFeatures;
-            if (hasFeatures) {
+            if (obs::readBool(in, "CMapNode", "has_features")) {
                 auto f = std::make_shared<vision::FrameFeatures>();
                 std::uint32_t n = 0;
                 std::uint64_t detected = 0;
@@ -101,6 +112,8 @@ void CMapNode::serializeFrom(mrpt::serialization::CArchive& in, uint8_t version)
                 graphslam::MagneticSample m;
                 in >> m.timestamp >> m.sensorLabel >> m.field.x >> m.field.y >> m.field.z >>
                     m.sensorPose;
+                if (!isMapLabel(m.sensorLabel))
+                    throw std::runtime_error("a magnetometer label that is not printable text");
                 r.magnetic.push_back(std::move(m));
             }
             record = std::move(r);

@@ -12,6 +12,7 @@
 #include <mrpt/serialization/CArchive.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -60,6 +61,17 @@ void writeText(const std::string& path, const std::string& text) {
     if (!out.flush()) throw MapError(path + ": cannot be written");
 }
 
+/** An exception's message in one line: MRPT's "Message:" line where it has one. */
+std::string briefly(const std::exception& e) {
+    std::string what = e.what();
+    const auto at = what.find("Message:");
+    if (at != std::string::npos) what = what.substr(at + 8);
+    what = what.substr(what.find_first_not_of(" \t") == std::string::npos
+                           ? 0
+                           : what.find_first_not_of(" \t"));
+    return what.substr(0, std::min(what.find('\n'), std::size_t(200)));
+}
+
 MapManifest manifestOf(const SavedMap& map) {
     MapManifest m = map.manifest;
     m.formatVersion = kMapFormatVersion;
@@ -70,6 +82,10 @@ MapManifest manifestOf(const SavedMap& map) {
     m.segments = 0;
     std::set<std::string> labels;
     for (const auto& r : map.nodes) {
+        for (const auto& s : r.magnetic)
+            if (!isMapLabel(s.sensorLabel))
+                throw MapError("magnetometer label '" + s.sensorLabel +
+                               "': a map holds labels of printable characters without spaces");
         m.keyframes += r.keyframe;
         m.magneticReadings += r.magnetic.size();
         m.segments = std::max(m.segments, r.segment + 1);
@@ -103,17 +119,21 @@ std::string manifestText(const MapManifest& m) {
 }
 
 MapManifest parseManifest(const std::string& path) {
-    mrpt::config::CConfigFileMemory ini(readText(path));
+    const std::string text = readText(path);
     MapManifest m;
     try {
+        // (MRPT's parser throws on what it cannot parse, e.g. an unclosed "$env{")
+        mrpt::config::CConfigFileMemory ini(text);
         config::checkSections(ini, {"map"}, path);
         config::IniSection s(ini, "map", path);
-        const auto count = [&](const char* key) {
+        // (bounded before the cast: a double beyond the type's range is undefined behaviour)
+        const auto count = [&](const char* key, double most = 1e15) {
             const double v = s.requireDouble(key);
-            if (!(v >= 0) || v != std::floor(v)) s.fail(key, "must be a count");
+            if (!(v >= 0 && v <= most) || v != std::floor(v)) s.fail(key, "must be a count");
             return static_cast<std::size_t>(v);
         };
-        m.formatVersion = static_cast<int>(count("format_version"));
+        constexpr double kMostInt = 2147483647.0;
+        m.formatVersion = static_cast<int>(count("format_version", kMostInt));
         if (m.formatVersion > kMapFormatVersion) {
             s.fail("format_version", "map format " + std::to_string(m.formatVersion) +
                                          " is newer than this build reads (" +
@@ -121,11 +141,11 @@ MapManifest parseManifest(const std::string& path) {
         }
         if (m.formatVersion < 1) s.fail("format_version", "must be >= 1");
         m.createdBy = s.getString("created_by", "");
-        m.sessions = static_cast<std::uint32_t>(count("sessions"));
+        m.sessions = static_cast<std::uint32_t>(count("sessions", kMostInt));
         m.nodes = count("nodes");
         m.edges = count("edges");
         m.keyframes = count("keyframes");
-        m.segments = static_cast<int>(count("segments"));
+        m.segments = static_cast<int>(count("segments", kMostInt));
         m.magneticReadings = count("magnetic_readings");
         std::istringstream labels(s.getString("magnetometers", ""));
         for (std::string l; labels >> l;) m.magnetometers.push_back(l);
@@ -135,19 +155,10 @@ MapManifest parseManifest(const std::string& path) {
         s.finish();
     } catch (const config::ConfigError& e) {
         throw MapError(e.what());
+    } catch (const std::exception& e) {
+        throw MapError(path + ": not an INI file (" + briefly(e) + ")");
     }
     return m;
-}
-
-/** An exception's message in one line: MRPT's "Message:" line where it has one. */
-std::string briefly(const std::exception& e) {
-    std::string what = e.what();
-    const auto at = what.find("Message:");
-    if (at != std::string::npos) what = what.substr(at + 8);
-    what = what.substr(what.find_first_not_of(" \t") == std::string::npos
-                           ? 0
-                           : what.find_first_not_of(" \t"));
-    return what.substr(0, std::min(what.find('\n'), std::size_t(200)));
 }
 
 void registerMapClasses() {
@@ -182,7 +193,15 @@ void readNodes(const std::string& path, std::size_t expected, SavedMap& map) {
     try {
         std::string header;
         std::uint64_t count = 0;
-        in >> header;
+        {
+            memguard::AllocationBudget budget(allocationLimit(stream.getTotalBytesCount()));
+            try {
+                in >> header;
+            } catch (...) {
+                if (budget.exceeded()) throw MapError(path + ": not a Lodestone map's node file");
+                throw;
+            }
+        }
         if (header != kNodesHeader) throw MapError(path + ": not a Lodestone map's node file");
         in >> count;
         if (count != expected) {

@@ -2,7 +2,7 @@
 #include <mrpt/serialization/CArchive.h>
 #include <mrpt/system/datetime.h>
 
-#include "SerializedBool.h"
+#include <lodestone/obs/SerializedBool.h>
 
 #include <cmath>
 #include <iomanip>
@@ -32,11 +32,11 @@ void CObservationMagnetometer::serializeFrom(mrpt::serialization::CArchive& in, 
             in >> field.x >> field.y >> field.z;
             in >> noiseStd.x >> noiseStd.y >> noiseStd.z;
             const bool hasTemperature =
-                detail::readBool(in, "CObservationMagnetometer", "has_temperature");
+                readBool(in, "CObservationMagnetometer", "has_temperature");
             double t = 0;
             in >> t;
             temperature = hasTemperature ? std::optional<double>(t) : std::nullopt;
-            calibrated = detail::readBool(in, "CObservationMagnetometer", "calibrated");
+            calibrated = readBool(in, "CObservationMagnetometer", "calibrated");
         } break;
         default:
             MRPT_THROW_UNKNOWN_SERIALIZATION_VERSION(version);

@@ -1,7 +1,7 @@
 #include <lodestone/obs/CObservationWheelDrop.h>
 #include <mrpt/serialization/CArchive.h>
 
-#include "SerializedBool.h"
+#include <lodestone/obs/SerializedBool.h>
 
 namespace lodestone::obs {
 
@@ -19,8 +19,8 @@ void CObservationWheelDrop::serializeFrom(mrpt::serialization::CArchive& in, uin
     switch (version) {
         case 0:
             in >> timestamp >> sensorLabel;
-            leftDropped = detail::readBool(in, "CObservationWheelDrop", "left_dropped");
-            rightDropped = detail::readBool(in, "CObservationWheelDrop", "right_dropped");
+            leftDropped = readBool(in, "CObservationWheelDrop", "left_dropped");
+            rightDropped = readBool(in, "CObservationWheelDrop", "right_dropped");
             break;
         default:
             MRPT_THROW_UNKNOWN_SERIALIZATION_VERSION(version);

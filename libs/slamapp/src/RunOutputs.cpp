@@ -4,7 +4,6 @@
 #include <lodestone/eval/TrajectoryError.h>
 #include <lodestone/eval/TrajectoryPlot.h>
 #include <lodestone/io/TumTrajectory.h>
-#include <lodestone/maps/MapSnapshot.h>
 #include <lodestone/outputs/RunFiles.h>
 #include <lodestone/slamapp/GraphPlot.h>
 #include <lodestone/slamapp/RunOutputs.h>
@@ -16,7 +15,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <stdexcept>
 
 namespace lodestone::slamapp {
@@ -70,6 +68,15 @@ void writeTrajectory(const std::string& path, const std::vector<io::TumPose>& tr
 }
 
 namespace {
+
+std::vector<io::TumPose> runOnMap(const graphslam::SlamEngine& engine) {
+    std::vector<io::TumPose> out;
+    for (TNodeID id = engine.mapNodes(); id < engine.nodes().size(); ++id) {
+        if (engine.relocalizer().groupOf(id) != 0) continue;
+        out.push_back({engine.nodes().at(id).timestamp, engine.graph().nodes.at(id)});
+    }
+    return out;
+}
 bool inGraph(const Graph& graph, const graphslam::LoopClosure& lc) {
     const auto range = graph.edges.equal_range({lc.from, lc.to});
     for (auto it = range.first; it != range.second; ++it) {
@@ -139,29 +146,6 @@ void writeReport(const JsonObject& report, const std::string& dir) {
 
 }  // namespace
 
-/** The run's map saved in options.mapOut (after every other output: a map that cannot be written
- * costs none of them); what was saved, for report.json. */
-JsonObject saveMap(const graphslam::SlamEngine& engine, const SlamRunOptions& options,
-                   std::ostream& err, SlamRunResult& result) {
-    JsonObject saved;
-    saved.set("dir", options.mapOut);
-    try {
-        std::ifstream config(options.config, std::ios::binary);
-        std::ostringstream text;
-        text << config.rdbuf();
-        const auto map = maps::mapOf(engine.graph(), engine.nodes(), text.str(),
-                                     std::string("lodestone-slam ") + LODESTONE_VERSION);
-        maps::writeMap(map, options.mapOut);
-        saved.set("nodes", map.nodes.size()).set("edges", map.graph.edges.size());
-    } catch (const std::exception& e) {
-        err << "lodestone-slam: " << e.what() << "\n";
-        saved.set("error", e.what());
-        result.exitCode = 1;
-        if (result.error.empty()) result.error = e.what();
-    }
-    return saved;
-}
-
 void writeOutputs(const RunInputs& in, const LoopOutcome& loop, const SlamRunOptions& options,
                   std::ostream& out, std::ostream& err, SlamRunResult& result) {
     const auto& engine = *in.engine;
@@ -171,7 +155,9 @@ void writeOutputs(const RunInputs& in, const LoopOutcome& loop, const SlamRunOpt
     const auto& closures = engine.optimizer().loopClosures();
     result.nodes = graph.nodes.size();
     result.loopClosures = closures.size();
-    const auto trajectory = nodeTrajectory(graph, engine.nodes());  // every node, optimized
+    // Every node, optimized; in a loaded map, the run's own nodes once they joined it (before,
+    // a segment of its own: no pose in the map's frame to report).
+    const auto trajectory = engine.mapNodes() > 0 ? runOnMap(engine) : nodeTrajectory(graph, engine.nodes());
     writeTrajectory(path(RunFile::Trajectory), trajectory);
     graph.saveToTextFile(path(RunFile::Graph));
     outputs::writeClosureTable(path(RunFile::Closures), closureRows(engine));

@@ -75,6 +75,20 @@ LoopOutcome runLoop(RunInputs& in, const SlamRunOptions& options, std::ostream& 
 void writeOutputs(const RunInputs& in, const LoopOutcome& loop, const SlamRunOptions& options,
                   std::ostream& out, std::ostream& err, SlamRunResult& result);
 
+/** The saved map of `options.mapIn` loaded into `engine` (before any data; localize: the map
+ * held fixed). Throws InputError naming the file when it cannot be read or was made by
+ * other deciders than the INI names. */
+void loadMap(const SlamRunOptions& options, const std::string& configText,
+             graphslam::SlamEngine& engine);
+
+/** The run's map saved in options.mapOut (after every other output: a map that cannot be
+ * written costs none of them; the error is reported, exit 1); what was saved, for report.json. */
+graphslam::JsonObject saveMap(const graphslam::SlamEngine& engine, const SlamRunOptions& options,
+                              std::ostream& err, SlamRunResult& result);
+
+/** The text of the SLAM INI (what a saved map keeps). */
+std::string configText(const SlamRunOptions& options);
+
 /** report.json's "timing" object. */
 graphslam::JsonObject timingJson(const graphslam::SlamEngine::Stats& stats, const LoopOutcome& loop,
                                  const io::PrefetchingSource* prefetcher);

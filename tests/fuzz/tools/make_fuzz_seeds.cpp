@@ -190,6 +190,33 @@ void mapSeeds() {
         joined += fileBytes(golden / name);
     }
     write("corpus", "fuzz_map", "map_v1", joined);
+    // Found by fuzz_map: MRPT's INI parser throws on an unclosed "$env{" in the manifest.
+    write("regression", "fuzz_map", "manifest_env",
+          fileBytes(golden / "manifest.ini") + "x = $env{resGSO\n%%\n");
+    // Found by fuzz_map: a bool field read as the byte 111 (undefined behaviour, UBSan). The
+    // first node's keyframe flag: after its class name, version byte and 40 bytes of fields.
+    std::string nodes = fileBytes(golden / "nodes.bin");
+    nodes[nodes.find("CMapNode") + 8 + 1 + 40] = 111;
+    joined.clear();
+    for (const char* name : {"manifest.ini", "config.ini", "graph.bin"}) {
+        joined += fileBytes(golden / name) + "\n%%\n";
+    }
+    write("regression", "fuzz_map", "keyframe_not_bool", joined + nodes);
+    // Found by fuzz_map: the node file's header string asking for 2 GB (its length, the first
+    // four bytes), read before the per-node allocation budget.
+    std::string header = fileBytes(golden / "nodes.bin");
+    header.replace(0, 4, std::string("\xff\xff\xff\x7f", 4));
+    write("regression", "fuzz_map", "header_length", joined + header);
+    // Found by fuzz_map: a count in the manifest beyond size_t's range (undefined behaviour
+    // when cast).
+    std::string manifest = fileBytes(golden / "manifest.ini");
+    manifest.replace(manifest.find("nodes             = 12"), 22, "nodes             = 4e92");
+    write("regression", "fuzz_map", "count_too_large", manifest + "%%\n");
+    // Found by fuzz_map: a magnetometer label holding a line break read, then written into
+    // the manifest where it began a section of its own.
+    std::string label = fileBytes(golden / "nodes.bin");
+    label.replace(label.find("MAG_L"), 5, "M\n[x]");
+    write("regression", "fuzz_map", "label_line_break", joined + label);
 }
 
 int main(int argc, char** argv) {

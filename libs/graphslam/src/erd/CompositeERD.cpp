@@ -49,6 +49,11 @@ void CompositeERD::setDiagnosticTruth(std::shared_ptr<const std::vector<io::TumP
     for (auto& c : children_) c->setDiagnosticTruth(truth);
 }
 
+void CompositeERD::setMapNodes(TNodeID count) {
+    EdgeDecider::setMapNodes(count);
+    for (auto& c : children_) c->setMapNodes(count);
+}
+
 void CompositeERD::setNodeStore(NodeStore* nodes) {
     EdgeDecider::setNodeStore(nodes);
     for (auto& c : children_) c->setNodeStore(nodes);

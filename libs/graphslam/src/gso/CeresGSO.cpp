@@ -39,6 +39,11 @@ void CeresGSO::configure(const mrpt::config::CConfigFileBase& ini) {
     solver_ = std::make_unique<PoseGraphSolver>(o);
 }
 
+void CeresGSO::holdFixed(TNodeID count) {
+    params_.solver.fixedBelow = count;
+    solver_ = std::make_unique<PoseGraphSolver>(params_.solver);
+}
+
 void CeresGSO::addLoopClosures(const std::vector<LoopClosure>& closures) {
     for (const auto& lc : closures) {
         closures_.push_back(lc);

@@ -245,7 +245,9 @@ PoseGraphSolver::Report PoseGraphSolver::solve(Graph& graph, std::vector<LoopClo
     const auto t0 = std::chrono::steady_clock::now();
     Report report;
     const bool planar = options_.planar;
-    const auto moves = [&](TNodeID id) { return window.empty() || window.count(id) > 0; };
+    const auto moves = [&](TNodeID id) {
+        return id >= options_.fixedBelow && (window.empty() || window.count(id) > 0);
+    };
     ceres::Solver::Options so;
     so.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
     so.max_num_iterations = options_.maxIterations;

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace lodestone::graphslam {
 
@@ -163,6 +164,14 @@ void FusedOdometryNRD::take(const odometry::FusedOdometry::Estimate& e) {
     const bool first = !have_estimate_;
     have_estimate_ = true;
     last_time_ = e.timestamp;
+    if (first && after_map_) {
+        // Somewhere in the loaded map: the first node starts a segment of its own, tied to the
+        // map as across a kidnap (no lift or put-down time: the run began there).
+        restart_ = true;
+        restart_lift_ = restart_down_ = NAN;
+        since_node_ = mrpt::poses::CPosePDFGaussian();
+        return;
+    }
     if (first) {
         // The root: node 0 at the origin, where the odometry starts.
         m_graph->nodes[m_graph->root] = mrpt::poses::CPose3D();
@@ -183,6 +192,13 @@ bool FusedOdometryNRD::checkRegistrationCondition() {
     const auto& m = since_node_.mean;
     return std::hypot(m.x(), m.y()) >= params_.nodeDistance ||
            std::abs(m.phi()) >= params_.nodeAngle;
+}
+
+void FusedOdometryNRD::continueAfterMap(TNodeID lastMapNode, int segment) {
+    if (have_estimate_) throw std::logic_error("FusedOdometryNRD: a map is loaded before any data");
+    m_prev_registered_nodeID = lastMapNode;
+    segment_ = segment - 1;  // (the restart's node counts one up)
+    after_map_ = true;
 }
 
 FusedOdometryNRD::global_pose_t FusedOdometryNRD::getCurrentRobotPosEstimation() const {

@@ -3,6 +3,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <stdexcept>
 
 namespace lodestone::graphslam::relocalization {
 
@@ -90,6 +91,14 @@ void Relocalizer::addNode(const Graph& graph, const NodeStore& nodes, TNodeID id
         k.putDownTime = rec.putDownTime;
         kidnaps_.push_back(k);
     }
+}
+
+void Relocalizer::adoptMap(const Graph& graph, const NodeStore& nodes) {
+    if (!segment_.empty()) throw std::logic_error("Relocalizer: a map is adopted before any node");
+    for (TNodeID id = 0; id < nodes.size(); ++id) addNode(graph, nodes, id);
+    for (auto& p : parent_) p = 0;
+    kidnaps_.clear();
+    map_at_first_kidnap_.clear();
 }
 
 template <class S>

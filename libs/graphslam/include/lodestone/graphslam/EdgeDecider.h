@@ -24,8 +24,12 @@ class EdgeDecider : public mrpt::graphslam::deciders::CEdgeRegistrationDecider<G
     /** MRPT's statistics: this decider's class name and "lc" (what CGraphSlamEngine counts). */
     void getEdgesStats(std::map<std::string, int>* edge_type_to_num) const override;
     std::size_t loopClosuresRegistered() const { return registered_; }
+    /** Nodes with an ID below `count` are a loaded map's (SlamEngine::startInMap): taken in as
+     * every node is, never queried from - a map's own closures are in it already. */
+    virtual void setMapNodes(TNodeID count) { map_nodes_ = count; }
 
   protected:
+    TNodeID map_nodes_{0};
     /** registerNewEdge with what the relocalizer weighs: closures sharing `matchId` come from
      * one match (not independent evidence); `strong` when the match alone is convincing by
      * the decider's own threshold; `score` is the decider's measure of the evidence (higher

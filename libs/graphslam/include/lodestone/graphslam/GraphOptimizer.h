@@ -24,6 +24,9 @@ class GraphOptimizer : public mrpt::graphslam::optimizers::CGraphSlamOptimizer<G
                                        const std::set<TNodeID>& /*movable*/) {
         addLoopClosures(closures);
     }
+    /** Nodes with an ID below `count` never move again (a map loaded to localize in). The
+     * default refuses: an optimizer that cannot hold nodes fixed cannot localize. */
+    virtual void holdFixed(TNodeID count);
     /** Nodes solved in SE(3) (6 dof) rather than x, y, yaw: the relocalizer's space. */
     virtual bool spatial() const { return false; }
     /** Solves everything the run still needs (at the end of the data). */

@@ -17,6 +17,10 @@ class NodeDecider : public mrpt::graphslam::deciders::CNodeRegistrationDecider<G
     void loadParams(const std::string& source_fname) override;
     /** The data ended: register what is still pending. Returns true if a node was added. */
     virtual bool finish() = 0;
+    /** A loaded map holds nodes 0 .. lastMapNode: the run's first node is lastMapNode + 1, in
+     * segment `segment`, tied to the map as across a kidnap (the robot is somewhere in it).
+     * Called before any observation. The default refuses (std::logic_error). */
+    virtual void continueAfterMap(TNodeID lastMapNode, int segment);
     /** The ID registered by the last updateState() / finish() call, if it added one. */
     std::optional<TNodeID> justRegistered() const { return just_registered_; }
 

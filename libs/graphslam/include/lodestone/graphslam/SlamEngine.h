@@ -33,6 +33,15 @@ class SlamEngine {
      * names, sections or keys throw config::ConfigError. */
     static std::unique_ptr<SlamEngine> fromConfig(const mrpt::config::CConfigFileBase& ini);
 
+    /** Starts the run inside a saved map (before any observation): its graph and node records
+     * become nodes 0 .. N-1, one group - the map - for the relocalizer; the loop closers take
+     * them in without querying among them; the run's first node starts a segment of its own,
+     * tied to the map as across a kidnap, until a verified relocation places it. `frozen`
+     * (localize): the map's nodes never move. Throws std::logic_error if a decider cannot. */
+    void startInMap(const Graph& graph, std::vector<NodeRecord> records, bool frozen);
+    /** The nodes a loaded map holds (0: the run began from nothing). */
+    TNodeID mapNodes() const { return map_nodes_; }
+
     /** One observation through NRD, ERD and optimizer. Returns true if a node was added. */
     bool process(const mrpt::obs::CObservation::Ptr& obs);
     /** End of data: pending odometry becomes a node, the ERD gets a last look, final solve. */
@@ -86,6 +95,7 @@ class SlamEngine {
     Stats stats_;
     std::vector<Proposal> proposals_;
     double since_node_ms_{0};
+    TNodeID map_nodes_{0};
 };
 
 }  // namespace lodestone::graphslam

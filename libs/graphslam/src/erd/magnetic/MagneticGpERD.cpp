@@ -154,9 +154,15 @@ void MagneticGpERD::onNode(TNodeID id) {
 }
 
 void MagneticGpERD::query(const magnetic::Supernode& q) {
+    const auto& samples = track_->samples();
+    if (samples[q.last - 1].node < map_nodes_) {
+        // A loaded map's supernode: indexed, never a query.
+        previous_supernode_ = q.id;
+        unindexed_.push_back(q.id);
+        return;
+    }
     const auto t0 = Clock::now();
     ++stats_.supernodes;
-    const auto& samples = track_->samples();
     const bool follows = previous_supernode_ && *previous_supernode_ + 1 == q.id &&
                          track_->supernodes()[*previous_supernode_].segment == q.segment;
     previous_supernode_ = q.id;
@@ -166,8 +172,12 @@ void MagneticGpERD::query(const magnetic::Supernode& q) {
     const double qTravel = samples[q.first].s;
     // Supernodes join the index once the robot is min_travel_gap past them: the nearest ones
     // in field space would otherwise be the query's own overlapping predecessors.
-    while (!unindexed_.empty() && samples[track_->supernodes()[unindexed_.front()].last - 1].s <=
-                                      qTravel - params_.minTravelGap) {
+    // (a loaded map's join at once)
+    const auto indexable = [&](const magnetic::Supernode& s) {
+        const auto& last = samples[s.last - 1];
+        return last.node < map_nodes_ || last.s <= qTravel - params_.minTravelGap;
+    };
+    while (!unindexed_.empty() && indexable(track_->supernodes()[unindexed_.front()])) {
         index_->add(track_->supernodes()[unindexed_.front()]);
         unindexed_.pop_front();
     }

@@ -105,6 +105,7 @@ void MagneticWindowERD::onNode(TNodeID id) {
             auto& track = *sensors_.at(m.sensorLabel).track;
             const auto windows = track.add(s, b, id, segment);
             if (m.sensorLabel != params_.sensorLabel) return;  // the mirror's: stored only
+            if (id < map_nodes_) return;  // a loaded map's: stored only
             for (const auto& w : windows) {
                 const double end = track.samples()[w.last - 1].s;
                 if (end - last_query_ + 1e-9 < params_.queryEvery) continue;
@@ -112,6 +113,10 @@ void MagneticWindowERD::onNode(TNodeID id) {
                 query(w.first);
             }
         });
+}
+
+bool MagneticWindowERD::leftBehind(const magnetic::TrackSample& stored, double queryTravel) const {
+    return stored.node < map_nodes_ || stored.s <= queryTravel - params_.minTravelGap;
 }
 
 std::optional<double> MagneticWindowERD::intervalFraction(TNodeID k, double s) const {
@@ -156,7 +161,7 @@ void MagneticWindowERD::compareAt(const magnetic::SupernodeTrack& track, std::si
         start = c + 1 - n_;
     } else {
         if (c + n_ > samples.size() || samples[c + n_ - 1].segment != samples[c].segment ||
-            samples[c + n_ - 1].s > query[first + n_ - 1].s - params_.minTravelGap)
+            !leftBehind(samples[c + n_ - 1], query[first + n_ - 1].s))
             return;
         start = c;
     }
@@ -209,8 +214,7 @@ void MagneticWindowERD::query(std::size_t first) {
         // forward on the queried sensor's track, backward on its mirror's.
         const auto scan = [&](const magnetic::SupernodeTrack& track, bool forward, bool backward) {
             const auto& stored = track.samples();
-            for (std::size_t c = 0;
-                 c < stored.size() && stored[c].s <= samples[newest].s - params_.minTravelGap;
+            for (std::size_t c = 0; c < stored.size() && leftBehind(stored[c], samples[newest].s);
                  ++c) {
                 const Prior p = priorAt(track, c, qNode, here);
                 if (p.gate2 > params_.gateChi2) continue;

@@ -112,7 +112,7 @@ void OrbSubmapERD::onNode(TNodeID id) {
     const NodeRecord& rec = nodes_->at(id);
     if (!rec.keyframe || !rec.features) return;
     ++stats_.keyframes;
-    query(id, rec);
+    if (id >= map_nodes_) query(id, rec);
     addToOpenSubmap(id, rec);
 }
 
@@ -187,7 +187,9 @@ void OrbSubmapERD::closeOpenSubmap() {
     if (!open_) return;
     if (!open_->empty() && open_->size() > 0) {
         catalog_->add(open_, poseOf(open_first_) * open_->centre());
-        submap_end_travel_.push_back(travel_[static_cast<std::size_t>(open_->lastNode())]);
+        // (a loaded map's submaps are reachable from the first node of the run)
+        const auto last = static_cast<std::size_t>(open_->lastNode());
+        submap_end_travel_.push_back(last < map_nodes_ ? -INFINITY : travel_[last]);
         submap_first_.push_back(open_first_);
         ++stats_.submaps;
     }

@@ -21,4 +21,8 @@ class CMapNode : public mrpt::serialization::CSerializable {
     graphslam::NodeRecord record;
 };
 
+/** A sensor label a map can hold: 1-256 printable ASCII characters, no space (the manifest
+ * lists them space-separated). */
+bool isMapLabel(const std::string& label);
+
 }  // namespace lodestone::maps

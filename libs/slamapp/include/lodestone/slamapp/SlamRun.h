@@ -27,6 +27,10 @@ struct SlamRunOptions {
     /** Where the map is saved at the end (maps::writeMap: a folder, replaced whole); empty:
      * not saved. */
     std::string mapOut;
+    /** A saved map to start in (maps::readMap), held fixed: the run relocalizes in it globally
+     * (no start pose), then tracks with closures to its nodes; trajectory.tum holds the run's
+     * nodes once they joined the map, in the map's frame. Empty: the run starts from nothing. */
+    std::string mapIn;
     double maxSeconds{std::numeric_limits<double>::infinity()};  ///< of data, from its start
     /** Frames read and decoded ahead on other threads (io::PrefetchingSource); 0: read and
      * decode in the frame loop. Results are the same either way. */

@@ -33,6 +33,7 @@ class CompositeERD : public EdgeDecider {
                      mrpt::obs::CObservation::Ptr observation) override;
     void setGraphPtr(Graph* graph) override;
     void setNodeStore(NodeStore* nodes) override;
+    void setMapNodes(TNodeID count) override;
     void setDiagnosticTruth(std::shared_ptr<const std::vector<io::TumPose>> truth) override;
     std::vector<LoopClosure> takeNewLoopClosures() override;
     bool justInsertedLoopClosure() const override;

@@ -46,6 +46,7 @@ class CeresGSO : public GraphOptimizer {
     void finish() override;
     bool justFullyOptimizedGraph() const override { return just_full_; }
     bool spatial() const override { return !params_.solver.planar; }
+    void holdFixed(TNodeID count) override;
     JsonObject describe() const override;
 
     /** Totals over the run. */

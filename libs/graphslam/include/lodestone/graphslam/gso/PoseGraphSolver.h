@@ -35,6 +35,8 @@ class PoseGraphSolver {
         int maxIterations{100};
         double functionTolerance{1e-9};  ///< relative cost change that ends a solve
         int maxRejectionsPerSolve{10};
+        /** Nodes with a lower ID never move (a loaded map, localize mode); 0: none. */
+        TNodeID fixedBelow{0};
     };
 
     struct Report {

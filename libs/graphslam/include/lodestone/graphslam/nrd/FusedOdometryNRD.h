@@ -48,6 +48,7 @@ class FusedOdometryNRD : public NodeDecider {
                      mrpt::obs::CSensoryFrame::Ptr observations,
                      mrpt::obs::CObservation::Ptr observation) override;
     bool finish() override;
+    void continueAfterMap(TNodeID lastMapNode, int segment) override;
     std::set<std::string> requiredObservations() const override;
     /** The last node's pose composed with the motion since it. */
     global_pose_t getCurrentRobotPosEstimation() const override;
@@ -77,6 +78,7 @@ class FusedOdometryNRD : public NodeDecider {
     double restart_lift_{NAN}, restart_down_{NAN};  // of the kidnap the next node ends
     bool segment_closed_{false}, close_segment_{false}, restart_{false};
     int segment_{0};
+    bool after_map_{false};  // the run continues a loaded map (continueAfterMap)
     std::deque<mrpt::obs::CObservation3DRangeScan::Ptr> recent_frames_;  // not yet resolved
     std::deque<MagneticSample> magnetic_;  // since the last node
     std::map<double, std::shared_ptr<const vision::FrameFeatures>> recent_features_;

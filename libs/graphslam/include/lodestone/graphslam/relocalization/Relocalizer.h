@@ -95,6 +95,10 @@ class Relocalizer {
 
     /** A node just registered (IDs in order). */
     void addNode(const Graph& graph, const NodeStore& nodes, TNodeID id);
+    /** Every node the store holds now is a loaded map's: one group, the map (whatever segments
+     * it was made of), and none of its segment starts a kidnap of this run. Before any other
+     * node is added. */
+    void adoptMap(const Graph& graph, const NodeStore& nodes);
     /** The group (its first segment) a node belongs to; 0 is the map. */
     int groupOf(TNodeID id) const { return find(segment_.at(id)); }
     bool sameGroup(TNodeID a, TNodeID b) const { return groupOf(a) == groupOf(b); }

@@ -195,6 +195,9 @@ class MagneticWindowERD : public EdgeDecider {
      * heading there): the field's own variation over the window, without the turning of the
      * robot-frame components that a turn in a uniform field shows. */
     double mapFrameSpread(std::size_t first) const;
+    /** A stored reading a query at `queryTravel` may be compared with: min_travel_gap behind
+     * it, or a loaded map's. */
+    bool leftBehind(const magnetic::TrackSample& stored, double queryTravel) const;
     /** The query window's readings, each horizontal part turned by the graph's heading. */
     std::vector<Eigen::Vector3d> mapFrameWindow(std::size_t first) const;
     /** The amplitude of the field's fine part in the query window (fine_amplitude): from the

@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace lodestone::obs::detail {
+namespace lodestone::obs {
 
 inline bool readBool(mrpt::serialization::CArchive& in, const char* className, const char* field) {
     std::uint8_t byte = 0;
@@ -21,4 +21,4 @@ inline bool readBool(mrpt::serialization::CArchive& in, const char* className, c
     return byte == 1;
 }
 
-}  // namespace lodestone::obs::detail
+}  // namespace lodestone::obs

@@ -1,0 +1,84 @@
+// A run and saved maps: one loaded before any data (--map-in), the run's own written after
+// every other output (--map-out).
+#include "RunParts.h"
+
+#include <lodestone/maps/MapSnapshot.h>
+#include <mrpt/config/CConfigFileMemory.h>
+
+#include <fstream>
+#include <sstream>
+
+namespace lodestone::slamapp::detail {
+
+namespace {
+
+/** What a map's INI and the run's must agree on: the deciders and the loop closers they host. */
+std::string shapeOf(const std::string& iniText) {
+    const mrpt::config::CConfigFileMemory ini(iniText);
+    const auto word = [&](const char* section, const char* key, const char* fallback) {
+        return ini.read_string_first_word(section, key, fallback);
+    };
+    std::string children = ini.read_string("CompositeERD", "children", "");
+    children = children.substr(0, children.find_first_of(";#"));
+    std::istringstream names(children);
+    std::string list;
+    for (std::string n; names >> n;) list += (list.empty() ? "" : " ") + n;
+    return "node_decider " + word("graphslam", "node_decider", "FusedOdometryNRD") +
+           ", edge_decider " + word("graphslam", "edge_decider", "CompositeERD") + " (" + list +
+           "), optimizer " + word("graphslam", "optimizer", "CeresGSO");
+}
+
+}  // namespace
+
+std::string configText(const SlamRunOptions& options) {
+    std::ifstream in(options.config, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+void loadMap(const SlamRunOptions& options, const std::string& runConfig,
+             graphslam::SlamEngine& engine) {
+    maps::SavedMap map;
+    try {
+        map = maps::readMap(options.mapIn);
+    } catch (const maps::MapError& e) {
+        throw InputError(e.what());
+    }
+    std::string mapShape;
+    try {
+        mapShape = shapeOf(map.config);
+    } catch (const std::exception& e) {
+        throw InputError(maps::pathIn(options.mapIn, maps::MapFile::Config) + ": " + e.what());
+    }
+    const std::string runShape = shapeOf(runConfig);
+    if (mapShape != runShape) {
+        throw InputError(options.mapIn + ": made with " + mapShape + "; " + options.config +
+                         " has " + runShape + " (a map is used with the deciders that made it)");
+    }
+    try {
+        engine.startInMap(map.graph, std::move(map.nodes), true);
+    } catch (const std::logic_error& e) {
+        throw InputError(options.config + ": " + e.what());
+    }
+}
+
+graphslam::JsonObject saveMap(const graphslam::SlamEngine& engine, const SlamRunOptions& options,
+                              std::ostream& err, SlamRunResult& result) {
+    graphslam::JsonObject saved;
+    saved.set("dir", options.mapOut);
+    try {
+        const auto map = maps::mapOf(engine.graph(), engine.nodes(), configText(options),
+                                     std::string("lodestone-slam ") + LODESTONE_VERSION);
+        maps::writeMap(map, options.mapOut);
+        saved.set("nodes", map.nodes.size()).set("edges", map.graph.edges.size());
+    } catch (const std::exception& e) {
+        err << "lodestone-slam: " << e.what() << "\n";
+        saved.set("error", e.what());
+        result.exitCode = 1;
+        if (result.error.empty()) result.error = e.what();
+    }
+    return saved;
+}
+
+}  // namespace lodestone::slamapp::detail
