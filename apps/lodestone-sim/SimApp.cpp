@@ -27,6 +27,12 @@ int runSimApp(int argc, const char* const* argv, std::ostream& out, std::ostream
                                         false, "", "OUT", cmd);
     TCLAP::ValueArg<long> seed("s", "seed", "random seed (default: the INI's [scenario] seed)",
                                false, -1, "N", cmd);
+    TCLAP::ValueArg<long> worldSeed("", "world-seed",
+                                    "the building's own seed (walls, magnetic field), kept "
+                                    "whatever --seed is: runs of other seeds in one building, "
+                                    "e.g. to map once and localize later (default: the INI's "
+                                    "[scenario] world_seed, else drawn from --seed)",
+                                    false, -1, "N", cmd);
     TCLAP::ValueArg<std::string> plot("p", "plot", "write a top-view picture of the scenario",
                                       false, "", "PNG", cmd);
     TCLAP::ValueArg<std::string> camera("", "camera",
@@ -73,6 +79,13 @@ int runSimApp(int argc, const char* const* argv, std::ostream& out, std::ostream
             return 2;
         }
         if (embedded.getValue()) scenario.camera.externalImages = false;
+        if (worldSeed.isSet()) {
+            if (worldSeed.getValue() < 0) {
+                err << "lodestone-sim: --world-seed must be >= 0\n";
+                return 2;
+            }
+            scenario.worldSeed = static_cast<std::uint64_t>(worldSeed.getValue());
+        }
         scenario.cameraOnly = cameraOnly.getValue() || handheld.getValue();
         if (handheld.getValue()) scenario.handheld = HandheldSpec{};
         const std::uint64_t s =

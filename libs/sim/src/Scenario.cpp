@@ -297,6 +297,11 @@ Scenario Scenario::load(const std::string& iniPath) {
         const int seed = s.getInt("seed", 1);
         if (seed < 0) s.fail("seed", "must be >= 0");
         sc.seed = static_cast<std::uint64_t>(seed);
+        if (s.has("world_seed")) {
+            const int world = s.getInt("world_seed", 1);
+            if (world < 0) s.fail("world_seed", "must be >= 0");
+            sc.worldSeed = static_cast<std::uint64_t>(world);
+        }
         sc.startTime = s.getDouble("start_time", sc.startTime);
     });
     section("world", [&](IniSection& s) { readWorld(s, sc); });

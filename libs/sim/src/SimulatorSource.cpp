@@ -11,7 +11,9 @@ namespace lodestone::sim {
 SimulatorSource::SimulatorSource(const Scenario& scenario, std::uint64_t seed)
     : scenario_(scenario) {
     Random rng(seed);
-    world_ = std::make_unique<World>(scenario_, rng.fork(100).nextU64());
+    const std::uint64_t fromRun = rng.fork(100).nextU64();
+    world_ = std::make_unique<World>(
+        scenario_, scenario_.worldSeed ? Random(*scenario_.worldSeed).fork(100).nextU64() : fromRun);
     const FloorPlan& plan = world_->floorPlan();
     const double radius = scenario_.robotRadius;
     plan_ = std::make_unique<MotionPlan>(scenario_.motion, scenario_.kidnaps,

@@ -97,6 +97,11 @@ struct HandheldSpec {
 struct Scenario {
     std::string name, source;  ///< scenario name; the INI path (for messages)
     std::uint64_t seed{1};
+    /** The building's own seed (wall textures, the magnetic field's anomalies); unset: drawn
+     * from the run's seed, so every seed is another building. Set, runs of other seeds are
+     * other sensor noise in one building - what a map saved by one run and used by the next
+     * needs. */
+    std::optional<std::uint64_t> worldSeed;
     double startTime{1.7e9};  ///< epoch of t = 0 [s]
     double wallHeight{2.6};   ///< walls reach the ceiling [m]
     double texturePixelsPerMetre{200};
