@@ -44,6 +44,9 @@ int runGrabApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
                                       "lodestone-slam INI", false, "", "SLAM.ini", cmd);
     TCLAP::ValueArg<std::string> slamOut("", "slam-out", "live SLAM's outputs (default "
                                          "PREFIX_slam)", false, "", "DIR", cmd);
+    TCLAP::ValueArg<std::string> mapIn("", "map-in", "live SLAM starts in this saved map "
+                                       "(lodestone-slam --map-out) and localizes in it",
+                                       false, "", "DIR", cmd);
     TCLAP::ValueArg<double> maxLag("", "max-lag", "live SLAM skips RGB-D frames while this many "
                                    "seconds behind the newest observation (default 0.3)",
                                    false, 0.3, "S", cmd);
@@ -74,12 +77,13 @@ int runGrabApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
         err << "lodestone-grab: --max-lag: must be > 0 s\n";
         return 2;
     }
-    if (slamOut.isSet() && !slam.isSet()) {
-        err << "lodestone-grab: --slam-out needs --slam\n";
+    if ((slamOut.isSet() || mapIn.isSet()) && !slam.isSet()) {
+        err << "lodestone-grab: --slam-out and --map-in need --slam\n";
         return 2;
     }
     options.slamConfig = slam.getValue();
     options.slamOut = slamOut.getValue();
+    options.slamMapIn = mapIn.getValue();
     options.maxLag = maxLag.getValue();
     options.quiet = quiet.getValue();
     options.terminal = terminal;

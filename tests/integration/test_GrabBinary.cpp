@@ -223,6 +223,27 @@ TEST(GrabBinary, ABadSlamIniIsRefusedBeforeGrabbing) {
     EXPECT_FALSE(fs::exists(dir.file("run.rawlog.gz.partial")));
 }
 
+TEST(GrabBinary, AMapMadeByOtherDecidersIsRefusedBeforeGrabbing) {
+    // A map of the office saved with the GP magnetic closer; live SLAM with the window closer.
+    lodestone::test::TempDir dir;
+    const std::string ini = std::string(LODESTONE_CONFIG_INI_DIR) + "/slam/";
+    ASSERT_EQ(runCommand(kSlam + " --sim " + kOffice + " --config " + ini +
+                         "magnetic_only.ini --max-seconds 5 -q --out " + dir.file("office") +
+                         " --map-out " + dir.file("map"))
+                  .exitCode,
+              0);
+    const auto r = runCommand(kGrab + " " + writeGrabIni(dir, "time_scale = 4") + " -q --slam " +
+                              ini + "magnetic_window.ini --map-in " + dir.file("map"));
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("MagneticGpERD"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir.file("run.rawlog.gz")));
+    // --map-in is live SLAM's.
+    EXPECT_EQ(runCommand(kGrab + " " + writeGrabIni(dir, "time_scale = 4") + " -q --map-in " +
+                         dir.file("map"))
+                  .exitCode,
+              2);
+}
+
 TEST(GrabBinary, SigintDuringLiveSlamEndsBothCleanly) {
     lodestone::test::TempDir dir;
     const auto ini = writeGrabIni(dir, "time_scale = 1");

@@ -99,6 +99,7 @@ class LiveSlam {
         so.live = feed_;
         so.config = options.slamConfig;
         so.outDir = options.slamOut.empty() ? prefix + "_slam" : options.slamOut;
+        so.mapIn = options.slamMapIn;
         so.decodeAhead = 0;  // the observations arrive decoded
         so.quiet = true;
         so.onProgress = [&status](std::size_t nodes, std::size_t closures) {
@@ -212,7 +213,8 @@ GrabResult runGrab(const GrabOptions& options, const std::atomic<bool>& stop, st
     lodestone::registerAllClasses();
     drivers::registerDrivers();
     const GrabConfig config = readGrabConfig(options.config);
-    if (!options.slamConfig.empty()) slamapp::checkSlamConfig(options.slamConfig);  // before any work
+    if (!options.slamConfig.empty())  // before any work
+        slamapp::checkSlamConfig(options.slamConfig, options.slamMapIn);
     GrabResult result;
     const std::string prefix = !options.out.empty() ? options.out
                                : !config.rawlogPrefix.empty() ? config.rawlogPrefix

@@ -18,6 +18,16 @@ void checkSlamConfig(const std::string& configPath) {
     graphslam::SlamEngine::fromConfig(ini);
 }
 
+void checkSlamConfig(const std::string& configPath, const std::string& mapIn) {
+    checkSlamConfig(configPath);
+    if (mapIn.empty()) return;
+    SlamRunOptions o;
+    o.config = configPath;
+    o.mapIn = mapIn;
+    const mrpt::config::CConfigFile ini(configPath);
+    detail::loadMap(o, detail::configText(o), *graphslam::SlamEngine::fromConfig(ini));
+}
+
 SlamRunResult runSlam(const SlamRunOptions& options, std::ostream& out, std::ostream& err) {
     SlamRunResult result;
     lodestone::registerAllClasses();

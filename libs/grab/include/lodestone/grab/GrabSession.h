@@ -14,6 +14,7 @@ struct GrabOptions {
     double duration{std::numeric_limits<double>::infinity()};  ///< [s] of wall time
     std::string slamConfig;  ///< a lodestone-slam INI: run SLAM live on the stream
     std::string slamOut;     ///< its outputs (default PREFIX_slam)
+    std::string slamMapIn;   ///< live SLAM starts in this saved map (localize; slamapp::SlamRunOptions::mapIn)
     double maxLag{0.3};      ///< [s] behind the newest observation, SLAM skips RGB-D frames
     bool quiet{false}, terminal{false};
 };

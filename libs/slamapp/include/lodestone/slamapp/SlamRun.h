@@ -46,6 +46,9 @@ struct SlamRunOptions {
  * decider's keys): throws naming the file, section and key. For callers that must refuse a
  * bad INI before doing anything else (lodestone-grab --slam). */
 void checkSlamConfig(const std::string& configPath);
+/** The same, and the saved map `mapIn` read and checked against it (as SlamRunOptions::mapIn
+ * is before a run): throws naming the file. */
+void checkSlamConfig(const std::string& configPath, const std::string& mapIn);
 
 /** What came out, for callers and tests (report.json holds it all). */
 struct SlamRunResult {
