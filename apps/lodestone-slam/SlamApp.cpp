@@ -31,8 +31,9 @@ int runSlamApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
                                        "relocalize in it, then track against it",
                                        false, "", "DIR", cmd);
     TCLAP::ValueArg<std::string> mode("", "mode",
-                                      "with --map-in: localize (the map is held fixed; the "
-                                      "only mode so far)",
+                                      "with --map-in: localize (the map is held fixed) or "
+                                      "extend (the run's new places join the map, which later "
+                                      "closures may correct; written back with --map-out)",
                                       false, "localize", "MODE", cmd);
     TCLAP::ValueArg<double> maxSeconds("", "max-seconds", "process only this much data [s]", false,
                                        0, "S", cmd);
@@ -58,11 +59,14 @@ int runSlamApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
         usage = "--map-out needs a folder of its own (not --out's)";
     }
     if (usage.empty() && mode.isSet() && !mapIn.isSet()) usage = "--mode is for --map-in";
-    if (usage.empty() && mapIn.isSet() && mapOut.isSet()) {
-        usage = "--map-out with --map-in is extending a map (--mode extend, not built yet)";
+    if (usage.empty() && mapIn.isSet() && mapOut.isSet() && mode.getValue() != "extend") {
+        usage = "--map-out with --map-in: give --mode extend (localize leaves the map as it is)";
     }
-    if (usage.empty() && mode.getValue() != "localize") {
-        usage = "--mode " + mode.getValue() + ": only localize so far (extend is not built yet)";
+    if (usage.empty() && mode.getValue() == "extend" && !mapOut.isSet()) {
+        usage = "--mode extend: give --map-out (where the extended map goes)";
+    }
+    if (usage.empty() && mode.getValue() != "localize" && mode.getValue() != "extend") {
+        usage = "--mode " + mode.getValue() + ": localize or extend";
     }
     if (usage.empty() && maxSeconds.isSet() && !(maxSeconds.getValue() > 0)) {
         usage = "--max-seconds must be > 0";
@@ -85,6 +89,7 @@ int runSlamApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
     o.groundTruth = gt.getValue();
     o.mapOut = mapOut.getValue();
     o.mapIn = mapIn.getValue();
+    o.extendMap = mode.getValue() == "extend";
     if (maxSeconds.isSet()) o.maxSeconds = maxSeconds.getValue();
     o.decodeAhead = static_cast<std::size_t>(decodeAhead.getValue());
     o.decodeThreads = static_cast<std::size_t>(decodeThreads.getValue());

@@ -159,9 +159,52 @@ TEST(MapIn, AForeignOrDamagedMapIsRefusedBeforeAnyWork) {
     EXPECT_EQ(damaged.exitCode, 1) << damaged.output;
     EXPECT_NE(damaged.output.find("nodes.bin"), std::string::npos) << damaged.output;
     EXPECT_FALSE(std::filesystem::exists(dir.file("damaged") + "/trajectory.tum"));
-    // Modes: localize only, so far.
+    // Extending needs somewhere to write the map.
     const auto extend = lodestone::test::runCommand(kSlam + rawlog + " --config " + kConfig +
                                                     " --out " + dir.file("x") + " --map-in " +
                                                     dir.file("map") + " --mode extend");
     EXPECT_EQ(extend.exitCode, 2) << extend.output;
+}
+
+TEST(MapIn, ExtendThenLocalizeInTheExtendedMap) {
+    lodestone::registerAllClasses();
+    lodestone::test::TempDir dir;
+    lodestone::datasets::OdometryDriftModel second, third;
+    second.seed = 2;
+    third.seed = 3;
+    lodestone::datasets::writeMagneticRecording(twoLaps(), dir.file("first.rawlog"), {});
+    lodestone::datasets::writeMagneticRecording(twoLaps(), dir.file("second.rawlog"), second);
+    lodestone::datasets::writeMagneticRecording(twoLaps(), dir.file("third.rawlog"), third);
+    const std::string common = " --config " + kConfig + " --quiet";
+    ASSERT_EQ(lodestone::test::runCommand(kSlam + " --rawlog " + dir.file("first.rawlog") + common +
+                                          " --out " + dir.file("first") + " --map-out " +
+                                          dir.file("map"))
+                  .exitCode,
+              0);
+    const auto map = lodestone::maps::readMap(dir.file("map"));
+    // Extend: the run's nodes that joined the map are saved with it, as session 1.
+    const auto extend = lodestone::test::runCommand(
+        kSlam + " --rawlog " + dir.file("second.rawlog") + common + " --out " +
+        dir.file("second") + " --map-in " + dir.file("map") + " --mode extend --map-out " +
+        dir.file("map2"));
+    ASSERT_EQ(extend.exitCode, 0) << extend.output;
+    const auto extended = lodestone::maps::readMap(dir.file("map2"));
+    EXPECT_EQ(extended.manifest.sessions, 2u);
+    ASSERT_GT(extended.nodes.size(), map.nodes.size() + 50);
+    EXPECT_EQ(extended.sessions.front(), 0u);
+    EXPECT_EQ(extended.sessions.back(), 1u);
+    // The old part is where it was, to the closures' corrections (small, here).
+    double moved = 0;
+    for (const auto& [id, pose] : map.graph.nodes) {
+        const auto& p = extended.graph.nodes.at(id);
+        moved = std::max(moved, std::hypot(p.x() - pose.x(), p.y() - pose.y()));
+    }
+    EXPECT_LT(moved, 0.5);
+    // And a third run localizes in the extended map.
+    const auto localize = lodestone::test::runCommand(
+        kSlam + " --rawlog " + dir.file("third.rawlog") + common + " --out " + dir.file("third") +
+        " --map-in " + dir.file("map2"));
+    ASSERT_EQ(localize.exitCode, 0) << localize.output;
+    EXPECT_NE(slurp(dir.file("third") + "/report.json").find("\"relocations\": 1"),
+              std::string::npos);
 }

@@ -5,6 +5,7 @@
 #include <lodestone/maps/MapSnapshot.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -37,8 +38,8 @@ std::string configText(const SlamRunOptions& options) {
     return text.str();
 }
 
-void loadMap(const SlamRunOptions& options, const std::string& runConfig,
-             graphslam::SlamEngine& engine) {
+std::vector<std::uint32_t> loadMap(const SlamRunOptions& options, const std::string& runConfig,
+                                   graphslam::SlamEngine& engine) {
     maps::SavedMap map;
     try {
         map = maps::readMap(options.mapIn);
@@ -57,19 +58,39 @@ void loadMap(const SlamRunOptions& options, const std::string& runConfig,
                          " has " + runShape + " (a map is used with the deciders that made it)");
     }
     try {
-        engine.startInMap(map.graph, std::move(map.nodes), true);
+        engine.startInMap(map.graph, std::move(map.nodes), !options.extendMap);
     } catch (const std::logic_error& e) {
         throw InputError(options.config + ": " + e.what());
     }
+    return map.sessions;
 }
 
-graphslam::JsonObject saveMap(const graphslam::SlamEngine& engine, const SlamRunOptions& options,
+graphslam::JsonObject saveMap(const RunInputs& in, const SlamRunOptions& options,
                               std::ostream& err, SlamRunResult& result) {
+    const auto& engine = *in.engine;
     graphslam::JsonObject saved;
     saved.set("dir", options.mapOut);
     try {
-        const auto map = maps::mapOf(engine.graph(), engine.nodes(), configText(options),
-                                     std::string("lodestone-slam ") + LODESTONE_VERSION);
+        const std::string createdBy = std::string("lodestone-slam ") + LODESTONE_VERSION;
+        maps::SavedMap map;
+        if (engine.mapNodes() == 0) {
+            map = maps::mapOf(engine.graph(), engine.nodes(), configText(options), createdBy);
+        } else {
+            // The map, and the run's nodes that joined it (a segment that never found itself
+            // on the map adds nothing), the run as a session of its own.
+            std::vector<std::uint32_t> sessions = in.mapSessions;
+            const std::uint32_t run =
+                sessions.empty() ? 1 : *std::max_element(sessions.begin(), sessions.end()) + 1;
+            sessions.resize(engine.nodes().size(), run);
+            const auto mapNodes = engine.mapNodes();
+            map = maps::mapOf(engine.graph(), engine.nodes(), sessions,
+                              [&](graphslam::TNodeID id) {
+                                  return id < mapNodes || engine.relocalizer().groupOf(id) == 0;
+                              },
+                              configText(options), createdBy);
+            saved.set("session", static_cast<std::size_t>(run))
+                .set("run_nodes_kept", map.nodes.size() - mapNodes);
+        }
         maps::writeMap(map, options.mapOut);
         saved.set("nodes", map.nodes.size()).set("edges", map.graph.edges.size());
     } catch (const std::exception& e) {

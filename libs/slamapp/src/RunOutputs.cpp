@@ -214,7 +214,7 @@ void writeOutputs(const RunInputs& in, const LoopOutcome& loop, const SlamRunOpt
                 << " in time; no ATE\n";
         }
     }
-    if (!options.mapOut.empty()) report.set("map_out", saveMap(engine, options, err, result));
+    if (!options.mapOut.empty()) report.set("map_out", saveMap(in, options, err, result));
     if (!result.error.empty()) report.set("error", result.error);
     writeReport(report, dir);
 
@@ -230,7 +230,7 @@ void writeOutputs(const RunInputs& in, const LoopOutcome& loop, const SlamRunOpt
     out << line;
     if (result.ateRmse) {
         std::snprintf(line, sizeof line, "ATE RMSE %.4f m over %zu nodes (ground truth %s)\n",
-                      *result.ateRmse, result.nodes, gtPath.c_str());
+                      *result.ateRmse, trajectory.size(), gtPath.c_str());
         out << line;
     }
     // The files written, in the table's order.

@@ -40,6 +40,7 @@ struct RunInputs {
     const io::PrefetchingSource* prefetcher{nullptr};  ///< its workers' time, for report.json
     std::size_t decodeThreads{0};
     std::unique_ptr<io::TumTrajectoryWriter> simTruth;  ///< --sim: the truth, as it is run
+    std::vector<std::uint32_t> mapSessions;  ///< --map-in: the loaded map's sessions, by node
 };
 
 /** The engine from the INI, the source (rawlog, simulator or live), the ground truth read, the
@@ -76,14 +77,15 @@ void writeOutputs(const RunInputs& in, const LoopOutcome& loop, const SlamRunOpt
                   std::ostream& out, std::ostream& err, SlamRunResult& result);
 
 /** The saved map of `options.mapIn` loaded into `engine` (before any data; localize: the map
- * held fixed). Throws InputError naming the file when it cannot be read or was made by
+ * held fixed); its nodes' sessions. Throws InputError naming the file when it cannot be read or was made by
  * other deciders than the INI names. */
-void loadMap(const SlamRunOptions& options, const std::string& configText,
-             graphslam::SlamEngine& engine);
+std::vector<std::uint32_t> loadMap(const SlamRunOptions& options, const std::string& configText,
+                                   graphslam::SlamEngine& engine);
 
 /** The run's map saved in options.mapOut (after every other output: a map that cannot be
- * written costs none of them; the error is reported, exit 1); what was saved, for report.json. */
-graphslam::JsonObject saveMap(const graphslam::SlamEngine& engine, const SlamRunOptions& options,
+ * written costs none of them; the error is reported, exit 1); what was saved, for report.json.
+ * Extending a loaded map: the map's nodes and the run's that joined it, the run a new session. */
+graphslam::JsonObject saveMap(const RunInputs& in, const SlamRunOptions& options,
                               std::ostream& err, SlamRunResult& result);
 
 /** The text of the SLAM INI (what a saved map keeps). */

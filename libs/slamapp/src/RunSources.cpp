@@ -157,7 +157,7 @@ RunInputs openInputs(const SlamRunOptions& options) {
     } else {
         openRawlog(options, in);
     }
-    if (!options.mapIn.empty()) loadMap(options, configText(options), *in.engine);
+    if (!options.mapIn.empty()) in.mapSessions = loadMap(options, configText(options), *in.engine);
     if (!options.groundTruth.empty()) {
         if (!fs::exists(options.groundTruth)) {
             throw InputError("cannot open ground truth '" + options.groundTruth + "'");

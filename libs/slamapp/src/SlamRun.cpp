@@ -25,7 +25,7 @@ void checkSlamConfig(const std::string& configPath, const std::string& mapIn) {
     o.config = configPath;
     o.mapIn = mapIn;
     const mrpt::config::CConfigFile ini(configPath);
-    detail::loadMap(o, detail::configText(o), *graphslam::SlamEngine::fromConfig(ini));
+    (void)detail::loadMap(o, detail::configText(o), *graphslam::SlamEngine::fromConfig(ini));
 }
 
 SlamRunResult runSlam(const SlamRunOptions& options, std::ostream& out, std::ostream& err) {

@@ -435,14 +435,18 @@ double MagneticWindowERD::placePosterior(const Candidate& best,
     double maxLog = std::log(params_.nullOdds);
     for (const auto& k : all) maxLog = std::max({maxLog, k.logWeight, k.logFar});
 
-    const int segment = best.track->samples()[best.sample].segment;
+    const auto& b = best.track->samples()[best.sample];
     double same = 0, rest = std::exp(std::log(params_.nullOdds) - maxLog);
     for (const auto& k : all) {
         if (std::isfinite(k.logFar)) rest += std::exp(k.logFar - maxLog);
         if (!std::isfinite(k.logWeight)) continue;
         const double w = std::exp(k.logWeight - maxLog);
-        const bool samePlace = k.track->samples()[k.sample].segment == segment &&
-                               (k.position - best.position).norm() <= params_.distinctRadius;
+        // Positions compare within a segment, and across a loaded map's (one frame: the map's,
+        // e.g. two sessions' passes of one place).
+        const auto& s = k.track->samples()[k.sample];
+        const bool oneFrame = s.segment == b.segment || (s.node < map_nodes_ && b.node < map_nodes_);
+        const bool samePlace =
+            oneFrame && (k.position - best.position).norm() <= params_.distinctRadius;
         (samePlace ? same : rest) += w;
     }
     return same / (same + rest);

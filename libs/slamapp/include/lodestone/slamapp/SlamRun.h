@@ -31,6 +31,9 @@ struct SlamRunOptions {
      * (no start pose), then tracks with closures to its nodes; trajectory.tum holds the run's
      * nodes once they joined the map, in the map's frame. Empty: the run starts from nothing. */
     std::string mapIn;
+    /** With mapIn: extend the map instead (not held fixed: closures may correct it; the run's
+     * nodes that joined it are saved with it by mapOut, as a session of their own). */
+    bool extendMap{false};
     double maxSeconds{std::numeric_limits<double>::infinity()};  ///< of data, from its start
     /** Frames read and decoded ahead on other threads (io::PrefetchingSource); 0: read and
      * decode in the frame loop. Results are the same either way. */
