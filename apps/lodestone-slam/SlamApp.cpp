@@ -26,6 +26,10 @@ int runSlamApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
                                         "save the map at the end in this folder (replaced whole; "
                                         "lodestone-inspect map DIR describes it)",
                                         false, "", "DIR", cmd);
+    TCLAP::ValueArg<double> mapEvery("", "map-every",
+                                     "with --map-out: also save the map every S seconds of data "
+                                     "(each time whole, so a crash leaves the last one)",
+                                     false, 0, "S", cmd);
     TCLAP::ValueArg<std::string> mapIn("", "map-in",
                                        "start in this saved map (lodestone-slam --map-out): "
                                        "relocalize in it, then track against it",
@@ -59,6 +63,9 @@ int runSlamApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
         usage = "--map-out needs a folder of its own (not --out's)";
     }
     if (usage.empty() && mode.isSet() && !mapIn.isSet()) usage = "--mode is for --map-in";
+    if (usage.empty() && mapEvery.isSet() && (!mapOut.isSet() || !(mapEvery.getValue() > 0))) {
+        usage = "--map-every needs --map-out and a number of seconds > 0";
+    }
     if (usage.empty() && mapIn.isSet() && mapOut.isSet() && mode.getValue() != "extend") {
         usage = "--map-out with --map-in: give --mode extend (localize leaves the map as it is)";
     }
@@ -88,6 +95,7 @@ int runSlamApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
     o.outDir = outDir.getValue();
     o.groundTruth = gt.getValue();
     o.mapOut = mapOut.getValue();
+    o.mapEvery = mapEvery.getValue();
     o.mapIn = mapIn.getValue();
     o.extendMap = mode.getValue() == "extend";
     if (maxSeconds.isSet()) o.maxSeconds = maxSeconds.getValue();

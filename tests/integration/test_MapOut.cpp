@@ -59,10 +59,14 @@ TEST(MapOut, ARunLeavesAMapThatInspectDescribes) {
     lodestone::registerAllClasses();
     lodestone::test::TempDir dir;
     lodestone::datasets::writeMagneticRecording(twoLaps(), dir.file("laps.rawlog"), {});
-    const auto run = lodestone::test::runCommand(kSlam + " --rawlog " + dir.file("laps.rawlog") +
-                                                 " --config " + kConfig + " --quiet --out " +
-                                                 dir.file("out") + " --map-out " + dir.file("map"));
+    // (saved every 10 s of the 40 s as well: each time whole)
+    const auto run = lodestone::test::runCommand(
+        kSlam + " --rawlog " + dir.file("laps.rawlog") + " --config " + kConfig + " --quiet --out " +
+        dir.file("out") + " --map-out " + dir.file("map") + " --map-every 10");
     ASSERT_EQ(run.exitCode, 0) << run.output;
+    EXPECT_NE(slurp(dir.file("out") + "/report.json").find("\"saved_while_running\": 4"),
+              std::string::npos);
+    EXPECT_FALSE(std::filesystem::exists(dir.file("map") + ".partial"));
     const auto map = lodestone::maps::readMap(dir.file("map"));
     std::ifstream trajectory(dir.file("out") + "/trajectory.tum");
     std::size_t lines = 0;

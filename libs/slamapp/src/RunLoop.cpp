@@ -28,7 +28,7 @@ LoopOutcome runLoop(RunInputs& in, const SlamRunOptions& options, std::ostream& 
     auto& engine = *in.engine;
     config::ProgressBar progress(err, options.terminal, options.quiet);
     const auto wall0 = std::chrono::steady_clock::now();
-    double t0 = NAN;
+    double t0 = NAN, lastMap = 0;
     const auto timedNext = [&] {
         const auto before = std::chrono::steady_clock::now();
         auto obs = in.source->next();
@@ -49,6 +49,12 @@ LoopOutcome runLoop(RunInputs& in, const SlamRunOptions& options, std::ostream& 
                 keep(*m, t, loop);
             }
             engine.process(obs);
+            if (options.mapEvery > 0 && !options.mapOut.empty() &&
+                t - t0 - lastMap >= options.mapEvery) {
+                lastMap = t - t0;
+                saveMap(in, options, err, result);
+                ++loop.mapsSaved;
+            }
             if (options.onProgress) {
                 options.onProgress(engine.graph().nodes.size(),
                                    engine.optimizer().loopClosures().size());

@@ -214,7 +214,10 @@ void writeOutputs(const RunInputs& in, const LoopOutcome& loop, const SlamRunOpt
                 << " in time; no ATE\n";
         }
     }
-    if (!options.mapOut.empty()) report.set("map_out", saveMap(in, options, err, result));
+    if (!options.mapOut.empty()) {
+        report.set("map_out", saveMap(in, options, err, result)
+                                  .set("saved_while_running", loop.mapsSaved));
+    }
     if (!result.error.empty()) report.set("error", result.error);
     writeReport(report, dir);
 

@@ -63,6 +63,7 @@ struct LoopOutcome {
     double sourceSeconds{0};  ///< waiting for the next observation
     std::vector<KeptReading> magnetic;  // 48 bytes a reading: 35 MB for an hour of two at 100 Hz
     std::vector<std::string> magneticLabels;
+    std::size_t mapsSaved{0};  ///< while the run went on (--map-every)
 };
 
 /** Feeds every observation to the engine until the source ends, --max-seconds or a fault in

@@ -27,6 +27,9 @@ struct SlamRunOptions {
     /** Where the map is saved at the end (maps::writeMap: a folder, replaced whole); empty:
      * not saved. */
     std::string mapOut;
+    /** With mapOut: also saved every this many seconds of data while the run goes on (each
+     * time whole: a crash leaves the last one); 0: only at the end. */
+    double mapEvery{0};
     /** A saved map to start in (maps::readMap), held fixed: the run relocalizes in it globally
      * (no start pose), then tracks with closures to its nodes; trajectory.tum holds the run's
      * nodes once they joined the map, in the map's frame. Empty: the run starts from nothing. */
