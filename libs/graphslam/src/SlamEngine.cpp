@@ -28,6 +28,7 @@ SlamEngine::SlamEngine(std::unique_ptr<NodeDecider> nrd, std::unique_ptr<EdgeDec
     nrd_->setGraphPtr(&graph_);
     erd_->setGraphPtr(&graph_);
     gso_->setGraphPtr(&graph_);
+    erd_->setSegmentGroups([this](int segment) { return relocalizer_.groupOfSegment(segment); });
 }
 
 std::unique_ptr<SlamEngine> SlamEngine::fromConfig(const mrpt::config::CConfigFileBase& ini) {

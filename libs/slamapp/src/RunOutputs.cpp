@@ -108,13 +108,16 @@ std::vector<outputs::ClosureRow> closureRows(const graphslam::SlamEngine& engine
     return rows;
 }
 
-std::vector<outputs::NodeRow> nodeRows(const NodeStore& nodes, const std::vector<float>& engineMs) {
+std::vector<outputs::NodeRow> nodeRows(const NodeStore& nodes, const std::vector<float>& engineMs,
+                                       TNodeID firstTimed) {
     std::vector<outputs::NodeRow> rows;
     rows.reserve(nodes.size());
     for (TNodeID id = 0; id < nodes.size(); ++id) {
         const auto& r = nodes.at(id);
+        // (a loaded map's nodes were not made by this run: not timed)
+        const bool timed = id >= firstTimed && id - firstTimed < engineMs.size();
         rows.push_back({static_cast<long long>(id), r.timestamp, r.segment, r.keyframe,
-                        id < engineMs.size() ? engineMs[id] : std::nan("")});
+                        timed ? engineMs[id - firstTimed] : std::nan("")});
     }
     return rows;
 }
@@ -161,7 +164,8 @@ void writeOutputs(const RunInputs& in, const LoopOutcome& loop, const SlamRunOpt
     writeTrajectory(path(RunFile::Trajectory), trajectory);
     graph.saveToTextFile(path(RunFile::Graph));
     outputs::writeClosureTable(path(RunFile::Closures), closureRows(engine));
-    outputs::writeNodeTable(path(RunFile::Nodes), nodeRows(engine.nodes(), engine.stats().nodeMs));
+    outputs::writeNodeTable(path(RunFile::Nodes),
+                            nodeRows(engine.nodes(), engine.stats().nodeMs, engine.mapNodes()));
     const auto& beforeKidnap = engine.relocalizer().mapAtFirstKidnap();
     if (!beforeKidnap.empty()) {
         // What the map was when the first kidnap began: lodestone-eval relocation compares

@@ -28,6 +28,8 @@ void CompositeERD::addChild(std::unique_ptr<EdgeDecider> child) {
     if (m_graph) child->setGraphPtr(m_graph);
     if (nodes_) child->setNodeStore(nodes_);
     if (truth_) child->setDiagnosticTruth(truth_);
+    if (segment_group_) child->setSegmentGroups(segment_group_);
+    if (map_nodes_) child->setMapNodes(map_nodes_);
     children_.push_back(std::move(child));
 }
 
@@ -52,6 +54,11 @@ void CompositeERD::setDiagnosticTruth(std::shared_ptr<const std::vector<io::TumP
 void CompositeERD::setMapNodes(TNodeID count) {
     EdgeDecider::setMapNodes(count);
     for (auto& c : children_) c->setMapNodes(count);
+}
+
+void CompositeERD::setSegmentGroups(std::function<int(int)> groupOf) {
+    for (auto& c : children_) c->setSegmentGroups(groupOf);
+    EdgeDecider::setSegmentGroups(std::move(groupOf));
 }
 
 void CompositeERD::setNodeStore(NodeStore* nodes) {

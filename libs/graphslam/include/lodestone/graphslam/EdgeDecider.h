@@ -3,6 +3,7 @@
 #include <lodestone/graphslam/SlamComponent.h>
 #include <mrpt/graphslam/interfaces/CEdgeRegistrationDecider.h>
 
+#include <functional>
 #include <map>
 #include <vector>
 
@@ -27,9 +28,19 @@ class EdgeDecider : public mrpt::graphslam::deciders::CEdgeRegistrationDecider<G
     /** Nodes with an ID below `count` are a loaded map's (SlamEngine::startInMap): taken in as
      * every node is, never queried from - a map's own closures are in it already. */
     virtual void setMapNodes(TNodeID count) { map_nodes_ = count; }
+    /** Which segments share a frame (SlamEngine: the relocalizer's groups - a kidnapped
+     * segment, or a run started in a map, joins the map's once relocated): the graph's
+     * positions compare across segments of one group, and a loop closer may gate by them. */
+    virtual void setSegmentGroups(std::function<int(int)> groupOf) { segment_group_ = std::move(groupOf); }
 
   protected:
+    /** Positions of the two segments compare (the same segment, or joined). */
+    bool sameFrame(int segmentA, int segmentB) const {
+        return segmentA == segmentB ||
+               (segment_group_ && segment_group_(segmentA) == segment_group_(segmentB));
+    }
     TNodeID map_nodes_{0};
+    std::function<int(int)> segment_group_;
     /** registerNewEdge with what the relocalizer weighs: closures sharing `matchId` come from
      * one match (not independent evidence); `strong` when the match alone is convincing by
      * the decider's own threshold; `score` is the decider's measure of the evidence (higher

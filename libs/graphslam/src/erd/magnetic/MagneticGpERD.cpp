@@ -190,9 +190,9 @@ void MagneticGpERD::query(const magnetic::Supernode& q) {
             if (truth_) trace.shortlist.push_back(id);
             const auto& t = track_->supernodes()[id];
             // Where the robot can be: the two supernodes' ends inside the gate of the pose
-            // uncertainty. Across segments the graph's positions are not yet comparable
-            // (kidnap): everywhere.
-            if (t.segment == q.segment) {
+            // uncertainty. Across segments the graph's positions are not comparable until
+            // they joined (kidnap, a run started in a map): everywhere.
+            if (sameFrame(t.segment, q.segment)) {
                 const auto there = positionOf(static_cast<TNodeID>(samples[t.last - 1].node));
                 const Eigen::Vector2d d(here.x - there.x, here.y - there.y);
                 if (path_.uncertainty.gateDistance2(qNode, d) > params_.gateChi2) {

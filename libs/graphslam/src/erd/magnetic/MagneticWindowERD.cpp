@@ -184,11 +184,16 @@ MagneticWindowERD::Prior MagneticWindowERD::priorAt(const magnetic::SupernodeTra
     const auto& samples = track.samples();
     Prior p;
     p.position = positionAtSample(track, c);
-    if (samples[c].segment != path_.segment[qNode]) return p;
     // Where the robot can be, and which way it faces, under the pose uncertainty relative to
-    // the target. Across a kidnap the graph knows neither: everywhere, any way.
+    // the target. Across a kidnap the graph knows neither: everywhere, any way - until the
+    // segment has joined the target's (relocated): then the target is where the solved graph
+    // has it (to gate_floor), the robot as uncertain as its path since its last pin.
+    const int segment = samples[c].segment, qSegment = path_.segment[qNode];
+    if (!sameFrame(segment, qSegment)) return p;
     const auto target = static_cast<TNodeID>(samples[c].node);
-    p.gate2 = path_.uncertainty.relativeGateDistance2(target, qNode, here - p.position);
+    p.gate2 = segment == qSegment
+                  ? path_.uncertainty.relativeGateDistance2(target, qNode, here - p.position)
+                  : path_.uncertainty.gateDistance2(qNode, here - p.position);
     p.turn = poses_[qNode]->yaw() - poses_[target]->yaw();
     const double turnFloor = params_.turnFloorDeg * M_PI / 180;
     p.turnVariance = path_.uncertainty.covariance(qNode)(2, 2) + turnFloor * turnFloor;

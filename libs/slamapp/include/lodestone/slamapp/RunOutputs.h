@@ -29,8 +29,10 @@ void writeTrajectory(const std::string& path, const std::vector<io::TumPose>& tr
 std::vector<outputs::ClosureRow> closureRows(const graphslam::SlamEngine& engine);
 
 /** Per node its time, segment, keyframe flag and the engine time spent up to its registration
- * [ms] (`engineMs`: SlamEngine::Stats::nodeMs, one per node in ID order; NaN where missing). */
+ * [ms] (`engineMs`: SlamEngine::Stats::nodeMs, one per node the run made, in ID order from
+ * `firstTimed` - after a loaded map's nodes; NaN where missing). */
 std::vector<outputs::NodeRow> nodeRows(const graphslam::NodeStore& nodes,
-                                       const std::vector<float>& engineMs);
+                                       const std::vector<float>& engineMs,
+                                       graphslam::TNodeID firstTimed = 0);
 
 }  // namespace lodestone::slamapp

@@ -34,6 +34,7 @@ class CompositeERD : public EdgeDecider {
     void setGraphPtr(Graph* graph) override;
     void setNodeStore(NodeStore* nodes) override;
     void setMapNodes(TNodeID count) override;
+    void setSegmentGroups(std::function<int(int)> groupOf) override;
     void setDiagnosticTruth(std::shared_ptr<const std::vector<io::TumPose>> truth) override;
     std::vector<LoopClosure> takeNewLoopClosures() override;
     bool justInsertedLoopClosure() const override;

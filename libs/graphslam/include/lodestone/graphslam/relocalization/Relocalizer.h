@@ -102,6 +102,10 @@ class Relocalizer {
     /** The group (its first segment) a node belongs to; 0 is the map. */
     int groupOf(TNodeID id) const { return find(segment_.at(id)); }
     bool sameGroup(TNodeID a, TNodeID b) const { return groupOf(a) == groupOf(b); }
+    /** The group of a segment (one not seen yet: its own). */
+    int groupOfSegment(int segment) const {
+        return segment >= 0 && segment < static_cast<int>(parent_.size()) ? find(segment) : segment;
+    }
     /** A closure joining two groups (not in the graph): kept as a hypothesis; returns the
      * merge it completes, if any. */
     std::optional<Merge> offer(const Graph& graph, const LoopClosure& lc);
