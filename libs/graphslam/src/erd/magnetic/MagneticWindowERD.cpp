@@ -446,12 +446,10 @@ double MagneticWindowERD::placePosterior(const Candidate& best,
         if (std::isfinite(k.logFar)) rest += std::exp(k.logFar - maxLog);
         if (!std::isfinite(k.logWeight)) continue;
         const double w = std::exp(k.logWeight - maxLog);
-        // Positions compare within a segment, and across a loaded map's (one frame: the map's,
-        // e.g. two sessions' passes of one place).
-        const auto& s = k.track->samples()[k.sample];
-        const bool oneFrame = s.segment == b.segment || (s.node < map_nodes_ && b.node < map_nodes_);
-        const bool samePlace =
-            oneFrame && (k.position - best.position).norm() <= params_.distinctRadius;
+        // Positions compare within a segment and across joined ones (a loaded map's sessions,
+        // a relocated segment): the passes of one place there are one place.
+        const bool samePlace = sameFrame(k.track->samples()[k.sample].segment, b.segment) &&
+                               (k.position - best.position).norm() <= params_.distinctRadius;
         (samePlace ? same : rest) += w;
     }
     return same / (same + rest);
