@@ -9,7 +9,9 @@
 #include <lodestone/io/ImagesDirectory.h>
 #include <lodestone/io/RawlogReadError.h>
 #include <lodestone/io/RawlogReader.h>
+#include <lodestone/maps/MapPicture.h>
 #include <lodestone/maps/MapSummary.h>
+#include <opencv2/imgcodecs.hpp>
 #include <lodestone/obs/registerAllClasses.h>
 #include <mrpt/img/CImage.h>
 #include <mrpt/obs/CActionCollection.h>
@@ -240,9 +242,15 @@ int mapCmd(const Args& args, std::ostream& out) {
                        "readings, extent, sensors, configuration, size on disk",
                        ' ', "");
     TCLAP::UnlabeledValueArg<std::string> dir("DIR", "map folder", true, "", "DIR", cmd);
+    TCLAP::ValueArg<std::string> picture("p", "plot",
+                                         "the map from above: |B| over the floor, each session's "
+                                         "path, keyframes",
+                                         false, "", "PNG", cmd);
     if (!parse(cmd, "map", args)) return kExitOk;
     const auto map = maps::readMap(dir.getValue());
     maps::printMapSummary(maps::summarizeMap(map, dir.getValue()), out);
+    if (picture.isSet() && !cv::imwrite(picture.getValue(), maps::drawMap(map)))
+        throw BadInput(picture.getValue() + ": cannot be written");
     return kExitOk;
 }
 
@@ -255,7 +263,7 @@ void printUsage(std::ostream& out) {
            "  export FILE --sensor LABEL --out DIR   CSV series / PNG frames of one sensor\n"
            "  to-imu FILE OUT [--unit gauss]      magnetometers as CObservationIMU\n"
            "  report FILE --out DIR [--slam SLAM_OUT] [--ground-truth GT.tum]   HTML report\n"
-           "  map DIR                             a saved map (lodestone-slam --map-out)\n"
+           "  map DIR [--plot PNG]                a saved map (lodestone-slam --map-out)\n"
            "exit codes: 0 ok, 1 bad input, 2 usage\n";
 }
 

@@ -9,9 +9,11 @@
 
 #include <lodestone/io/TumTrajectory.h>
 #include <mrpt/graphs/CNetworkOfPoses.h>
+#include <opencv2/imgcodecs.hpp>
 
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include "StockTools.h"
@@ -74,8 +76,16 @@ TEST(MapOut, ARunLeavesAMapThatInspectDescribes) {
     EXPECT_EQ(map.nodes.size(), lines);  // every node of the run
     EXPECT_GT(map.manifest.magneticReadings, 0u);
     EXPECT_EQ(map.manifest.edgeDecider, "CompositeERD");
-    const auto inspect = lodestone::test::runCommand(kInspect + " map " + dir.file("map"));
+    const auto inspect = lodestone::test::runCommand(kInspect + " map " + dir.file("map") +
+                                                     " --plot " + dir.file("map.png"));
     EXPECT_EQ(inspect.exitCode, 0) << inspect.output;
+    const cv::Mat picture = cv::imread(dir.file("map.png"));
+    ASSERT_FALSE(picture.empty());
+    // The field was drawn: the picture holds more colours than a frame and a path do.
+    std::set<std::uint32_t> colours;
+    for (auto it = picture.begin<cv::Vec3b>(); it != picture.end<cv::Vec3b>(); ++it)
+        colours.insert((*it)[0] << 16 | (*it)[1] << 8 | (*it)[2]);
+    EXPECT_GT(colours.size(), 100u);
     EXPECT_NE(inspect.output.find("nodes " + std::to_string(map.nodes.size())), std::string::npos)
         << inspect.output;
     EXPECT_NE(inspect.output.find("magnetometers: MAG"), std::string::npos) << inspect.output;
