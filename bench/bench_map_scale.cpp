@@ -22,6 +22,7 @@
 #include <regex>
 #include <sstream>
 
+#include "bench_reports.h"
 #include "magnetic_recordings.h"
 
 using namespace lodestone;
@@ -32,19 +33,6 @@ using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-std::string slurp(const std::string& path) {
-    std::ifstream in(path);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-double numberIn(const std::string& text, const std::string& key) {
-    std::smatch m;
-    if (!std::regex_search(text, m, std::regex("\"" + key + "\": (-?[0-9.eE+-]+)"))) return NAN;
-    return std::stod(m[1]);
 }
 
 /** Heap bytes in use (glibc's mallinfo2): what a loaded map holds, whatever pages the

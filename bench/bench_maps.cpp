@@ -32,22 +32,11 @@
 #include <regex>
 #include <sstream>
 
+#include "bench_reports.h"
+
 using namespace lodestone;
 
 namespace {
-
-std::string slurp(const std::string& path) {
-    std::ifstream in(path);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-double numberIn(const std::string& text, const std::string& key) {
-    std::smatch m;
-    if (!std::regex_search(text, m, std::regex("\"" + key + "\": (-?[0-9.eE+-]+)"))) return NAN;
-    return std::stod(m[1]);
-}
 
 struct Run {
     slamapp::SlamRunResult result;

@@ -55,6 +55,20 @@ lodestone::datasets::MagneticRecording twoLaps() {
     }
     return rec;
 }
+/** twoLaps() recorded as DIR/NAME.rawlog with the drift model of `seed`. */
+std::string recordLaps(const lodestone::test::TempDir& dir, const std::string& name, int seed) {
+    lodestone::datasets::OdometryDriftModel drift;
+    drift.seed = static_cast<std::uint64_t>(seed);
+    lodestone::datasets::writeMagneticRecording(twoLaps(), dir.file(name + ".rawlog"), drift);
+    return dir.file(name + ".rawlog");
+}
+
+/** lodestone-slam with the window closer on `rawlog`, outputs in DIR/OUT, `extra` options. */
+lodestone::test::CommandResult slamOn(const lodestone::test::TempDir& dir, const std::string& rawlog,
+                                      const std::string& out, const std::string& extra) {
+    return lodestone::test::runCommand(kSlam + " --rawlog " + rawlog + " --config " + kConfig +
+                                       " --quiet --out " + dir.file(out) + " " + extra);
+}
 }  // namespace
 
 TEST(MapOut, ARunLeavesAMapThatInspectDescribes) {
@@ -113,21 +127,11 @@ TEST(MapOut, ARunLeavesAMapThatInspectDescribes) {
 TEST(MapIn, ALaterRunRelocalizesInTheMapAndNeverMovesIt) {
     lodestone::registerAllClasses();
     lodestone::test::TempDir dir;
-    lodestone::datasets::OdometryDriftModel other;
-    other.seed = 2;
-    lodestone::datasets::writeMagneticRecording(twoLaps(), dir.file("first.rawlog"), {});
-    lodestone::datasets::writeMagneticRecording(twoLaps(), dir.file("second.rawlog"), other);
-    const std::string common = " --config " + kConfig + " --quiet";
-    ASSERT_EQ(lodestone::test::runCommand(kSlam + " --rawlog " + dir.file("first.rawlog") + common +
-                                          " --out " + dir.file("first") + " --map-out " +
-                                          dir.file("map"))
-                  .exitCode,
-              0);
+    ASSERT_EQ(slamOn(dir, recordLaps(dir, "first", 1), "first", "--map-out " + dir.file("map")).exitCode, 0);
     const auto map = lodestone::maps::readMap(dir.file("map"));
-    const auto run = lodestone::test::runCommand(
-        kSlam + " --rawlog " + dir.file("second.rawlog") + common + " --out " +
-        dir.file("second") + " --map-in " + dir.file("map") + " --ground-truth " +
-        dir.file("second.gt.tum"));
+    const auto run = slamOn(dir, recordLaps(dir, "second", 2), "second",
+                            "--map-in " + dir.file("map") + " --ground-truth " +
+                                dir.file("second.gt.tum"));
     ASSERT_EQ(run.exitCode, 0) << run.output;
     const std::string report = slurp(dir.file("second") + "/report.json");
     EXPECT_NE(report.find("\"relocations\": 1"), std::string::npos) << report.substr(0, 600);
@@ -183,24 +187,12 @@ TEST(MapIn, AForeignOrDamagedMapIsRefusedBeforeAnyWork) {
 TEST(MapIn, ExtendThenLocalizeInTheExtendedMap) {
     lodestone::registerAllClasses();
     lodestone::test::TempDir dir;
-    lodestone::datasets::OdometryDriftModel second, third;
-    second.seed = 2;
-    third.seed = 3;
-    lodestone::datasets::writeMagneticRecording(twoLaps(), dir.file("first.rawlog"), {});
-    lodestone::datasets::writeMagneticRecording(twoLaps(), dir.file("second.rawlog"), second);
-    lodestone::datasets::writeMagneticRecording(twoLaps(), dir.file("third.rawlog"), third);
-    const std::string common = " --config " + kConfig + " --quiet";
-    ASSERT_EQ(lodestone::test::runCommand(kSlam + " --rawlog " + dir.file("first.rawlog") + common +
-                                          " --out " + dir.file("first") + " --map-out " +
-                                          dir.file("map"))
-                  .exitCode,
-              0);
+    ASSERT_EQ(slamOn(dir, recordLaps(dir, "first", 1), "first", "--map-out " + dir.file("map")).exitCode, 0);
     const auto map = lodestone::maps::readMap(dir.file("map"));
     // Extend: the run's nodes that joined the map are saved with it, as session 1.
-    const auto extend = lodestone::test::runCommand(
-        kSlam + " --rawlog " + dir.file("second.rawlog") + common + " --out " +
-        dir.file("second") + " --map-in " + dir.file("map") + " --mode extend --map-out " +
-        dir.file("map2"));
+    const auto extend = slamOn(dir, recordLaps(dir, "second", 2), "second",
+                               "--map-in " + dir.file("map") + " --mode extend --map-out " +
+                                   dir.file("map2"));
     ASSERT_EQ(extend.exitCode, 0) << extend.output;
     const auto extended = lodestone::maps::readMap(dir.file("map2"));
     EXPECT_EQ(extended.manifest.sessions, 2u);
@@ -215,9 +207,8 @@ TEST(MapIn, ExtendThenLocalizeInTheExtendedMap) {
     }
     EXPECT_LT(moved, 0.5);
     // And a third run localizes in the extended map.
-    const auto localize = lodestone::test::runCommand(
-        kSlam + " --rawlog " + dir.file("third.rawlog") + common + " --out " + dir.file("third") +
-        " --map-in " + dir.file("map2"));
+    const auto localize =
+        slamOn(dir, recordLaps(dir, "third", 3), "third", "--map-in " + dir.file("map2"));
     ASSERT_EQ(localize.exitCode, 0) << localize.output;
     EXPECT_NE(slurp(dir.file("third") + "/report.json").find("\"relocations\": 1"),
               std::string::npos);
