@@ -1,6 +1,7 @@
 #include <lodestone/config/IniSection.h>
 #include <lodestone/vision/RgbdVisualOdometry.h>
 
+#include <algorithm>
 #include <chrono>
 
 namespace lodestone::vision {
@@ -58,6 +59,16 @@ void RgbdVisualOdometry::Params::loadFromConfigFile(const mrpt::config::CConfigF
     guidedMatching = s.getBool("guided_matching", guidedMatching);
     guidedGateChi2 = s.getDouble("guided_gate_chi2", guidedGateChi2);
     guidedKeypointSigma = s.getDouble("guided_keypoint_sigma", guidedKeypointSigma);
+    depthAlignment = s.getBool("depth_alignment", depthAlignment);
+    depthModelKeyframes = s.getInt("depth_model_keyframes", depthModelKeyframes);
+    depthSampling.columns = s.getInt("depth_grid_columns", depthSampling.columns);
+    depthSampling.depthNoise = ransac.depthNoise;
+    depthIcp.minObserved = s.getInt("depth_min_observed", depthIcp.minObserved);
+    if (depthModelKeyframes < 1) s.fail("depth_model_keyframes", "must be >= 1");
+    if (depthSampling.columns < 8) s.fail("depth_grid_columns", "must be >= 8");
+    if (depthIcp.minObserved < 1 || depthIcp.minObserved > 6) {
+        s.fail("depth_min_observed", "must be 1..6 (directions of a rigid motion)");
+    }
     if (lostAfter < 1) s.fail("lost_after", "must be >= 1");
     if (!(guidedGateChi2 > 0)) s.fail("guided_gate_chi2", "must be > 0");
     if (!(guidedKeypointSigma > 0)) s.fail("guided_keypoint_sigma", "must be > 0");
@@ -76,7 +87,11 @@ void RgbdVisualOdometry::Params::dumpToTextStream(std::ostream& out) const {
         << "keyframe_angle_deg = " << keyframeAngle * 180 / M_PI << "  [deg]\n"
         << "guided_matching    = " << (guidedMatching ? "true" : "false") << "\n"
         << "guided_gate_chi2   = " << guidedGateChi2 << "  (2 dof)\n"
-        << "guided_keypoint_sigma = " << guidedKeypointSigma << "  [px]\n";
+        << "guided_keypoint_sigma = " << guidedKeypointSigma << "  [px]\n"
+        << "depth_alignment    = " << (depthAlignment ? "true" : "false") << "\n"
+        << "depth_model_keyframes = " << depthModelKeyframes << "\n"
+        << "depth_grid_columns = " << depthSampling.columns << "\n"
+        << "depth_min_observed = " << depthIcp.minObserved << "  [of 6 directions]\n";
 }
 
 RgbdVisualOdometry::RgbdVisualOdometry() : RgbdVisualOdometry(Params()) {}
@@ -101,7 +116,9 @@ RgbdVisualOdometry::RgbdVisualOdometry(const Params& params)
       extractor_(params.orb),
       matcher_(params.matcher),
       guided_(guidedParams(params)),
-      ransac_(params.ransac) {}
+      ransac_(params.ransac),
+      icp_(params.depthIcp),
+      depth_model_(params.depthModelKeyframes) {}
 
 std::optional<double> RgbdVisualOdometry::referenceTimestamp() const {
     if (!reference_ || state_ == VoState::Lost) return std::nullopt;
@@ -110,6 +127,7 @@ std::optional<double> RgbdVisualOdometry::referenceTimestamp() const {
 
 void RgbdVisualOdometry::reset() {
     reference_.reset();
+    depth_model_.clear();
     failures_ = 0;
     state_ = VoState::Initializing;
 }
@@ -169,7 +187,28 @@ VoResult RgbdVisualOdometry::process(const RgbdFrame& frame, const MotionPrior* 
     totals_.ms.orb += r.timing.orb;
     totals_.ms.matching += r.timing.matching;
     totals_.ms.ransac += r.timing.ransac;
+    totals_.ms.depth += r.timing.depth;
+    if (r.depthAligned) ++totals_.depthAligned;
     return r;
+}
+
+Eigen::Isometry3d RgbdVisualOdometry::constantVelocity(double timestamp) const {
+    if (!(last_step_dt_ > 0)) return last_in_ref_;
+    // The last step scaled to the time since the last tracked frame (at most 5 steps' worth).
+    const double k = std::clamp((timestamp - last_time_) / last_step_dt_, 0.0, 5.0);
+    const Eigen::AngleAxisd turn(last_step_.rotation());
+    Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
+    step.linear() = Eigen::AngleAxisd(k * turn.angle(), turn.axis()).toRotationMatrix();
+    step.translation() = k * last_step_.translation();
+    return last_in_ref_ * step;
+}
+
+void RgbdVisualOdometry::trackedAt(const Eigen::Isometry3d& T_ref_cur, double timestamp,
+                                   bool becameReference) {
+    last_step_ = last_in_ref_.inverse() * T_ref_cur;
+    last_step_dt_ = timestamp - last_time_;
+    last_time_ = timestamp;
+    last_in_ref_ = becameReference ? Eigen::Isometry3d::Identity() : T_ref_cur;
 }
 
 VoResult RgbdVisualOdometry::processFrame(const RgbdFrame& frame, const MotionPrior* prior) {
@@ -180,6 +219,12 @@ VoResult RgbdVisualOdometry::processFrame(const RgbdFrame& frame, const MotionPr
     r.timing.orb = msSince(t0);
     r.features = current.size();
     r.frameFeatures = std::make_shared<const FrameFeatures>(current);
+    DepthCloud cloud;
+    if (params_.depthAlignment) {
+        const auto td = std::chrono::steady_clock::now();
+        cloud = sampleDepthCloud(frame, params_.depthSampling);
+        r.timing.depth = msSince(td);
+    }
 
     const auto fail = [&](VoFailure why) {
         r.failure = why;
@@ -187,9 +232,11 @@ VoResult RgbdVisualOdometry::processFrame(const RgbdFrame& frame, const MotionPr
         r.state = state_;
         return r;
     };
-    const auto becomeReference = [&]() {
+    // T_ref_new: the new reference's pose in the old one (identity when starting afresh).
+    const auto becomeReference = [&](const Eigen::Isometry3d& T_ref_new) {
         reference_ = std::move(current);
         reference_time_ = frame.timestamp;
+        if (params_.depthAlignment) depth_model_.addReference(std::move(cloud), T_ref_new.inverse());
     };
 
     if (state_ == VoState::Lost || !reference_) {
@@ -198,7 +245,11 @@ VoResult RgbdVisualOdometry::processFrame(const RgbdFrame& frame, const MotionPr
             // Nothing to start from either: that too counts towards LOST.
             return fail(VoFailure::FewFeatures);
         }
-        becomeReference();
+        depth_model_.clear();
+        becomeReference(Eigen::Isometry3d::Identity());
+        last_in_ref_.setIdentity();
+        last_time_ = frame.timestamp;
+        last_step_dt_ = 0;
         failures_ = 0;
         state_ = VoState::Initializing;
         r.state = state_;
@@ -232,20 +283,34 @@ VoResult RgbdVisualOdometry::processFrame(const RgbdFrame& frame, const MotionPr
     r.timing.ransac += aligned->timing.ransac;
     r.matches = aligned->matches;
     r.inliers = aligned->inliers;
-    if (!aligned->success) return fail(aligned->failure);
-    const RigidEstimate& est = aligned->estimate;
+    RigidEstimate est = aligned->estimate;
+    if (!aligned->success || !plausible(est)) {
+        r.failure = aligned->success ? VoFailure::Implausible : aligned->failure;
+        if (!params_.depthAlignment) return fail(r.failure);
+        // The features failed; the depth may still hold walls, a floor, a door frame.
+        const auto td = std::chrono::steady_clock::now();
+        ++totals_.depthTried;
+        const Eigen::Isometry3d initial =
+            prior ? prior->T_ref_cur : constantVelocity(frame.timestamp);
+        const DepthAlignment d = icp_.align(depth_model_, cloud, initial);
+        r.timing.depth += msSince(td);
+        r.depthObserved = d.observed;
+        est.transform = d.T_ref_cur;
+        est.covariance = d.covariance;
+        if (!d.success || !plausible(est)) return fail(r.failure);
+        r.depthAligned = true;
+    }
     const double angle = Eigen::AngleAxisd(est.transform.rotation()).angle();
-    if (!plausible(est)) return fail(VoFailure::Implausible);
     r.success = true;
     r.T_ref_cur = est.transform;
     r.covariance = est.covariance;
     failures_ = 0;
     state_ = VoState::Tracking;
     r.state = state_;
-    if (est.transform.translation().norm() >= params_.keyframeDistance ||
-        angle >= params_.keyframeAngle) {
-        becomeReference();
-    }
+    const bool keyframe = est.transform.translation().norm() >= params_.keyframeDistance ||
+                          angle >= params_.keyframeAngle;
+    trackedAt(est.transform, frame.timestamp, keyframe);
+    if (keyframe) becomeReference(est.transform);
     return r;
 }
 

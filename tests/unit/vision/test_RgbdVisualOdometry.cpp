@@ -176,3 +176,39 @@ TEST(RgbdVisualOdometry, PlainWallsMissingDepthAndNaNsFailThenLost) {
     EXPECT_TRUE(r.success);
     EXPECT_EQ(r.state, VoState::Tracking);
 }
+
+// The grey image goes blank (lights out, a lens cap of texture): with depth alignment the frame's
+// depth, aligned with the keyframe's, still gives the motion - and says which directions it pinned.
+TEST(RgbdVisualOdometry, WhereFeaturesFailTheDepthIsAligned) {
+    const auto sc = lodestone::test::boxScenario("posters");
+    const lodestone::sim::World world(sc, 3);
+    lodestone::sim::CameraSpec cam;
+    const auto first = simulatedFrame(world, cam, 5.5, 0.5);  // the posters wall, a side wall, the floor
+    auto second = simulatedFrame(world, cam, 5.56, 0.52);
+    second.gray.setTo(0);
+    second.timestamp = first.timestamp + 1.0 / 30;
+    // 6 cm on along +x in the world, turned 1.15 deg left: in the reference's optical frame.
+    const double yaw = 0.5;
+    const Eigen::Vector3d moveWorld(0.06, 0, 0);
+    const Eigen::Vector3d moveOptical(-(-std::sin(yaw) * moveWorld.x()), 0, std::cos(yaw) * moveWorld.x());
+
+    RgbdVisualOdometry::Params p;
+    RgbdVisualOdometry featuresOnly(p);
+    featuresOnly.process(first);
+    const auto f = featuresOnly.process(second);
+    EXPECT_FALSE(f.success);
+    EXPECT_EQ(f.failure, VoFailure::FewFeatures);
+
+    p.depthAlignment = true;
+    RgbdVisualOdometry withDepth(p);
+    withDepth.process(first);
+    const auto d = withDepth.process(second);
+    ASSERT_TRUE(d.success) << "depth observed " << d.depthObserved;
+    EXPECT_TRUE(d.depthAligned);
+    EXPECT_EQ(d.failure, VoFailure::FewFeatures) << "why the features failed";
+    EXPECT_GE(d.depthObserved, 5);
+    EXPECT_LT((d.T_ref_cur.translation() - moveOptical).norm(), 0.01)
+        << d.T_ref_cur.translation().transpose() << " vs " << moveOptical.transpose();
+    EXPECT_NEAR(Eigen::AngleAxisd(d.T_ref_cur.rotation()).angle(), 0.02, 0.003);
+    EXPECT_EQ(withDepth.totals().depthAligned, 1u);
+}

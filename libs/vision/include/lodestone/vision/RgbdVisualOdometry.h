@@ -5,6 +5,7 @@
 #include <lodestone/vision/OrbFeatures.h>
 #include <lodestone/vision/RgbdFrame.h>
 #include <lodestone/vision/RigidRansac.h>
+#include <lodestone/vision/depth/PointToPlaneIcp.h>
 #include <mrpt/config/CLoadableOptions.h>
 
 #include <cmath>
@@ -29,6 +30,7 @@ const char* toString(VoFailure f);
 /** Time spent on one frame [ms], by step. */
 struct VoTiming {
     double orb{0}, matching{0}, ransac{0};
+    double depth{0};  ///< sampling the depth cloud and, where features failed, aligning it
 };
 
 /** Time summed over every frame processed [ms], by step. */
@@ -39,6 +41,8 @@ struct VoTotals {
     std::size_t guidedFallback{0};  ///< frames with a prior whose guided match failed (brute force then)
     /** Descriptor pairs the guided matcher compared, against the n x m brute force would. */
     double guidedPairsCompared{0}, guidedPairsAll{0};
+    std::size_t depthAligned{0};  ///< frames whose features failed and whose depth aligned
+    std::size_t depthTried{0};    ///< frames whose features failed and whose depth was tried
 };
 
 /** What one frame gave. */
@@ -54,6 +58,10 @@ struct VoResult {
     std::size_t features{0}, matches{0}, inliers{0};
     /** The motion was found by matching guided by the caller's prior (else by brute force). */
     bool guided{false};
+    /** The features failed and the motion is depth alignment's (`covariance` loose along what
+     * the depth did not pin, `depthObserved` < 6); `failure` says why the features failed. */
+    bool depthAligned{false};
+    int depthObserved{0};
     /** This frame's features (optical frame), for whoever keeps keyframes (the SLAM node
      * decider, loop closers). */
     std::shared_ptr<const FrameFeatures> frameFeatures;
@@ -85,6 +93,12 @@ class RgbdVisualOdometry {
         bool guidedMatching{true};
         double guidedGateChi2{11.83};      ///< the gate, chi-square with 2 dof
         double guidedKeypointSigma{1.0};  ///< ORB keypoint noise at level 0 [px]
+        /** Where the features fail, align the frame's depth with the last keyframes' (point-to-
+         * plane ICP from the caller's prior or constant velocity; PointToPlaneIcp). */
+        bool depthAlignment{false};
+        int depthModelKeyframes{3};  ///< keyframes in the local model depth aligns with
+        DepthSampling depthSampling;  ///< columns from `depth_grid_columns`; noise from RANSAC's
+        PointToPlaneIcp::Params depthIcp;
 
         /** All keys in one section (ORB, matcher and RANSAC keys included). */
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
@@ -123,6 +137,10 @@ class RgbdVisualOdometry {
 
   private:
     VoResult processFrame(const RgbdFrame& frame, const MotionPrior* prior);
+    /** The frame's pose in the reference by constant velocity since the last tracked frame. */
+    Eigen::Isometry3d constantVelocity(double timestamp) const;
+    /** Remembers a tracked frame's pose in the reference, for constant velocity. */
+    void trackedAt(const Eigen::Isometry3d& T_ref_cur, double timestamp, bool becameReference);
     /** RANSAC on given matches (the second half of `align`). */
     Alignment alignMatches(const FrameFeatures& reference, const FrameFeatures& current,
                            const std::vector<cv::DMatch>& matches, std::uint64_t seed) const;
@@ -133,6 +151,13 @@ class RgbdVisualOdometry {
     DescriptorMatcher matcher_;
     GuidedMatcher guided_;
     RigidRansac ransac_;
+    PointToPlaneIcp icp_;
+    DepthModel depth_model_;
+    /** The last tracked frame: its pose in the reference and time, and the step before it. */
+    Eigen::Isometry3d last_in_ref_{Eigen::Isometry3d::Identity()};
+    double last_time_{0};
+    Eigen::Isometry3d last_step_{Eigen::Isometry3d::Identity()};
+    double last_step_dt_{0};
     std::optional<FrameFeatures> reference_;
     double reference_time_{0};
     int failures_{0};

@@ -1,0 +1,207 @@
+#include <gtest/gtest.h>
+#include <lodestone/sim/RgbdRenderer.h>
+#include <lodestone/vision/depth/PointToPlaneIcp.h>
+
+#include "SimTestWorlds.h"
+
+using namespace lodestone::vision;
+
+namespace {
+/** The optical frame (x right, y down, z forward) in MRPT's depth frame (x forward, y left, z up). */
+Eigen::Isometry3d opticalInCamera() {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+    return T;
+}
+
+/** A camera pose in the world (MRPT's depth frame) at `p`, turned by yaw, pitch (down +), roll. */
+Eigen::Isometry3d cameraPose(const Eigen::Vector3d& p, double yaw, double pitch = 0, double roll = 0) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
+                  Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+                  Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
+                     .toRotationMatrix();
+    T.translation() = p;
+    return T;
+}
+
+RgbdFrame render(const lodestone::sim::World& world, const Eigen::Isometry3d& pose,
+                 std::uint64_t seed) {
+    lodestone::sim::CameraSpec cam;
+    lodestone::sim::RgbdRenderer renderer(world, cam, seed);
+    lodestone::sim::Random rng(seed);
+    cv::Mat3b rgb;
+    cv::Mat_<uint16_t> depth;
+    renderer.render(pose, rng, rgb, depth);
+    RgbdFrame f;
+    f.depth = depthToMetres(depth, 0.001);
+    f.intrinsics = {cam.fx, cam.fy, cam.cx, cam.cy, cam.width, cam.height};
+    return f;
+}
+
+/** The current frame's pose in the reference's optical frame, from their world poses. */
+Eigen::Isometry3d opticalMotion(const Eigen::Isometry3d& ref, const Eigen::Isometry3d& cur) {
+    return (ref * opticalInCamera()).inverse() * (cur * opticalInCamera());
+}
+
+DepthAlignment alignFrames(const lodestone::sim::World& world, const Eigen::Isometry3d& ref,
+                           const Eigen::Isometry3d& cur, const Eigen::Isometry3d& initial) {
+    DepthModel model(1);
+    model.addReference(sampleDepthCloud(render(world, ref, 11), DepthSampling{}),
+                       Eigen::Isometry3d::Identity());
+    return PointToPlaneIcp().align(model, sampleDepthCloud(render(world, cur, 12), DepthSampling{}),
+                                   initial);
+}
+
+double angleOf(const Eigen::Isometry3d& T) { return Eigen::AngleAxisd(T.rotation()).angle(); }
+
+/** The standard deviation the covariance gives along a unit translation direction (optical frame). */
+double translationSigma(const DepthAlignment& a, const Eigen::Vector3d& direction) {
+    return std::sqrt(direction.dot(a.covariance.bottomRightCorner<3, 3>() * direction));
+}
+}  // namespace
+
+TEST(DepthCloud, APlaneGivesItsNormalFacingTheCamera) {
+    RgbdFrame f;
+    f.intrinsics = {100, 100, 79.5, 59.5, 160, 120};
+    f.depth = cv::Mat(120, 160, CV_32FC1);
+    // The plane z = 2 + 0.5 x, seen from the origin: depth along each pixel's ray.
+    for (int v = 0; v < 120; ++v) {
+        for (int u = 0; u < 160; ++u) {
+            const double xr = (u - 79.5) / 100;
+            f.depth.at<float>(v, u) = static_cast<float>(2 / (1 - 0.5 * xr));
+        }
+    }
+    f.depth.at<float>(60, 80) = 0;  // a hole: its neighbours lose their normal
+    const DepthCloud c = sampleDepthCloud(f, DepthSampling{40, 0.002, 1.425e-3, 5.0, 0.05});
+    ASSERT_GT(c.size(), 800u);
+    const Eigen::Vector3f expected = Eigen::Vector3f(0.5f, 0, -1).normalized();
+    for (std::size_t i = 0; i < c.size(); ++i) {
+        const auto k = static_cast<Eigen::Index>(i);
+        EXPECT_NEAR(c.normals.col(k).dot(expected), 1.0f, 1e-4f) << i;
+        EXPECT_NEAR(c.points(2, k), 2 + 0.5f * c.points(0, k), 1e-4f);
+        EXPECT_NE(c.points(0, k), 0.0f) << "the hole's point is left out";
+    }
+}
+
+TEST(DepthCloud, NoDepthGivesNoPoints) {
+    RgbdFrame f;
+    f.depth = cv::Mat(480, 640, CV_32FC1, cv::Scalar(0));
+    EXPECT_EQ(sampleDepthCloud(f, DepthSampling{}).size(), 0u);
+    f.depth.setTo(std::numeric_limits<float>::quiet_NaN());
+    EXPECT_EQ(sampleDepthCloud(f, DepthSampling{}).size(), 0u);
+}
+
+// A room's corner (two walls and the floor, all plain: no texture at all) pins every direction:
+// a known 6-DoF motion comes back to 1 mm / 0.1 deg from an initial guess of no motion.
+TEST(PointToPlaneIcp, RecoversAKnownMotionInARoomsCorner) {
+    const auto sc = lodestone::test::boxScenario("plain");
+    const lodestone::sim::World world(sc, 3);
+    const Eigen::Isometry3d ref = cameraPose({6.6, 1.6, 1.2}, 0.75, 0.4);
+    const Eigen::Isometry3d cur = cameraPose({6.66, 1.57, 1.215}, 0.79, 0.38, 0.02);
+    const Eigen::Isometry3d truth = opticalMotion(ref, cur);
+    const DepthAlignment a = alignFrames(world, ref, cur, Eigen::Isometry3d::Identity());
+    ASSERT_TRUE(a.success) << toString(a.failure) << ", " << a.correspondences << " pairs";
+    EXPECT_EQ(a.observed, 6);
+    const Eigen::Isometry3d err = truth.inverse() * a.T_ref_cur;
+    EXPECT_LT(err.translation().norm(), 0.001) << err.translation().transpose();
+    EXPECT_LT(angleOf(err), 0.1 * M_PI / 180);
+    // The covariance is honest about it: every direction known to well under a centimetre.
+    for (int k = 0; k < 6; ++k) EXPECT_LT(std::sqrt(a.covariance(k, k)), 0.005) << k;
+}
+
+// Looking along a plain corridor (walls, floor, ceiling, no end within range): the depth pins the
+// rotation and the move across, and says the move along was not measured - it keeps the
+// initial guess there with a loose covariance, never a confident wrong translation.
+TEST(PointToPlaneIcp, InAPlainCorridorTheMoveAlongIsLeftUnobserved) {
+    lodestone::sim::Scenario sc = lodestone::test::boxScenario("plain");
+    sc.walls.clear();
+    for (const double y : {-1.0, 1.0}) {
+        lodestone::sim::WallSpec w;
+        w.name = "side";
+        w.surface = lodestone::sim::SurfaceSpec::parse("plain");
+        w.points = {{-2, y}, {60, y}};
+        sc.walls.push_back(w);
+    }
+    sc.wallHeight = 2.5;
+    const lodestone::sim::World world(sc, 3);
+    const Eigen::Isometry3d ref = cameraPose({5.0, 0.1, 1.2}, 0.0, 0.1);
+    const Eigen::Isometry3d cur = cameraPose({5.3, 0.13, 1.21}, 0.03, 0.11);
+    const Eigen::Isometry3d truth = opticalMotion(ref, cur);
+    // The initial guess: 10 cm short along, 2 cm off across, 1 deg off in yaw.
+    Eigen::Isometry3d initial = truth;
+    initial.translation() += Eigen::Vector3d(0.02, 0, -0.10);
+    initial.linear() = initial.linear() * Eigen::AngleAxisd(0.017, Eigen::Vector3d::UnitY());
+    const DepthAlignment a = alignFrames(world, ref, cur, initial);
+    ASSERT_TRUE(a.success) << toString(a.failure);
+    EXPECT_EQ(a.observed, 5);
+    // Along the corridor is the reference's optical z (it looks almost straight down it).
+    const Eigen::Vector3d along = opticalMotion(ref, cameraPose({6, 0.1, 1.2}, 0, 0.1))
+                                      .translation()
+                                      .normalized();
+    const Eigen::Vector3d err = a.T_ref_cur.translation() - truth.translation();
+    EXPECT_GT(translationSigma(a, along), 0.5) << "the move along was not measured";
+    EXPECT_NEAR(a.T_ref_cur.translation().dot(along), initial.translation().dot(along), 0.01)
+        << "it stays the initial guess's";
+    const Eigen::Vector3d across = along.cross(Eigen::Vector3d::UnitY()).normalized();
+    EXPECT_LT(std::abs(err.dot(across)), 0.003) << "the move across is measured";
+    EXPECT_LT(translationSigma(a, across), 0.005);
+    EXPECT_LT(angleOf(truth.inverse() * a.T_ref_cur), 0.2 * M_PI / 180);
+}
+
+// A plain wall filling the view fixes the distance and two tilts, not the rest: no motion.
+TEST(PointToPlaneIcp, APlainWallAloneGivesNoMotion) {
+    const auto sc = lodestone::test::boxScenario("plain");
+    const lodestone::sim::World world(sc, 3);
+    const Eigen::Isometry3d ref = cameraPose({7.0, 0.0, 1.35}, 0.0);
+    const Eigen::Isometry3d cur = cameraPose({7.02, 0.05, 1.35}, 0.02);
+    const DepthAlignment a = alignFrames(world, ref, cur, Eigen::Isometry3d::Identity());
+    EXPECT_FALSE(a.success);
+    EXPECT_EQ(a.failure, DepthAlignFailure::Unobservable);
+    EXPECT_EQ(a.observed, 3);
+}
+
+TEST(PointToPlaneIcp, NoDepthGivesNoMotion) {
+    const auto sc = lodestone::test::boxScenario("plain");
+    const lodestone::sim::World world(sc, 3);
+    DepthModel model(2);
+    model.addReference(sampleDepthCloud(render(world, cameraPose({5.5, 1.0, 1.2}, 0.6, 0.15), 1),
+                                        DepthSampling{}),
+                       Eigen::Isometry3d::Identity());
+    const DepthAlignment a = PointToPlaneIcp().align(model, DepthCloud{}, Eigen::Isometry3d::Identity());
+    EXPECT_FALSE(a.success);
+    EXPECT_EQ(a.failure, DepthAlignFailure::FewPoints);
+    DepthModel empty;
+    EXPECT_EQ(PointToPlaneIcp()
+                  .align(empty, model.size() > 0 ? DepthCloud{} : DepthCloud{}, Eigen::Isometry3d::Identity())
+                  .failure,
+              DepthAlignFailure::FewPoints);
+}
+
+// The model keeps the keyframes before the reference, moved into its frame: a frame that turned
+// back towards what only an older keyframe saw still finds its surfaces.
+TEST(DepthModel, OlderKeyframesAreMovedIntoTheReferenceFrame) {
+    DepthCloud one;
+    one.points = Eigen::Matrix3Xf::Zero(3, 1);
+    one.points.col(0) << 0, 0, 2;
+    one.normals = Eigen::Matrix3Xf::Zero(3, 1);
+    one.normals.col(0) << 0, 0, -1;
+    one.sigma = Eigen::VectorXf::Constant(1, 0.01f);
+    one.normalVariance = Eigen::VectorXf::Constant(1, 1e-4f);
+    DepthModel model(2);
+    model.addReference(one, Eigen::Isometry3d::Identity());
+    // The next reference is 0.5 m forward of the first: the old point is 1.5 m ahead of it.
+    Eigen::Isometry3d T_new_old = Eigen::Isometry3d::Identity();
+    T_new_old.translation() << 0, 0, -0.5;
+    DepthCloud two = one;
+    two.points.col(0) << 1, 0, 2;
+    model.addReference(two, T_new_old);
+    DepthModel::Nearest nn;
+    ASSERT_TRUE(model.nearest({0, 0, 1.5f}, 0.01f, nn));
+    EXPECT_NEAR(nn.point.z(), 1.5f, 1e-6f);
+    ASSERT_TRUE(model.nearest({1, 0, 2}, 0.01f, nn));
+    // A third reference drops the first keyframe.
+    model.addReference(two, Eigen::Isometry3d::Identity());
+    EXPECT_EQ(model.keyframeCount(), 2);
+    EXPECT_FALSE(model.nearest({0, 0, 1.5f}, 0.01f, nn));
+}
