@@ -233,10 +233,12 @@ VoResult RgbdVisualOdometry::processFrame(const RgbdFrame& frame, const MotionPr
         return r;
     };
     // T_ref_new: the new reference's pose in the old one (identity when starting afresh).
-    const auto becomeReference = [&](const Eigen::Isometry3d& T_ref_new) {
+    const auto becomeReference = [&](const Eigen::Isometry3d& T_ref_new, bool pinned) {
         reference_ = std::move(current);
         reference_time_ = frame.timestamp;
-        if (params_.depthAlignment) depth_model_.addReference(std::move(cloud), T_ref_new.inverse());
+        if (params_.depthAlignment) {
+            depth_model_.addReference(std::move(cloud), T_ref_new.inverse(), pinned);
+        }
     };
 
     if (state_ == VoState::Lost || !reference_) {
@@ -246,7 +248,7 @@ VoResult RgbdVisualOdometry::processFrame(const RgbdFrame& frame, const MotionPr
             return fail(VoFailure::FewFeatures);
         }
         depth_model_.clear();
-        becomeReference(Eigen::Isometry3d::Identity());
+        becomeReference(Eigen::Isometry3d::Identity(), true);
         last_in_ref_.setIdentity();
         last_time_ = frame.timestamp;
         last_step_dt_ = 0;
@@ -297,7 +299,11 @@ VoResult RgbdVisualOdometry::processFrame(const RgbdFrame& frame, const MotionPr
         r.depthObserved = d.observed;
         est.transform = d.T_ref_cur;
         est.covariance = d.covariance;
-        if (!d.success || !plausible(est)) return fail(r.failure);
+        ++totals_.depthObserved[static_cast<std::size_t>(std::clamp(d.observed, 0, 6))];
+        if (!d.success || !plausible(est)) {
+            ++totals_.depthFailures[static_cast<std::size_t>(d.failure)];
+            return fail(r.failure);
+        }
         r.depthAligned = true;
     }
     const double angle = Eigen::AngleAxisd(est.transform.rotation()).angle();
@@ -310,7 +316,7 @@ VoResult RgbdVisualOdometry::processFrame(const RgbdFrame& frame, const MotionPr
     const bool keyframe = est.transform.translation().norm() >= params_.keyframeDistance ||
                           angle >= params_.keyframeAngle;
     trackedAt(est.transform, frame.timestamp, keyframe);
-    if (keyframe) becomeReference(est.transform);
+    if (keyframe) becomeReference(est.transform, !r.depthAligned || r.depthObserved == 6);
     return r;
 }
 

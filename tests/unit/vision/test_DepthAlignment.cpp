@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 #include <lodestone/sim/RgbdRenderer.h>
+#include <lodestone/vision/RgbdVisualOdometry.h>
 #include <lodestone/vision/depth/PointToPlaneIcp.h>
+#include <mrpt/config/CConfigFileMemory.h>
 
 #include "SimTestWorlds.h"
 
@@ -204,4 +206,46 @@ TEST(DepthModel, OlderKeyframesAreMovedIntoTheReferenceFrame) {
     model.addReference(two, Eigen::Isometry3d::Identity());
     EXPECT_EQ(model.keyframeCount(), 2);
     EXPECT_FALSE(model.nearest({0, 0, 1.5f}, 0.01f, nn));
+}
+
+// A reference reached by a motion that left directions loose cannot place the keyframes before
+// it: they are dropped rather than kept at a guessed place.
+TEST(DepthModel, ALooseMotionDropsTheOlderKeyframes) {
+    DepthCloud one;
+    one.points = Eigen::Matrix3Xf::Zero(3, 1);
+    one.points.col(0) << 0, 0, 2;
+    one.normals = Eigen::Matrix3Xf::Zero(3, 1);
+    one.normals.col(0) << 0, 0, -1;
+    one.sigma = Eigen::VectorXf::Constant(1, 0.01f);
+    one.normalVariance = Eigen::VectorXf::Constant(1, 1e-4f);
+    DepthModel model(3);
+    model.addReference(one, Eigen::Isometry3d::Identity());
+    model.addReference(one, Eigen::Isometry3d::Identity());
+    EXPECT_EQ(model.keyframeCount(), 2);
+    model.addReference(one, Eigen::Isometry3d::Identity(), false);
+    EXPECT_EQ(model.keyframeCount(), 1);
+}
+
+TEST(RgbdVisualOdometryParams, DepthKeysAreReadAndChecked) {
+    mrpt::config::CConfigFileMemory ini(
+        "[vo]\ndepth_alignment = true\ndepth_min_observed = 4\ndepth_model_keyframes = 2\n"
+        "depth_grid_columns = 40\n");
+    RgbdVisualOdometry::Params p;
+    p.loadFromConfigFile(ini, "vo");
+    EXPECT_TRUE(p.depthAlignment);
+    EXPECT_EQ(p.depthIcp.minObserved, 4);
+    EXPECT_EQ(p.depthModelKeyframes, 2);
+    EXPECT_EQ(p.depthSampling.columns, 40);
+    for (const char* bad : {"[vo]\ndepth_min_observed = 7\n", "[vo]\ndepth_model_keyframes = 0\n",
+                            "[vo]\ndepth_grid_columns = 2\n", "[vo]\ndepth_aligment = true\n"}) {
+        mrpt::config::CConfigFileMemory b(bad);
+        RgbdVisualOdometry::Params q;
+        try {
+            q.loadFromConfigFile(b, "vo");
+            ADD_FAILURE() << "accepted: " << bad;
+        } catch (const std::exception& e) {
+            const std::string key = std::string(bad).substr(5, std::string(bad).find(' ') - 5);
+            EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+        }
+    }
 }

@@ -18,6 +18,16 @@ inline JsonObject voTimingJson(const vision::VoTotals& t) {
         o.set("depth", t.ms.depth / n)
             .set("depth_tried", t.depthTried)
             .set("depth_aligned", t.depthAligned);
+        JsonObject why;
+        for (int f = 0; f < 4; ++f) {
+            const auto reason = static_cast<vision::DepthAlignFailure>(f);
+            why.set(reason == vision::DepthAlignFailure::None ? "implausible motion" : toString(reason),
+                    t.depthFailures[static_cast<std::size_t>(f)]);
+        }
+        o.set("depth_failed_by_reason", why);
+        std::vector<double> observed;
+        for (const std::size_t n : t.depthObserved) observed.push_back(static_cast<double>(n));
+        o.set("depth_tried_by_directions_pinned", observed);
     }
     return o;
 }

@@ -30,7 +30,8 @@ void DepthModel::clear() {
     index_.reset();
 }
 
-void DepthModel::addReference(DepthCloud cloud, const Eigen::Isometry3d& T_new_old) {
+void DepthModel::addReference(DepthCloud cloud, const Eigen::Isometry3d& T_new_old, bool pinned) {
+    if (!pinned) keyframes_.clear();
     for (Keyframe& k : keyframes_) k.T_ref_kf = T_new_old * k.T_ref_kf;
     keyframes_.push_back({std::move(cloud), Eigen::Isometry3d::Identity()});
     while (static_cast<int>(keyframes_.size()) > max_keyframes_) keyframes_.pop_front();

@@ -8,6 +8,7 @@
 #include <lodestone/vision/depth/PointToPlaneIcp.h>
 #include <mrpt/config/CLoadableOptions.h>
 
+#include <array>
 #include <cmath>
 #include <memory>
 #include <optional>
@@ -43,6 +44,10 @@ struct VoTotals {
     double guidedPairsCompared{0}, guidedPairsAll{0};
     std::size_t depthAligned{0};  ///< frames whose features failed and whose depth aligned
     std::size_t depthTried{0};    ///< frames whose features failed and whose depth was tried
+    /** Why depth alignment failed, by DepthAlignFailure (None: it aligned, implausibly). */
+    std::array<std::size_t, 4> depthFailures{};
+    /** Frames tried, by the number of directions the depth pinned (0..6). */
+    std::array<std::size_t, 7> depthObserved{};
 };
 
 /** What one frame gave. */
@@ -96,7 +101,7 @@ class RgbdVisualOdometry {
         /** Where the features fail, align the frame's depth with the last keyframes' (point-to-
          * plane ICP from the caller's prior or constant velocity; PointToPlaneIcp). */
         bool depthAlignment{false};
-        int depthModelKeyframes{3};  ///< keyframes in the local model depth aligns with
+        int depthModelKeyframes{1};  ///< keyframes in the local model depth aligns with (1: see docs/results/camera-only.md)
         DepthSampling depthSampling;  ///< columns from `depth_grid_columns`; noise from RANSAC's
         PointToPlaneIcp::Params depthIcp;
 

@@ -22,8 +22,11 @@ class DepthModel {
     void clear();
     /** A new reference keyframe, its cloud in its own optical frame; `T_new_old` is the previous
      * reference's pose in the new one's frame (the inverse of the motion that made the new one).
-     * The oldest keyframe beyond `keyframes` is dropped. */
-    void addReference(DepthCloud cloud, const Eigen::Isometry3d& T_new_old);
+     * The oldest keyframe beyond `keyframes` is dropped. A motion that did not pin every
+     * direction (`pinned` false: depth alignment's loose axes) leaves the older keyframes'
+     * place unknown, and they are dropped: a model misplaced by a guess biases what the next
+     * alignment pins. */
+    void addReference(DepthCloud cloud, const Eigen::Isometry3d& T_new_old, bool pinned = true);
 
     bool empty() const { return keyframes_.empty(); }
     int keyframeCount() const { return static_cast<int>(keyframes_.size()); }
