@@ -87,9 +87,10 @@ int main(int argc, char** argv) {
             const Eigen::AngleAxisd aa(E.rotation());
             Eigen::Matrix<double, 6, 1> e;
             e << aa.angle() * aa.axis(), E.translation();
-            const std::string key = r.depthAligned
-                                        ? "depth, " + std::to_string(r.depthObserved) + " pinned"
-                                        : "ORB features";
+            const std::string key =
+                r.depthAligned  ? "depth, " + std::to_string(r.depthObserved) + " pinned"
+                : r.depthJoined ? "ORB + depth, " + std::to_string(r.depthObserved) + " pinned"
+                                : "ORB features";
             Group& gr = groups[key];
             ++gr.frames;
             gr.sumR2 += e.head<3>().squaredNorm();

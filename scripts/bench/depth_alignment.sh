@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Depth alignment where VO's features fail (issue #30): a simulated scenario recorded to disk
 # twice - carried by hand (--handheld) and on the robot with the camera alone (--camera-only) -
-# and run three ways from rgbd_only.ini: features only (as shipped), with depth alignment
-# accepting a motion that pins 5 of 6 directions (a corridor, a wall and the floor), and one that
-# pins 4. Two tables:
+# and run four ways from rgbd_only.ini: features only (as shipped); depth alignment where the
+# features fail, accepting a motion that pins 5 of 6 directions (a corridor, a wall and the
+# floor) or 4; and the latter with features and depth solved as one where both align. Two tables:
 #   1. every VO step against the truth (bench/bench_depth_alignment.cpp): how it was found, its
 #      translation error (median / RMS), rotation error, the error along the directions its
 #      covariance calls pinned and along the rest, and the NEES per pinned direction (1: honest);
@@ -32,6 +32,7 @@ variant() {  # NAME KEY=VALUE...: rgbd_only.ini with those keys' values replaced
 variant features
 variant depth5 depth_alignment=true depth_min_observed=5
 variant depth4 depth_alignment=true depth_min_observed=4
+variant joined4 depth_alignment=true depth_min_observed=4 depth_with_features=true
 field() { { grep -o "\"$2\": [0-9.e+-]*" "$1" || true; } | head -1 | awk '{print $2}'; }
 gaps() {  # count, seconds, longest of report.json's vo_gap_seconds
     tr -d '\n ' < "$1" | grep -o '"vo_gap_seconds":\[[^]]*\]' | sed 's/.*\[//; s/\]//' |
@@ -46,7 +47,7 @@ for carrier in hand camera; do
         camera) flags=(--camera-only) ;;
     esac
     "$sim" -c "$scenario" -o "$out/$carrier.rawlog" "${flags[@]}" > /dev/null
-    for v in features depth5 depth4; do
+    for v in features depth5 depth4 joined4; do
         "$bench" "$out/$carrier.rawlog" "$out/$carrier.gt.tum" "$out/$v.ini" "$carrier, $v" >> "$steps" 2> /dev/null
         log=$("$slam" -r "$out/$carrier.rawlog" --config "$out/$v.ini" --ground-truth "$out/$carrier.gt.tum" \
             --out "$out/run" --quiet 2>&1 | grep -v "^\[")

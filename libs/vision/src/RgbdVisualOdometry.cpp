@@ -60,6 +60,7 @@ void RgbdVisualOdometry::Params::loadFromConfigFile(const mrpt::config::CConfigF
     guidedGateChi2 = s.getDouble("guided_gate_chi2", guidedGateChi2);
     guidedKeypointSigma = s.getDouble("guided_keypoint_sigma", guidedKeypointSigma);
     depthAlignment = s.getBool("depth_alignment", depthAlignment);
+    depthWithFeatures = s.getBool("depth_with_features", depthWithFeatures);
     depthModelKeyframes = s.getInt("depth_model_keyframes", depthModelKeyframes);
     depthSampling.columns = s.getInt("depth_grid_columns", depthSampling.columns);
     depthSampling.depthNoise = ransac.depthNoise;
@@ -89,6 +90,7 @@ void RgbdVisualOdometry::Params::dumpToTextStream(std::ostream& out) const {
         << "guided_gate_chi2   = " << guidedGateChi2 << "  (2 dof)\n"
         << "guided_keypoint_sigma = " << guidedKeypointSigma << "  [px]\n"
         << "depth_alignment    = " << (depthAlignment ? "true" : "false") << "\n"
+        << "depth_with_features = " << (depthWithFeatures ? "true" : "false") << "\n"
         << "depth_model_keyframes = " << depthModelKeyframes << "\n"
         << "depth_grid_columns = " << depthSampling.columns << "\n"
         << "depth_min_observed = " << depthIcp.minObserved << "  [of 6 directions]\n";
@@ -189,6 +191,7 @@ VoResult RgbdVisualOdometry::process(const RgbdFrame& frame, const MotionPrior* 
     totals_.ms.ransac += r.timing.ransac;
     totals_.ms.depth += r.timing.depth;
     if (r.depthAligned) ++totals_.depthAligned;
+    if (r.depthJoined) ++totals_.depthJoined;
     return r;
 }
 
@@ -305,6 +308,24 @@ VoResult RgbdVisualOdometry::processFrame(const RgbdFrame& frame, const MotionPr
             return fail(r.failure);
         }
         r.depthAligned = true;
+    } else if (params_.depthAlignment && params_.depthWithFeatures) {
+        // Both measured the motion: one solve, the features' covariance as a measurement.
+        const auto td = std::chrono::steady_clock::now();
+        MotionPrior measured;
+        measured.T_ref_cur = est.transform;
+        measured.covariance = est.covariance;
+        const DepthAlignment d = icp_.align(depth_model_, cloud, est.transform, &measured);
+        r.timing.depth += msSince(td);
+        if (d.success) {
+            RigidEstimate joined = est;
+            joined.transform = d.T_ref_cur;
+            joined.covariance = d.covariance;
+            if (plausible(joined)) {
+                est = joined;
+                r.depthJoined = true;
+                r.depthObserved = d.observed;
+            }
+        }
     }
     const double angle = Eigen::AngleAxisd(est.transform.rotation()).angle();
     r.success = true;

@@ -249,3 +249,43 @@ TEST(RgbdVisualOdometryParams, DepthKeysAreReadAndChecked) {
         }
     }
 }
+
+// Features and depth solved as one: in a plain corridor the depth pins the move across and the
+// measured motion (the features') supplies the move along, with its own uncertainty there.
+TEST(PointToPlaneIcp, WithAMeasuredMotionTheCorridorsMoveAlongComesFromIt) {
+    lodestone::sim::Scenario sc = lodestone::test::boxScenario("plain");
+    sc.walls.clear();
+    for (const double y : {-1.0, 1.0}) {
+        lodestone::sim::WallSpec w;
+        w.name = "side";
+        w.surface = lodestone::sim::SurfaceSpec::parse("plain");
+        w.points = {{-2, y}, {60, y}};
+        sc.walls.push_back(w);
+    }
+    const lodestone::sim::World world(sc, 3);
+    const Eigen::Isometry3d ref = cameraPose({5.0, 0.1, 1.2}, 0.0, 0.1);
+    const Eigen::Isometry3d cur = cameraPose({5.3, 0.13, 1.21}, 0.03, 0.11);
+    const Eigen::Isometry3d truth = opticalMotion(ref, cur);
+    const Eigen::Vector3d along =
+        opticalMotion(ref, cameraPose({6, 0.1, 1.2}, 0, 0.1)).translation().normalized();
+    const Eigen::Vector3d across = along.cross(Eigen::Vector3d::UnitY()).normalized();
+    // The measurement: 2 cm off along and 3 cm off across, each with a 5 cm sigma.
+    MotionPrior measured;
+    measured.T_ref_cur = truth;
+    measured.T_ref_cur.translation() += 0.02 * along + 0.03 * across;
+    measured.covariance.setZero();
+    measured.covariance.diagonal() << 1e-4, 1e-4, 1e-4, 25e-4, 25e-4, 25e-4;
+    DepthModel model(1);
+    model.addReference(sampleDepthCloud(render(world, ref, 11), DepthSampling{}),
+                       Eigen::Isometry3d::Identity());
+    const DepthAlignment a =
+        PointToPlaneIcp().align(model, sampleDepthCloud(render(world, cur, 12), DepthSampling{}),
+                                measured.T_ref_cur, &measured);
+    ASSERT_TRUE(a.success);
+    EXPECT_EQ(a.observed, 5);
+    const Eigen::Vector3d err = a.T_ref_cur.translation() - truth.translation();
+    EXPECT_LT(std::abs(err.dot(across)), 0.003) << "the depth corrected the move across";
+    EXPECT_NEAR(err.dot(along), 0.02, 0.005) << "the move along is the measurement's";
+    EXPECT_NEAR(translationSigma(a, along), 0.05, 0.01);
+    EXPECT_LT(translationSigma(a, across), 0.005);
+}

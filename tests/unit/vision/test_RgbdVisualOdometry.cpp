@@ -212,3 +212,25 @@ TEST(RgbdVisualOdometry, WhereFeaturesFailTheDepthIsAligned) {
     EXPECT_NEAR(Eigen::AngleAxisd(d.T_ref_cur.rotation()).angle(), 0.02, 0.003);
     EXPECT_EQ(withDepth.totals().depthAligned, 1u);
 }
+
+// Where the features align as well, features and depth are solved as one: the motion stays
+// right and the frame says so.
+TEST(RgbdVisualOdometry, FeaturesAndDepthSolvedAsOne) {
+    const auto sc = lodestone::test::boxScenario("posters");
+    const lodestone::sim::World world(sc, 3);
+    lodestone::sim::CameraSpec cam;
+    RgbdVisualOdometry::Params p;
+    p.depthAlignment = true;
+    p.depthWithFeatures = true;
+    RgbdVisualOdometry vo(p);
+    vo.process(simulatedFrame(world, cam, 5.5, 0.5));
+    const auto r = vo.process(simulatedFrame(world, cam, 5.56, 0.52));
+    ASSERT_TRUE(r.success) << toString(r.failure);
+    EXPECT_TRUE(r.depthJoined);
+    EXPECT_FALSE(r.depthAligned);
+    const double yaw = 0.5;
+    const Eigen::Vector3d moveOptical(0.06 * std::sin(yaw), 0, 0.06 * std::cos(yaw));
+    EXPECT_LT((r.T_ref_cur.translation() - moveOptical).norm(), 0.01);
+    EXPECT_NEAR(Eigen::AngleAxisd(r.T_ref_cur.rotation()).angle(), 0.02, 0.003);
+    EXPECT_EQ(vo.totals().depthJoined, 1u);
+}

@@ -17,7 +17,8 @@ inline JsonObject voTimingJson(const vision::VoTotals& t) {
     if (t.ms.depth > 0) {
         o.set("depth", t.ms.depth / n)
             .set("depth_tried", t.depthTried)
-            .set("depth_aligned", t.depthAligned);
+            .set("depth_aligned", t.depthAligned)
+            .set("depth_joined", t.depthJoined);
         JsonObject why;
         for (int f = 0; f < 4; ++f) {
             const auto reason = static_cast<vision::DepthAlignFailure>(f);

@@ -104,10 +104,20 @@ Geometry geometryOf(const Pass& pass, double noiseChi2, double minStructure) {
     geo.Ainv.bottomRightCorner<3, 3>().setIdentity();
     return geo;
 }
+
+/** log(T T0^-1) in leftUpdate's coordinates: T = exp(d) T0. */
+Vector6d leftDifference(const Eigen::Isometry3d& T, const Eigen::Isometry3d& T0) {
+    const Eigen::Isometry3d D = T * T0.inverse();
+    const Eigen::AngleAxisd aa(D.rotation());
+    Vector6d d;
+    d << aa.angle() * aa.axis(), D.translation();
+    return d;
+}
 }  // namespace
 
 DepthAlignment PointToPlaneIcp::align(const DepthModel& model, const DepthCloud& current,
-                                      const Eigen::Isometry3d& initial) const {
+                                      const Eigen::Isometry3d& initial,
+                                      const MotionPrior* measured) const {
     DepthAlignment a;
     a.points = current.size();
     a.T_ref_cur = initial;
@@ -151,6 +161,12 @@ DepthAlignment PointToPlaneIcp::align(const DepthModel& model, const DepthCloud&
     Pass e;
     Geometry geo;
     Eigen::MatrixXd reducedInverse;  // (U_o^T H_s U_o)^-1 of the last pass
+    Matrix6d jointInverse;           // with a measured motion: (H_o + Lambda_s)^-1
+    Matrix6d measuredInformation = Matrix6d::Zero();
+    if (measured) {
+        measuredInformation = measured->covariance.ldlt().solve(Matrix6d::Identity());
+        measuredInformation = 0.5 * (measuredInformation + measuredInformation.transpose());
+    }
     for (int it = 0; it < params_.iterations; ++it) {
         const double gate = std::max(params_.minDistance, params_.maxDistance * std::pow(0.6, it));
         e = pass(T, gate);
@@ -162,9 +178,20 @@ DepthAlignment PointToPlaneIcp::align(const DepthModel& model, const DepthCloud&
         const Matrix6d Hs = geo.Ainv.transpose() * e.H * geo.Ainv / varianceFactor;
         const Vector6d gs = geo.Ainv.transpose() * e.g / varianceFactor;
         const auto& U = geo.observed;
-        if (U.cols() == 0) break;
-        reducedInverse = (U.transpose() * Hs * U).inverse();
-        const Vector6d dx = geo.Ainv * (-U * (reducedInverse * (U.transpose() * gs)));
+        Vector6d dx;
+        if (measured) {
+            // The depth's information in the directions it pins, the measurement's in all.
+            const Matrix6d P = U * U.transpose();
+            const Matrix6d Ls = geo.Ainv.transpose() * measuredInformation * geo.Ainv;
+            const Matrix6d Hj = P * Hs * P + Ls;
+            jointInverse = Hj.ldlt().solve(Matrix6d::Identity());
+            const Vector6d ds = geo.A * leftDifference(T, measured->T_ref_cur);
+            dx = geo.Ainv * (-jointInverse * (P * gs + Ls * ds));
+        } else {
+            if (U.cols() == 0) break;
+            reducedInverse = (U.transpose() * Hs * U).inverse();
+            dx = geo.Ainv * (-U * (reducedInverse * (U.transpose() * gs)));
+        }
         T = leftUpdate(dx, T);
         if (gate <= params_.minDistance && dx.head<3>().norm() < 1e-6 && dx.tail<3>().norm() < 1e-6) {
             break;
@@ -178,11 +205,16 @@ DepthAlignment PointToPlaneIcp::align(const DepthModel& model, const DepthCloud&
         return a;
     }
     a.observed = static_cast<int>(geo.observed.cols());
+    a.T_ref_cur = T;
+    if (measured) {
+        a.covariance = geo.Ainv * jointInverse * geo.Ainv.transpose();
+        a.success = true;
+        return a;
+    }
     Matrix6d Cs = geo.unobserved * geo.unobserved.transpose() *
                   (params_.unobservedSigma * params_.unobservedSigma);
     if (a.observed > 0) Cs += geo.observed * reducedInverse * geo.observed.transpose();
     a.covariance = geo.Ainv * Cs * geo.Ainv.transpose();
-    a.T_ref_cur = T;
     if (a.observed < params_.minObserved) {
         a.failure = DepthAlignFailure::Unobservable;
         return a;

@@ -44,6 +44,7 @@ struct VoTotals {
     double guidedPairsCompared{0}, guidedPairsAll{0};
     std::size_t depthAligned{0};  ///< frames whose features failed and whose depth aligned
     std::size_t depthTried{0};    ///< frames whose features failed and whose depth was tried
+    std::size_t depthJoined{0};   ///< frames whose features and depth were solved as one
     /** Why depth alignment failed, by DepthAlignFailure (None: it aligned, implausibly). */
     std::array<std::size_t, 4> depthFailures{};
     /** Frames tried, by the number of directions the depth pinned (0..6). */
@@ -67,6 +68,8 @@ struct VoResult {
      * the depth did not pin, `depthObserved` < 6); `failure` says why the features failed. */
     bool depthAligned{false};
     int depthObserved{0};
+    /** The features aligned and the depth was solved with them (`depthWithFeatures`). */
+    bool depthJoined{false};
     /** This frame's features (optical frame), for whoever keeps keyframes (the SLAM node
      * decider, loop closers). */
     std::shared_ptr<const FrameFeatures> frameFeatures;
@@ -101,6 +104,9 @@ class RgbdVisualOdometry {
         /** Where the features fail, align the frame's depth with the last keyframes' (point-to-
          * plane ICP from the caller's prior or constant velocity; PointToPlaneIcp). */
         bool depthAlignment{false};
+        /** With depth alignment, also where the features aligned: both solved as one (the
+         * features' motion and covariance as a measurement in the depth's Gauss-Newton). */
+        bool depthWithFeatures{false};
         int depthModelKeyframes{1};  ///< keyframes in the local model depth aligns with (1: see docs/results/camera-only.md)
         DepthSampling depthSampling;  ///< columns from `depth_grid_columns`; noise from RANSAC's
         PointToPlaneIcp::Params depthIcp;

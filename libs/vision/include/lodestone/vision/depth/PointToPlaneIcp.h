@@ -1,5 +1,6 @@
 #pragma once
 
+#include <lodestone/vision/GuidedMatcher.h>
 #include <lodestone/vision/depth/DepthModel.h>
 
 namespace lodestone::vision {
@@ -60,9 +61,13 @@ class PointToPlaneIcp {
     explicit PointToPlaneIcp(const Params& params) : params_(params) {}
 
     /** Aligns `current` (its own optical frame) with `model` (the reference's), starting from
-     * `initial`. */
+     * `initial`. With a `measured` motion (the features' alignment of the same two frames, its
+     * covariance), the two are solved as one: the depth's information where it pins the
+     * motion and the measurement's everywhere; every direction is then known, and
+     * `minObserved` does not apply. */
     DepthAlignment align(const DepthModel& model, const DepthCloud& current,
-                         const Eigen::Isometry3d& initial) const;
+                         const Eigen::Isometry3d& initial,
+                         const MotionPrior* measured = nullptr) const;
     const Params& params() const { return params_; }
 
   private:
