@@ -7,7 +7,9 @@
 #   1. every VO step against the truth (bench/bench_depth_alignment.cpp): how it was found, its
 #      translation error (median / RMS), rotation error, the error along the directions its
 #      covariance calls pinned and along the rest, and the NEES per pinned direction (1: honest);
-#   2. the SLAM run: ATE, VO gaps (count, seconds, longest), segments, real-time factor.
+#   2. the SLAM run: ATE; the ATE of each VO segment aligned on its own (nodes.csv's segment,
+#      lodestone-eval on each; pooled RMS): the odometry's own accuracy, apart from where the
+#      segments were placed; VO gaps (count, seconds, longest), segments, real-time factor.
 # Usage: scripts/bench/depth_alignment.sh [SCENARIO.ini]   (default paper_loop_qvga.ini; a few
 #        minutes; paper_loop.ini is 640x480 at 30 Hz and takes about half an hour)
 set -euo pipefail
@@ -34,6 +36,25 @@ variant depth5 depth_alignment=true depth_min_observed=5
 variant depth4 depth_alignment=true depth_min_observed=4
 variant joined4 depth_alignment=true depth_min_observed=4 depth_with_features=true
 field() { { grep -o "\"$2\": [0-9.e+-]*" "$1" || true; } | head -1 | awk '{print $2}'; }
+segmentAte() {  # RUN_DIR GT: every VO segment's nodes aligned on their own, pooled RMS [m]
+    local dir=$1 gt=$2 sum=0 n=0
+    awk -F, -v d="$dir" 'NR == FNR {if (FNR > 1) seg[$2] = $3; next}
+        /^#/ {next} {split($0, f, " "); if (f[1] in seg) print > (d "/segment_" seg[f[1]] ".tum")}' \
+        "$dir/nodes.csv" "$dir/trajectory.tum"
+    for f in "$dir"/segment_*.tum; do
+        [ -f "$f" ] || continue
+        local k
+        k=$(wc -l < "$f")
+        [ "$k" -ge 10 ] || continue
+        local rmse
+        rmse=$("$root/build/apps/lodestone-eval/lodestone-eval" "$f" "$gt" 2> /dev/null |
+            grep -o "ATE  RMSE [0-9.]*" | awk '{print $3}')
+        [ -n "$rmse" ] || continue
+        sum=$(awk -v s="$sum" -v k="$k" -v r="$rmse" 'BEGIN {print s + k * r * r}')
+        n=$((n + k))
+    done
+    awk -v s="$sum" -v n="$n" 'BEGIN {if (n > 0) printf "%.3f", sqrt(s / n); else printf "-"}'
+}
 gaps() {  # count, seconds, longest of report.json's vo_gap_seconds
     tr -d '\n ' < "$1" | grep -o '"vo_gap_seconds":\[[^]]*\]' | sed 's/.*\[//; s/\]//' |
         awk -F, '{n = 0; s = 0; m = 0; for (i = 1; i <= NF; ++i) if ($i != "") {n++; s += $i; if ($i > m) m = $i}
@@ -53,7 +74,7 @@ for carrier in hand camera; do
             --out "$out/run" --quiet 2>&1 | grep -v "^\[")
         ate=$(echo "$log" | grep -o "ATE RMSE [0-9.]*" | awk '{print $3}')
         rt=$(echo "$log" | grep -o "([0-9.]*x real time)" | tr -d '()' | awk '{print $1}')
-        echo "| $carrier | $v | $ate | $(gaps "$out/run/report.json") | $(field "$out/run/report.json" segments) | $rt |" >> "$runs"
+        echo "| $carrier | $v | $ate | $(segmentAte "$out/run" "$out/$carrier.gt.tum") | $(gaps "$out/run/report.json") | $(field "$out/run/report.json" segments) | $rt |" >> "$runs"
         rm -rf "$out/run"
     done
 done
@@ -65,6 +86,6 @@ cat "$steps"
 echo
 echo "#### SLAM (lodestone-slam, rgbd_only.ini and the variants)"
 echo
-echo "| carrier | VO | ATE [m] | VO gaps | gap seconds | longest gap [s] | segments | real-time factor |"
-echo "|---|---|---|---|---|---|---|---|"
+echo "| carrier | VO | ATE [m] | ATE of each VO segment on its own, pooled [m] | VO gaps | gap seconds | longest gap [s] | segments | real-time factor |"
+echo "|---|---|---|---|---|---|---|---|---|"
 cat "$runs"
