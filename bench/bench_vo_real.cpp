@@ -56,18 +56,24 @@ int main(int argc, char** argv) {
         std::cerr << "bench_vo_real: real data absent: " << dir << "\n";
         return 1;
     }
-    // Accuracy.
-    for (const int other : {1, 2}) {
-        double unused = 0;
-        RgbdVisualOdometry vo;
-        vo.process(load(dir, 0, unused));
-        const auto r = vo.process(load(dir, other, unused));
-        const Eigen::Isometry3d err =
-            (pose(dir, 0).inverse() * pose(dir, other)).inverse() * r.T_ref_cur;
-        std::printf(
-            "| accuracy | 0 -> %d | %s | %zu inliers of %zu matches | %.2f cm | %.3f deg |\n",
-            other, r.success ? "tracked" : toString(r.failure), r.inliers, r.matches,
-            100 * err.translation().norm(), Eigen::AngleAxisd(err.rotation()).angle() * 180 / M_PI);
+    // Accuracy: features alone, then features and depth solved as one.
+    for (const bool depth : {false, true}) {
+        for (const int other : {1, 2}) {
+            double unused = 0;
+            RgbdVisualOdometry::Params params;
+            params.depthAlignment = params.depthWithFeatures = depth;
+            RgbdVisualOdometry vo(params);
+            vo.process(load(dir, 0, unused));
+            const auto r = vo.process(load(dir, other, unused));
+            const Eigen::Isometry3d err =
+                (pose(dir, 0).inverse() * pose(dir, other)).inverse() * r.T_ref_cur;
+            std::printf(
+                "| accuracy%s | 0 -> %d | %s | %zu inliers of %zu matches | %.2f cm | %.3f deg |\n",
+                depth ? " (features + depth)" : "", other,
+                r.success ? "tracked" : toString(r.failure), r.inliers, r.matches,
+                100 * err.translation().norm(),
+                Eigen::AngleAxisd(err.rotation()).angle() * 180 / M_PI);
+        }
     }
     // Time: the five frames in a loop, as a sequence.
     const int frames[] = {0, 1, 2, 0, 1};

@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Depth alignment where VO's features fail (issue #30): a simulated scenario recorded to disk
 # twice - carried by hand (--handheld) and on the robot with the camera alone (--camera-only) -
-# and run four ways from rgbd_only.ini: features only (as shipped); depth alignment where the
-# features fail, accepting a motion that pins 5 of 6 directions (a corridor, a wall and the
-# floor) or 4; and the latter with features and depth solved as one where both align. Two tables:
+# and run five ways from rgbd_only.ini: features only; depth alignment where the features fail,
+# accepting a motion that pins 5 of 6 directions (a corridor, a wall and the floor) or 4; and
+# both with features and depth solved as one where both align (joined5: as shipped). Two tables:
 #   1. every VO step against the truth (bench/bench_depth_alignment.cpp): how it was found, its
 #      translation error (median / RMS), rotation error, the error along the directions its
 #      covariance calls pinned and along the rest, and the NEES per pinned direction (1: honest);
@@ -31,10 +31,11 @@ variant() {  # NAME KEY=VALUE...: rgbd_only.ini with those keys' values replaced
         sed -i "s|^${kv%%=*} *=[^;]*|${kv%%=*} = ${kv#*=} |" "$out/$name.ini"
     done
 }
-variant features
-variant depth5 depth_alignment=true depth_min_observed=5
-variant depth4 depth_alignment=true depth_min_observed=4
-variant joined4 depth_alignment=true depth_min_observed=4 depth_with_features=true
+variant features depth_alignment=false
+variant depth5 depth_alignment=true depth_with_features=false depth_min_observed=5
+variant depth4 depth_alignment=true depth_with_features=false depth_min_observed=4
+variant joined5 depth_alignment=true depth_with_features=true depth_min_observed=5
+variant joined4 depth_alignment=true depth_with_features=true depth_min_observed=4
 field() { { grep -o "\"$2\": [0-9.e+-]*" "$1" || true; } | head -1 | awk '{print $2}'; }
 segmentAte() {  # RUN_DIR GT: every VO segment's nodes aligned on their own, pooled RMS [m]
     local dir=$1 gt=$2 sum=0 n=0
@@ -68,7 +69,7 @@ for carrier in hand camera; do
         camera) flags=(--camera-only) ;;
     esac
     "$sim" -c "$scenario" -o "$out/$carrier.rawlog" "${flags[@]}" > /dev/null
-    for v in features depth5 depth4 joined4; do
+    for v in features depth5 depth4 joined5 joined4; do
         "$bench" "$out/$carrier.rawlog" "$out/$carrier.gt.tum" "$out/$v.ini" "$carrier, $v" >> "$steps" 2> /dev/null
         log=$("$slam" -r "$out/$carrier.rawlog" --config "$out/$v.ini" --ground-truth "$out/$carrier.gt.tum" \
             --out "$out/run" --quiet 2>&1 | grep -v "^\[")
