@@ -3,6 +3,7 @@
 #include <lodestone/eval/ClosureFunnel.h>
 #include <EvalApp.h>
 #include <lodestone/eval/RelocationEval.h>
+#include <lodestone/eval/SegmentEval.h>
 #include <lodestone/eval/TrajectoryPlot.h>
 #include <lodestone/outputs/ClosureTable.h>
 #include <lodestone/outputs/RunFiles.h>
@@ -72,6 +73,28 @@ int runClosureEval(const std::string& dir, std::string truthPath, double maxDt, 
     return 0;
 }
 
+int runSegmentEval(const std::string& dir, std::string truthPath, double maxDt, std::ostream& out,
+                   std::ostream& err) {
+    try {
+        if (truthPath.empty()) truthPath = pathIn(dir, RunFile::GroundTruth);
+        const auto nodes = outputs::readNodeTable(pathIn(dir, RunFile::Nodes));
+        const auto trajectory = io::readTumTrajectory(pathIn(dir, RunFile::Trajectory));
+        const auto truth = io::readTumTrajectory(truthPath);
+        auto evaluation = evaluateSegments(nodes, trajectory, truth, maxDt);
+        if (evaluation.whole.pairs < 3) {
+            throw std::runtime_error(truthPath + ": fewer than 3 poses of " +
+                                     pathIn(dir, RunFile::Trajectory) + " match it in time");
+        }
+        const std::string report = pathIn(dir, RunFile::Report);
+        if (std::ifstream(report)) evaluation.gapsReported = readVoGaps(report, evaluation.gapSeconds);
+        out << formatSegmentEvaluation(evaluation);
+    } catch (const std::exception& e) {
+        err << "lodestone-eval: error: " << e.what() << "\n";
+        return 1;
+    }
+    return 0;
+}
+
 }  // namespace
 
 int runEvalApp(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
@@ -83,13 +106,16 @@ int runEvalApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
         "      truth and events that lodestone-slam --sim writes there, unless given)\n"
         "  lodestone-eval closures SLAM_OUT_DIR     each loop closer's proposals judged against\n"
         "      the truth: precision, recall of revisits, recall at 100 % precision (reads\n"
-        "      closures.csv, trajectory.tum and ground_truth.tum unless --ground-truth)",
+        "      closures.csv, trajectory.tum and ground_truth.tum unless --ground-truth)\n"
+        "  lodestone-eval segments SLAM_OUT_DIR     the run's ATE whole and each segment's on\n"
+        "      its own (pooled), beside its VO gaps (reads nodes.csv, trajectory.tum,\n"
+        "      report.json and ground_truth.tum unless --ground-truth)",
         ' ', "");
     TCLAP::UnlabeledMultiArg<std::string> files(
-        "EST_GT", "EST.tum then GT.tum (TUM format), or: relocation|closures SLAM_OUT_DIR", true, "EST GT",
+        "EST_GT", "EST.tum then GT.tum (TUM format), or: relocation|closures|segments SLAM_OUT_DIR", true, "EST GT",
         cmd);
     TCLAP::ValueArg<std::string> truthArg("g", "ground-truth",
-                                          "relocation, closures: ground truth (default DIR/ground_truth.tum)",
+                                          "relocation, closures, segments: ground truth (default DIR/ground_truth.tum)",
                                           false, "", "TUM", cmd);
     TCLAP::ValueArg<std::string> eventsArg(
         "e", "events", "relocation: the simulator's kidnap events (default DIR/events.txt)", false,
@@ -111,10 +137,12 @@ int runEvalApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
     }
     const bool relocation = files.getValue().size() == 2 && files.getValue()[0] == "relocation";
     const bool closures = files.getValue().size() == 2 && files.getValue()[0] == "closures";
-    if ((!relocation && !closures && truthArg.isSet()) || (!relocation && eventsArg.isSet()) ||
+    const bool segments = files.getValue().size() == 2 && files.getValue()[0] == "segments";
+    if ((!relocation && !closures && !segments && truthArg.isSet()) || (!relocation && eventsArg.isSet()) ||
         (!closures && radius.isSet())) {
-        err << "lodestone-eval: --ground-truth belongs to 'relocation' and 'closures', --events "
-               "to 'relocation', --radius to 'closures' (see lodestone-eval --help)\n";
+        err << "lodestone-eval: --ground-truth belongs to 'relocation', 'closures' and "
+               "'segments', --events to 'relocation', --radius to 'closures' (see lodestone-eval "
+               "--help)\n";
         return 2;
     }
     if (closures) {
@@ -124,6 +152,9 @@ int runEvalApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
         }
         return runClosureEval(files.getValue()[1], truthArg.getValue(), maxDt.getValue(),
                               radius.getValue(), out, err);
+    }
+    if (segments) {
+        return runSegmentEval(files.getValue()[1], truthArg.getValue(), maxDt.getValue(), out, err);
     }
     if (relocation) {
         return runRelocationEval(files.getValue()[1], truthArg.getValue(), eventsArg.getValue(),
