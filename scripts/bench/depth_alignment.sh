@@ -7,9 +7,9 @@
 #   1. every VO step against the truth (bench/bench_depth_alignment.cpp): how it was found, its
 #      translation error (median / RMS), rotation error, the error along the directions its
 #      covariance calls pinned and along the rest, and the NEES per pinned direction (1: honest);
-#   2. the SLAM run: ATE; the ATE of each VO segment aligned on its own (nodes.csv's segment,
-#      lodestone-eval on each; pooled RMS): the odometry's own accuracy, apart from where the
-#      segments were placed; VO gaps (count, seconds, longest), segments, real-time factor.
+#   2. the SLAM run: ATE; the ATE of each VO segment aligned on its own, pooled (lodestone-eval
+#      segments): the odometry's own accuracy, apart from where the segments were placed; VO
+#      gaps (count, seconds, longest), segments, real-time factor.
 # Usage: scripts/bench/depth_alignment.sh [SCENARIO.ini]   (default paper_loop_qvga.ini; a few
 #        minutes; paper_loop.ini is 640x480 at 30 Hz and takes about half an hour)
 set -euo pipefail
@@ -37,24 +37,9 @@ variant depth4 depth_alignment=true depth_with_features=false depth_min_observed
 variant joined5 depth_alignment=true depth_with_features=true depth_min_observed=5
 variant joined4 depth_alignment=true depth_with_features=true depth_min_observed=4
 field() { { grep -o "\"$2\": [0-9.e+-]*" "$1" || true; } | head -1 | awk '{print $2}'; }
-segmentAte() {  # RUN_DIR GT: every VO segment's nodes aligned on their own, pooled RMS [m]
-    local dir=$1 gt=$2 sum=0 n=0
-    awk -F, -v d="$dir" 'NR == FNR {if (FNR > 1) seg[$2] = $3; next}
-        /^#/ {next} {split($0, f, " "); if (f[1] in seg) print > (d "/segment_" seg[f[1]] ".tum")}' \
-        "$dir/nodes.csv" "$dir/trajectory.tum"
-    for f in "$dir"/segment_*.tum; do
-        [ -f "$f" ] || continue
-        local k
-        k=$(wc -l < "$f")
-        [ "$k" -ge 10 ] || continue
-        local rmse
-        rmse=$("$root/build/apps/lodestone-eval/lodestone-eval" "$f" "$gt" 2> /dev/null |
-            grep -o "ATE  RMSE [0-9.]*" | awk '{print $3}')
-        [ -n "$rmse" ] || continue
-        sum=$(awk -v s="$sum" -v k="$k" -v r="$rmse" 'BEGIN {print s + k * r * r}')
-        n=$((n + k))
-    done
-    awk -v s="$sum" -v n="$n" 'BEGIN {if (n > 0) printf "%.3f", sqrt(s / n); else printf "-"}'
+segmentAte() {  # RUN_DIR GT: each VO segment aligned on its own, pooled (lodestone-eval segments)
+    "$root/build/apps/lodestone-eval/lodestone-eval" segments "$1" --ground-truth "$2" |
+        grep -o "on its own: ATE RMSE [0-9.]*" | awk '{printf "%.3f", $NF}'
 }
 gaps() {  # count, seconds, longest of report.json's vo_gap_seconds
     tr -d '\n ' < "$1" | grep -o '"vo_gap_seconds":\[[^]]*\]' | sed 's/.*\[//; s/\]//' |
