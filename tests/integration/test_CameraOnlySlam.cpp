@@ -25,7 +25,10 @@ const std::string kConfigDir = LODESTONE_CONFIG_INI_DIR;
 
 /** The office at 320x240 / 15 Hz, images embedded, then only its RGB-D frames kept (and its
  * ground truth beside). Returns the camera-only rawlog's path. */
-std::string cameraOnlyOffice(const lodestone::test::TempDir& dir, int blankFrom = -1, int blankTo = -1) {
+/** The office seen by the camera alone at 320x240 / 15 Hz; frames [blankFrom, blankTo) covered:
+ * a plain grey image and, unless `keepDepth`, no depth either (a covered sensor). */
+std::string cameraOnlyOffice(const lodestone::test::TempDir& dir, int blankFrom = -1, int blankTo = -1,
+                             bool keepDepth = false) {
     const auto sim = lodestone::test::runCommand(kSim + " -c " + kConfigDir + "/scenarios/office.ini -o " +
                                                  dir.file("office.rawlog") +
                                                  " --camera 320x240@15 --embedded-images");
@@ -43,6 +46,7 @@ std::string cameraOnlyOffice(const lodestone::test::TempDir& dir, int blankFrom 
             const cv::Mat grey(static_cast<int>(scan->cameraParams.nrows),
                                static_cast<int>(scan->cameraParams.ncols), CV_8UC3, cv::Scalar(128, 128, 128));
             scan->intensityImage = mrpt::img::CImage(grey, mrpt::img::DEEP_COPY);
+            if (!keepDepth) scan->rangeImage.setZero();
         }
         writer.write(*scan);
         ++frame;
@@ -122,6 +126,26 @@ TEST(CameraOnlySlam, VoLostWithNoWheelsRelocalizesOnTheViewThatCameBack) {
     const auto traj = lodestone::io::readTumTrajectory(dir.file("out/trajectory.tum"));
     ASSERT_FALSE(traj.empty());
     EXPECT_GT(traj.back().timestamp - traj.front().timestamp, 20.0);  // nodes go on after it
+}
+
+// The colour goes blank but the depth stays (lights out): depth alignment keeps tracking
+// through it - no gap, one segment, the trajectory as good as without it.
+TEST(CameraOnlySlam, ABlankImageWithDepthIsTrackedByTheDepth) {
+    lodestone::test::TempDir dir;
+    const std::string rawlog = cameraOnlyOffice(dir, 150, 170, true);
+    const auto run = lodestone::test::runCommand(
+        kSlam + " --rawlog " + rawlog + " --config " + kConfigDir + "/slam/rgbd_only.ini --out " +
+        dir.file("out") + " --ground-truth " + dir.file("camera.gt.tum") + " --quiet");
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    const std::string report = reportOf(dir.file("out"));
+    EXPECT_NE(report.find("\"vo_gaps\": 0"), std::string::npos) << report;
+    EXPECT_NE(report.find("\"segments\": 1"), std::string::npos) << report;
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(report, m, std::regex("\"depth_aligned\": ([0-9]+)"))) << report;
+    EXPECT_GE(std::stoi(m[1]), 15) << "the covered frames, by the depth";
+    const double ate = ateOf(run.output);
+    EXPECT_GT(ate, 0) << run.output;
+    EXPECT_LT(ate, 0.03) << run.output;
 }
 
 TEST(CameraOnlySlam, VoLostWithNothingToRelocalizeOnStartsANewSegmentOrIsBridged) {
