@@ -56,6 +56,11 @@ int runSimApp(int argc, const char* const* argv, std::ostream& out, std::ostream
                               "the camera carried by hand along the path, alone (6-DoF, shaking: "
                               "a handheld RGB-D sequence; implies --camera-only)",
                               cmd);
+    TCLAP::SwitchArg gyro("", "gyro",
+                          "record a gyro too (CObservationIMU, label IMU, 100 Hz, MEMS noise and "
+                          "bias; the INI's [gyro] section when it has one): on the robot, or "
+                          "with --handheld rigid with the camera",
+                          cmd);
     const auto outcome = config::parseCommandLine(cmd, std::vector<std::string>(argv, argv + argc));
     if (outcome.kind == config::ParseOutcome::Kind::UsageError) {
         err << "lodestone-sim: " << outcome.error << " (see lodestone-sim --help)\n";
@@ -88,6 +93,7 @@ int runSimApp(int argc, const char* const* argv, std::ostream& out, std::ostream
         }
         scenario.cameraOnly = cameraOnly.getValue() || handheld.getValue();
         if (handheld.getValue()) scenario.handheld = HandheldSpec{};
+        if (gyro.getValue() && !scenario.gyro) scenario.gyro = GyroSpec{};
         const std::uint64_t s =
             seed.getValue() >= 0 ? static_cast<std::uint64_t>(seed.getValue()) : scenario.seed;
         SimulatorSource source(scenario, s);

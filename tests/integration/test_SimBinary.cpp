@@ -67,3 +67,22 @@ TEST(SimBinaryErrors, BadScenarioNamesTheKeyAndExits1) {
     EXPECT_NE(r.output.find("[path] key 'lapz'"), std::string::npos) << r.output;
     EXPECT_EQ(lodestone::test::runCommand(kSim + " --config " + ini + " --camera 12").exitCode, 2);
 }
+
+// A gyro recorded beside a hand-held camera: stock MRPT's CObservationIMU, read by our tools
+// and by stock rawlog-edit as it is.
+TEST(SimBinaryGyro, AHandHeldGyroIsRecordedAsStockImu) {
+    lodestone::test::TempDir dir;
+    const auto out = dir.file("hand.rawlog");
+    const auto sim = lodestone::test::runCommand(kSim + " --config " + kConfigDir +
+                                                 "/scenarios/office.ini --camera 32x24@5 --handheld --gyro --out " +
+                                                 out);
+    ASSERT_EQ(sim.exitCode, 0) << sim.output;
+    const auto summary = lodestone::test::runCommand(kInspect + " summary " + out);
+    ASSERT_EQ(summary.exitCode, 0) << summary.output;
+    EXPECT_NE(summary.output.find("mrpt::obs::CObservationIMU"), std::string::npos) << summary.output;
+    EXPECT_NE(summary.output.find("100.000"), std::string::npos) << summary.output;
+    if (!lodestone::test::haveRawlogEdit()) GTEST_SKIP() << "rawlog-edit (mrpt-apps) not installed";
+    auto info = lodestone::test::rawlogEditInfo(out);
+    EXPECT_GT(info.occurrences["IMU"], 2000);
+    EXPECT_GT(info.occurrences["RGBD"], 100);
+}

@@ -6,6 +6,7 @@
 #include <mrpt/config/CConfigFile.h>
 
 #include <cmath>
+#include <algorithm>
 #include <filesystem>
 #include <sstream>
 
@@ -166,6 +167,17 @@ void readMagnetometer(IniSection& s, MagnetometerSpec& m) {
     m.bias = {b[0], b[1], b[2]};
 }
 
+void readGyro(IniSection& s, GyroSpec& g) {
+    g.label = s.getString("label", g.label);
+    g.rate = s.getDouble("rate", g.rate);
+    positive(s, "rate", g.rate);
+    g.pose = readMount(s, "pose", g.pose);
+    g.noiseStd = s.getDouble("noise_std_deg", g.noiseStd / kDeg) * kDeg;
+    notNegative(s, "noise_std_deg", g.noiseStd);
+    g.biasSigma = s.getDouble("bias_sigma_deg", g.biasSigma / kDeg) * kDeg;
+    notNegative(s, "bias_sigma_deg", g.biasSigma);
+}
+
 void readField(IniSection& s, FieldSpec& f) {
     f.earthMagnitude = s.getDouble("earth_magnitude", f.earthMagnitude);
     f.inclination = s.getDouble("inclination_deg", f.inclination / kDeg) * kDeg;
@@ -278,8 +290,8 @@ Scenario Scenario::load(const std::string& iniPath) {
     mrpt::config::CConfigFile cfg(iniPath);
     std::vector<std::string> sections;
     cfg.getAllSections(sections);
-    std::set<std::string> allowed = {"scenario", "world",  "path",           "robot",
-                                     "encoders", "camera", "magnetic_field", "kidnap"};
+    std::set<std::string> allowed = {"scenario", "world",          "path",   "robot", "encoders",
+                                     "camera",   "magnetic_field", "kidnap", "gyro"};
     for (const auto& name : sections) {
         if (name.rfind("magnetometer_", 0) == 0) allowed.insert(name);
     }
@@ -311,6 +323,11 @@ Scenario Scenario::load(const std::string& iniPath) {
     section("camera", [&](IniSection& s) { readCamera(s, sc.camera); });
     section("magnetic_field", [&](IniSection& s) { readField(s, sc.field); });
     section("kidnap", [&](IniSection& s) { readKidnaps(s, sc); });
+    if (std::find(sections.begin(), sections.end(), "gyro") != sections.end()) {
+        GyroSpec g;
+        section("gyro", [&](IniSection& s) { readGyro(s, g); });
+        sc.gyro = g;
+    }
     for (const auto& name : sections) {
         if (name.rfind("magnetometer_", 0) != 0) continue;
         MagnetometerSpec m;

@@ -1,4 +1,5 @@
 #include <lodestone/sim/SimEncoders.h>
+#include <lodestone/sim/SimGyro.h>
 #include <lodestone/sim/SimMagnetometer.h>
 #include <lodestone/sim/SimRgbdCamera.h>
 #include <lodestone/sim/SimWheelDrop.h>
@@ -33,6 +34,12 @@ SimulatorSource::SimulatorSource(const Scenario& scenario, std::uint64_t seed)
             sensors_.push_back(std::make_unique<SimMagnetometer>(
                 *world_, *plan_, scenario_.magnetometers[i], t0, rng.fork(10 + i)));
         }
+    }
+    if (scenario_.gyro) {
+        // On the robot or in the hand; its own noise stream (fork 4), so adding it leaves every
+        // other sensor's samples as they were.
+        sensors_.push_back(std::make_unique<SimGyro>(*plan_, handheld_.get(), *scenario_.gyro, t0,
+                                                     rng.fork(4)));
     }
     if (scenario_.camera.enabled) {
         sensors_.push_back(

@@ -139,3 +139,13 @@ TEST(Scenario, ImageFormatTakesPngJpgAndAQuality) {
         EXPECT_EQ(c.imageFormat, "png") << bad;
     }
 }
+
+TEST(Scenario, AGyroSectionAddsAGyroAndItsKeysAreChecked) {
+    EXPECT_FALSE(Scenario::load(kConfigDir + "/scenarios/office.ini").gyro) << "none unless asked";
+    EXPECT_EQ(loadError("", "\n[gyro]\nrate = 200\nnoise_std_deg = 0.1\nbias_sigma_deg = 0\n"), "");
+    EXPECT_NE(loadError("", "\n[gyro]\nnoise_std = 0.1\n").find("[gyro] key 'noise_std'"),
+              std::string::npos);
+    EXPECT_NE(loadError("", "\n[gyro]\nbias_sigma_deg = -1\n").find("bias_sigma_deg"),
+              std::string::npos);
+    EXPECT_NE(loadError("", "\n[gyro]\nrate = 0\n").find("rate"), std::string::npos);
+}

@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -57,6 +58,19 @@ struct MagnetometerSpec {
     MountPose pose;
     double noiseStd{0.3};           ///< per-axis white noise [uT]
     Eigen::Vector3d bias{0, 0, 0};  ///< constant, sensor frame [uT]
+};
+
+/** A 3-axis rate gyro (an IMU's), on the robot at `pose` or rigid with a hand-held camera. */
+struct GyroSpec {
+    std::string label{"IMU"};
+    double rate{100};  ///< [Hz]
+    MountPose pose;    ///< on the robot (a hand-held gyro is the camera's frame)
+    /** Per-axis white noise of each sample [rad/s]: 0.07 deg/s, a MEMS IMU's noise density
+     * (0.007 deg/s/sqrt(Hz), Xsens MTi class) at 100 Hz. */
+    double noiseStd{0.07 * M_PI / 180};
+    /** Each axis' constant bias, drawn per run from N(0, biasSigma) [rad/s]: 0.1 deg/s, an
+     * uncalibrated MEMS gyro's turn-on bias. */
+    double biasSigma{0.1 * M_PI / 180};
 };
 
 struct EncoderSpec {
@@ -113,6 +127,8 @@ struct Scenario {
     EncoderSpec encoders;
     CameraSpec camera;
     std::vector<MagnetometerSpec> magnetometers;
+    /** A gyro ([gyro] section, or lodestone-sim --gyro); none when unset. */
+    std::optional<GyroSpec> gyro;
     FieldSpec field;
     std::vector<KidnapSpec> kidnaps;
     /** Only the RGB-D camera records (no encoders, wheel drop or magnetometers): a camera-only
