@@ -16,9 +16,11 @@
 #include <mrpt/img/CImage.h>
 #include <mrpt/obs/CActionCollection.h>
 
+#include <filesystem>
 #include <functional>
 #include <iostream>
 #include <limits>
+#include <sstream>
 #include <map>
 #include <vector>
 
@@ -212,6 +214,10 @@ int reportCmd(const Args& args, std::ostream& out) {
                                       "median step",
                                       false, 5.0, "K", cmd);
     TCLAP::ValueArg<double> cell("", "field-cell", "field map cell size [m]", false, 0.1, "M", cmd);
+    TCLAP::ValueArg<std::string> mapDir("", "map",
+                                        "a saved map (lodestone-slam --map-out) shown on the page: "
+                                        "its summary and the map from above",
+                                        false, "", "MAP_DIR", cmd);
     TCLAP::SwitchArg quiet("q", "quiet", "no progress bar", cmd);
     if (!parse(cmd, "report", args)) return kExitOk;
     if (!(every.getValue() > 0)) throw UsageError("--thumbnail-every: must be > 0");
@@ -228,6 +234,19 @@ int reportCmd(const Args& args, std::ostream& out) {
     o.fieldCell = cell.getValue();
     o.quiet = quiet.getValue();
     o.terminal = ::isatty(STDERR_FILENO) != 0;
+    if (mapDir.isSet()) {
+        // Read (and refused if damaged) before any work; its picture goes beside the page.
+        const auto map = maps::readMap(mapDir.getValue());
+        std::ostringstream text;
+        maps::printMapSummary(maps::summarizeMap(map, mapDir.getValue()), text);
+        std::filesystem::create_directories(o.outDir);
+        const std::string png = (std::filesystem::path(o.outDir) / "saved_map.png").string();
+        if (!cv::imwrite(png, maps::drawMap(map))) throw BadInput(png + ": cannot be written");
+        o.extraSections.push_back(
+            {"Saved map", text.str(),
+             {{"saved_map.png", "The saved map from above: |B| of its readings over the floor, "
+                                "each session's path, keyframes"}}});
+    }
     const auto r = report::writeRawlogReport(o, std::cerr);
     out << r.entries << " entries, " << r.figures << " charts, " << r.thumbnails
         << " thumbnails -> " << r.index << "\n";
@@ -262,7 +281,7 @@ void printUsage(std::ostream& out) {
            "  show FILE N                         full description of entry N\n"
            "  export FILE --sensor LABEL --out DIR   CSV series / PNG frames of one sensor\n"
            "  to-imu FILE OUT [--unit gauss]      magnetometers as CObservationIMU\n"
-           "  report FILE --out DIR [--slam SLAM_OUT] [--ground-truth GT.tum]   HTML report\n"
+           "  report FILE --out DIR [--slam SLAM_OUT] [--ground-truth GT.tum] [--map MAP_DIR]   HTML report\n"
            "  map DIR [--plot PNG]                a saved map (lodestone-slam --map-out)\n"
            "exit codes: 0 ok, 1 bad input, 2 usage\n";
 }

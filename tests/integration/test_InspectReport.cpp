@@ -208,3 +208,33 @@ TEST(InspectReport, ASecondReportInTheSameFolderLeavesNothingStaleAndNothingElse
     EXPECT_EQ(count(fs::path(out) / "thumbs"), 6u);  // 3 frames x (colour, depth)
     EXPECT_TRUE(fs::exists(out + "/notes.txt"));
 }
+
+// A saved map on the page: its summary and its picture, beside the rawlog's sections; a damaged
+// map is refused before any page is written.
+TEST(InspectReport, ASavedMapGetsItsSection) {
+    lodestone::test::TempDir dir;
+    const std::string map = std::string(LODESTONE_TEST_DATA_DIR) + "/map_v1";
+    auto r = runCommand(kInspect + " report " + kOffice + " --out " + dir.file("report") +
+                        " --map " + map + " -q");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const std::string html = lodestone::test::readTextFile(dir.file("report/index.html"));
+    EXPECT_NE(html.find("<h2>Saved map</h2>"), std::string::npos);
+    EXPECT_NE(html.find("saved_map.png"), std::string::npos);
+    EXPECT_TRUE(fs::exists(dir.path() / "report" / "saved_map.png"));
+    const auto section = html.find("<h2>Saved map</h2>");
+    ASSERT_NE(section, std::string::npos);
+    EXPECT_NE(html.find("nodes", section), std::string::npos) << "the summary's text";
+    EXPECT_LT(html.find("<h2>Summary</h2>"), html.find("<h2>Saved map</h2>"));
+
+    fs::copy(map, dir.path() / "broken_map", fs::copy_options::recursive);
+    fs::permissions(dir.path() / "broken_map", fs::perms::owner_all, fs::perm_options::add);
+    for (const auto& f : fs::directory_iterator(dir.path() / "broken_map")) {
+        fs::permissions(f.path(), fs::perms::owner_write, fs::perm_options::add);
+    }
+    std::ofstream(dir.file("broken_map/nodes.bin"), std::ios::trunc) << "not a map";
+    r = runCommand(kInspect + " report " + kOffice + " --out " + dir.file("report2") + " --map " +
+                   dir.file("broken_map") + " -q");
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("nodes.bin"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir.path() / "report2" / "index.html"));
+}

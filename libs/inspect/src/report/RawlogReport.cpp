@@ -177,6 +177,7 @@ ReportResult writeRawlogReport(const ReportOptions& options, std::ostream& progr
     page.thumbnails = thumbnails.thumbnails();
     page.thumbnailEvery = options.thumbnailEvery;
     page.depthMax = options.depthMax;
+    page.extraSections = options.extraSections;
     page.unreadableFrames = thumbnails.unreadable();
     writePng(dir, "timeline.png", timelineChart(page.timelines, dataSeconds), page.rawlogFigures,
              "Every sensor over time: sample density, gaps (red), backwards timestamps (orange "

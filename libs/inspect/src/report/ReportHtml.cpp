@@ -159,6 +159,13 @@ void slamSection(Page& p, const ReportPage& r) {
         p.html << "</table>\n";
     }
 }
+void extraSections(Page& p, const ReportPage& r) {
+    for (const auto& x : r.extraSections) {
+        p.html << "<h2>" << htmlEscape(x.title) << "</h2>\n";
+        if (!x.text.empty()) p.html << "<pre>" << htmlEscape(x.text) << "</pre>\n";
+        for (const auto& f : x.figures) p.figure(f);
+    }
+}
 }  // namespace
 
 std::string fixedText(double v, int decimals) {
@@ -200,6 +207,7 @@ void writeReportHtml(const std::string& path, const ReportPage& r) {
     for (const auto& f : r.rawlogFigures) p.figure(f);
     thumbnailSection(p, r);
     slamSection(p, r);
+    extraSections(p, r);
     p.html << "</body>\n</html>\n";
     const std::string partial = io::partialPath(path);
     {

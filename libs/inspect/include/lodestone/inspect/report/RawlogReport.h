@@ -1,5 +1,7 @@
 #pragma once
 
+#include <lodestone/inspect/report/ReportHtml.h>
+
 #include <optional>
 #include <ostream>
 #include <string>
@@ -16,6 +18,8 @@ struct ReportOptions {
     double fieldCell{0.1};        ///< [m] the field map's cells
     double depthMax{6.0};         ///< [m] top of the depth colour scale
     bool quiet{false}, terminal{false};  ///< progress bar
+    /** Sections the caller adds after the SLAM section (their pictures already in outDir). */
+    std::vector<ExtraSection> extraSections;
 };
 
 struct ReportResult {

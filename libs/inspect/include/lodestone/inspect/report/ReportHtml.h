@@ -17,6 +17,14 @@ struct Figure {
     std::string caption;
 };
 
+/** A section the caller adds to the page (e.g. a saved map, from the app that can read one):
+ * its title, preformatted text, and pictures already written into the report folder. */
+struct ExtraSection {
+    std::string title;
+    std::string text;
+    std::vector<Figure> figures;
+};
+
 /** Everything index.html shows, gathered by the report's pass (RawlogReport). */
 struct ReportPage {
     RawlogSummary summary;
@@ -34,6 +42,7 @@ struct ReportPage {
     std::vector<Figure> slamFigures;
     std::vector<std::string> slamNotes;  ///< files missing, readings not placed, ...
     std::vector<std::vector<std::string>> relocations;  ///< rows of the relocation table
+    std::vector<ExtraSection> extraSections;            ///< after the SLAM section
 };
 
 /** Writes the page: self-contained HTML (inline style, no script, no address outside the
