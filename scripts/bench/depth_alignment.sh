@@ -3,7 +3,8 @@
 # twice - carried by hand (--handheld) and on the robot with the camera alone (--camera-only) -
 # and run five ways from rgbd_only.ini: features only; depth alignment where the features fail,
 # accepting a motion that pins 5 of 6 directions (a corridor, a wall and the floor) or 4; and
-# both with features and depth solved as one where both align (joined5: as shipped). Two tables:
+# both with features and depth solved as one where both align (joined5: as shipped); and the
+# hand again with a simulated gyro whose rotation starts the depth alignment (use_gyro). Two tables:
 #   1. every VO step against the truth (bench/bench_depth_alignment.cpp): how it was found, its
 #      translation error (median / RMS), rotation error, the error along the directions its
 #      covariance calls pinned and along the rest, and the NEES per pinned direction (1: honest);
@@ -36,6 +37,8 @@ variant depth5 depth_alignment=true depth_with_features=false depth_min_observed
 variant depth4 depth_alignment=true depth_with_features=false depth_min_observed=4
 variant joined5 depth_alignment=true depth_with_features=true depth_min_observed=5
 variant joined4 depth_alignment=true depth_with_features=true depth_min_observed=4
+variant joined5+gyro depth_alignment=true depth_with_features=true depth_min_observed=5 use_gyro=true
+variant joined4+gyro depth_alignment=true depth_with_features=true depth_min_observed=4 use_gyro=true
 field() { { grep -o "\"$2\": [0-9.e+-]*" "$1" || true; } | head -1 | awk '{print $2}'; }
 segmentAte() {  # RUN_DIR GT: each VO segment aligned on its own, pooled (lodestone-eval segments)
     "$root/build/apps/lodestone-eval/lodestone-eval" segments "$1" --ground-truth "$2" |
@@ -48,14 +51,19 @@ gaps() {  # count, seconds, longest of report.json's vo_gap_seconds
 }
 steps="$out/steps.md"
 runs="$out/runs.md"
-for carrier in hand camera; do
+for carrier in hand camera hand+gyro; do
+    variants=(features depth5 depth4 joined5 joined4)
     case $carrier in
         hand) flags=(--handheld) ;;
         camera) flags=(--camera-only) ;;
+        # The same hand with a gyro (its own noise stream: the camera's frames are the same).
+        hand+gyro) flags=(--handheld --gyro); variants=(joined5+gyro joined4+gyro) ;;
     esac
     "$sim" -c "$scenario" -o "$out/$carrier.rawlog" "${flags[@]}" > /dev/null
-    for v in features depth5 depth4 joined5 joined4; do
-        "$bench" "$out/$carrier.rawlog" "$out/$carrier.gt.tum" "$out/$v.ini" "$carrier, $v" >> "$steps" 2> /dev/null
+    for v in "${variants[@]}"; do
+        # (the steps bench runs VO alone, without the node decider that feeds it the gyro)
+        [ "$carrier" = hand+gyro ] ||
+            "$bench" "$out/$carrier.rawlog" "$out/$carrier.gt.tum" "$out/$v.ini" "$carrier, $v" >> "$steps" 2> /dev/null
         log=$("$slam" -r "$out/$carrier.rawlog" --config "$out/$v.ini" --ground-truth "$out/$carrier.gt.tum" \
             --out "$out/run" --quiet 2>&1 | grep -v "^\[")
         ate=$(echo "$log" | grep -o "ATE RMSE [0-9.]*" | awk '{print $3}')

@@ -185,3 +185,31 @@ TEST(CameraOnlySlam, VoLostWithNothingToRelocalizeOnStartsANewSegmentOrIsBridged
     EXPECT_NE(report2.find("\"vo_gaps_bridged\": 1"), std::string::npos) << report2;
     EXPECT_NE(report2.find("\"segments\": 1"), std::string::npos) << report2;
 }
+
+// A hand-held recording with a gyro, run with use_gyro: the gyro's rotation reaches VO on every
+// frame that has a reference, and the run is as good as without it.
+TEST(CameraOnlySlam, AHandHeldGyroReachesTheOdometry) {
+    lodestone::test::TempDir dir;
+    const auto sim = lodestone::test::runCommand(kSim + " -c " + kConfigDir + "/scenarios/office.ini -o " +
+                                                 dir.file("hand.rawlog") +
+                                                 " --camera 320x240@15 --embedded-images --handheld --gyro");
+    ASSERT_EQ(sim.exitCode, 0) << sim.output;
+    std::ifstream base(kConfigDir + "/slam/rgbd_only.ini");
+    std::string ini((std::istreambuf_iterator<char>(base)), std::istreambuf_iterator<char>());
+    const std::regex off("\nuse_gyro *= *false");
+    ASSERT_TRUE(std::regex_search(ini, off));
+    std::ofstream(dir.file("gyro.ini")) << std::regex_replace(ini, off, "\nuse_gyro = true");
+    const auto run = lodestone::test::runCommand(
+        kSlam + " --rawlog " + dir.file("hand.rawlog") + " --config " + dir.file("gyro.ini") +
+        " --out " + dir.file("out") + " --ground-truth " + dir.file("hand.gt.tum") + " --quiet");
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    const std::string report = reportOf(dir.file("out"));
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(report, m, std::regex("\"frames_with_gyro_rotation\": ([0-9]+)")))
+        << report;
+    EXPECT_GT(std::stoi(m[1]), 400) << "the office's 428 frames, all but VO's first";
+    EXPECT_NE(report.find("\"gyro_label\": \"IMU\""), std::string::npos);
+    const double ate = ateOf(run.output);
+    EXPECT_GT(ate, 0) << run.output;
+    EXPECT_LT(ate, 0.03) << run.output;
+}

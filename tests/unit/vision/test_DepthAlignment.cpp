@@ -286,3 +286,4 @@ TEST(PointToPlaneIcp, WithAMeasuredMotionTheCorridorsMoveAlongComesFromIt) {
     EXPECT_NEAR(translationSigma(a, along), 0.05, 0.01);
     EXPECT_LT(translationSigma(a, across), 0.005);
 }
+

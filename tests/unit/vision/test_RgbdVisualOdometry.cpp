@@ -234,3 +234,30 @@ TEST(RgbdVisualOdometry, FeaturesAndDepthSolvedAsOne) {
     EXPECT_NEAR(Eigen::AngleAxisd(r.T_ref_cur.rotation()).angle(), 0.02, 0.003);
     EXPECT_EQ(vo.totals().depthJoined, 1u);
 }
+
+// A gyro's rotation starts the depth alignment where the features fail: the true one aligns, one
+// 25 degrees off leads it astray (so it is what the alignment starts from).
+TEST(RgbdVisualOdometry, WhereFeaturesFailTheGyroRotationStartsTheDepth) {
+    const auto sc = lodestone::test::boxScenario("posters");
+    const lodestone::sim::World world(sc, 3);
+    lodestone::sim::CameraSpec cam;
+    const auto first = simulatedFrame(world, cam, 5.5, 0.5);
+    auto second = simulatedFrame(world, cam, 5.56, 0.55);
+    second.gray.setTo(0);
+    second.timestamp = first.timestamp + 1.0 / 30;
+    RgbdVisualOdometry::Params p;
+    p.depthAlignment = true;
+    // A left turn of 0.05 rad is negative about the optical y axis (down).
+    RotationPrior right;
+    right.R_ref_cur = Eigen::AngleAxisd(-0.05, Eigen::Vector3d::UnitY()).toRotationMatrix();
+    RotationPrior wrong = right;
+    wrong.R_ref_cur = Eigen::AngleAxisd(-0.5, Eigen::Vector3d::UnitY()).toRotationMatrix();
+    RgbdVisualOdometry a(p), b(p);
+    a.process(first);
+    b.process(first);
+    const auto good = a.process(second, nullptr, &right);
+    ASSERT_TRUE(good.success && good.depthAligned);
+    EXPECT_NEAR(Eigen::AngleAxisd(good.T_ref_cur.rotation()).angle(), 0.05, 0.003);
+    const auto bad = b.process(second, nullptr, &wrong);
+    EXPECT_FALSE(bad.success && std::abs(Eigen::AngleAxisd(bad.T_ref_cur.rotation()).angle() - 0.05) < 0.003);
+}

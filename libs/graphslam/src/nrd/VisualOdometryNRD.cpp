@@ -54,10 +54,17 @@ void VisualOdometryNRD::configure(const mrpt::config::CConfigFileBase& ini) {
     if (!(p.bridgeAccelSigma > 0) || !(p.bridgeAngularAccelSigma > 0))
         s.fail("bridge_accel_sigma", "acceleration sigmas must be > 0");
     p.cameraLabel = s.getString("camera_label", p.cameraLabel);
+    p.useGyro = s.getBool("use_gyro", p.useGyro);
+    p.gyroLabel = s.getString("gyro_label", p.gyroLabel);
+    p.gyro.noiseStd = s.getDouble("gyro_noise_deg", p.gyro.noiseStd * 180 / M_PI) * M_PI / 180;
+    p.gyro.biasStd = s.getDouble("gyro_bias_deg", p.gyro.biasStd * 180 / M_PI) * M_PI / 180;
+    if (!(p.gyro.noiseStd >= 0)) s.fail("gyro_noise_deg", "must be >= 0");
+    if (!(p.gyro.biasStd >= 0)) s.fail("gyro_bias_deg", "must be >= 0");
     if (!(p.lostEdgeSigma > 0)) s.fail("lost_edge_sigma", "must be > 0");
     s.finish();
     params_ = p;
     vo_ = vision::RgbdVisualOdometry(params_.visual);
+    gyro_ = odometry::GyroIntegrator(params_.gyro);
 }
 
 bool VisualOdometryNRD::updateState(mrpt::obs::CActionCollection::Ptr,
@@ -70,6 +77,9 @@ bool VisualOdometryNRD::updateState(mrpt::obs::CActionCollection::Ptr,
         if (auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(o);
             scan && !just_registered_) {
             consume(scan);
+        } else if (auto imu = std::dynamic_pointer_cast<mrpt::obs::CObservationIMU>(o);
+                   imu && params_.useGyro) {
+            consumeGyro(*imu);
         }
     };
     if (observation) take(observation);
@@ -79,13 +89,41 @@ bool VisualOdometryNRD::updateState(mrpt::obs::CActionCollection::Ptr,
     return just_registered_.has_value();
 }
 
+void VisualOdometryNRD::consumeGyro(const mrpt::obs::CObservationIMU& imu) {
+    if (params_.gyroLabel.empty() && imu.has(mrpt::obs::IMU_WZ)) params_.gyroLabel = imu.sensorLabel;
+    if (imu.sensorLabel == params_.gyroLabel) gyro_.add(imu);
+}
+
+std::optional<vision::RotationPrior> VisualOdometryNRD::gyroSinceReference(
+    double t, const Eigen::Isometry3d& T_robot_optical) const {
+    const auto since = vo_.referenceTimestamp();
+    if (!since) return std::nullopt;
+    const auto r = gyro_.between(*since, t);
+    if (!r) return std::nullopt;
+    // The gyro's body rotation seen in the optical frame: C^T R C, C the optical frame's
+    // rotation in the gyro's.
+    const Eigen::Matrix3d C = gyro_.sensorOnRobot().linear().transpose() * T_robot_optical.linear();
+    return vision::RotationPrior{C.transpose() * r->R * C, r->sigma};
+}
+
 void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& scan) {
     if (params_.cameraLabel.empty()) params_.cameraLabel = scan->sensorLabel;
     if (scan->sensorLabel != params_.cameraLabel) return;
     ++frames_;
     const double t = mrpt::Clock::toDouble(scan->timestamp);
     const auto T_robot_optical = odometry::opticalFrameOnRobot(scan->sensorPose);
-    const auto r = vo_.process(odometry::frameFromObservation(*scan));
+    std::optional<vision::RotationPrior> rotation;
+    if (params_.useGyro) {
+        rotation = gyroSinceReference(t, T_robot_optical);
+        if (rotation) ++gyro_priors_;
+    }
+    const auto r = vo_.process(odometry::frameFromObservation(*scan), nullptr,
+                               rotation ? &*rotation : nullptr);
+    if (params_.useGyro) {
+        // Keep what the next frame's rotation needs: from VO's reference (or this frame) on.
+        const auto since = vo_.referenceTimestamp();
+        gyro_.dropBefore(since ? std::min(*since, t) : t);
+    }
     const mrpt::poses::CPose3DPDFGaussian here;  // a frame at the new node: identity, certain
     if (r.failure == vision::VoFailure::NoReference) {
         // VO (re)starts on this frame: the root, or after a loss a new segment.
@@ -273,6 +311,7 @@ JsonObject VisualOdometryNRD::describe() const {
         .set("relocalize_keyframes", params_.relocalizeKeyframes)
         .set("bridge_max_seconds", params_.bridgeMaxSeconds)
         .set("camera_label", params_.cameraLabel);
+    if (params_.useGyro) params.set("gyro_label", params_.gyroLabel);
     JsonObject stats;
     stats.set("rgbd_frames", frames_)
         .set("failed_frames", failed_frames_)
@@ -283,6 +322,7 @@ JsonObject VisualOdometryNRD::describe() const {
         .set("vo_gaps_relocalized", relocalized_)
         .set("segments", segment_ + 1)
         .set("vo_ms_per_frame", detail::voTimingJson(vo_.totals()));
+    if (params_.useGyro) stats.set("frames_with_gyro_rotation", gyro_priors_);
     JsonObject why;
     for (const auto& [reason, count] : failures_) why.set(reason, count);
     stats.set("failed_frames_by_reason", why);

@@ -51,6 +51,13 @@ struct VoTotals {
     std::array<std::size_t, 7> depthObserved{};
 };
 
+/** A rotation another sensor measured between the reference frame and this one (a gyro's,
+ * moved into the optical frame): R_ref_cur and its per-axis sigma [rad]. */
+struct RotationPrior {
+    Eigen::Matrix3d R_ref_cur{Eigen::Matrix3d::Identity()};
+    double sigma{0.01};
+};
+
 /** What one frame gave. */
 struct VoResult {
     bool success{false};  ///< a motion was estimated for this frame
@@ -121,8 +128,11 @@ class RgbdVisualOdometry {
     explicit RgbdVisualOdometry(const Params& params);
 
     /** Processes the next frame. With a `prior` (where the frame is relative to the current
-     * reference, `referenceTimestamp()`) and `guidedMatching`, matching is guided by it. */
-    VoResult process(const RgbdFrame& frame, const MotionPrior* prior = nullptr);
+     * reference, `referenceTimestamp()`) and `guidedMatching`, matching is guided by it. With
+     * a `rotation` (a gyro's since the reference), depth alignment where the features fail
+     * starts from it. */
+    VoResult process(const RgbdFrame& frame, const MotionPrior* prior = nullptr,
+                     const RotationPrior* rotation = nullptr);
     /** The timestamp of the frame the next one will be aligned with, if any. */
     std::optional<double> referenceTimestamp() const;
 
@@ -147,7 +157,12 @@ class RgbdVisualOdometry {
     const Params& params() const { return params_; }
 
   private:
-    VoResult processFrame(const RgbdFrame& frame, const MotionPrior* prior);
+    VoResult processFrame(const RgbdFrame& frame, const MotionPrior* prior,
+                          const RotationPrior* rotation);
+    /** Depth alignment where the features failed (from the prior, the rotation, or constant
+     * velocity). */
+    DepthAlignment alignDepth(const DepthCloud& cloud, double timestamp, const MotionPrior* prior,
+                              const RotationPrior* rotation) const;
     /** The frame's pose in the reference by constant velocity since the last tracked frame. */
     Eigen::Isometry3d constantVelocity(double timestamp) const;
     /** Remembers a tracked frame's pose in the reference, for constant velocity. */

@@ -2,6 +2,7 @@
 
 #include <lodestone/graphslam/NodeDecider.h>
 #include <lodestone/graphslam/nrd/NodeSpacing.h>
+#include <lodestone/odometry/GyroIntegrator.h>
 #include <lodestone/vision/RgbdVisualOdometry.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/poses/CPose3DPDFGaussian.h>
@@ -53,6 +54,11 @@ class VisualOdometryNRD : public NodeDecider {
         double bridgeAccelSigma{1.5};
         double bridgeAngularAccelSigma{3.0};
         std::string cameraLabel;      ///< only this RGB-D label ("": the first one seen)
+        /** The gyro's rotation since VO's reference frame as a measurement where the features
+         * fail (CObservationIMU rates; `gyroLabel` "": the first gyro seen). */
+        bool useGyro{false};
+        std::string gyroLabel;
+        odometry::GyroIntegrator::Params gyro;
         vision::RgbdVisualOdometry::Params visual;  ///< [visual_odometry]
     };
 
@@ -75,6 +81,10 @@ class VisualOdometryNRD : public NodeDecider {
 
   private:
     void consume(const mrpt::obs::CObservation3DRangeScan::Ptr& scan);
+    void consumeGyro(const mrpt::obs::CObservationIMU& imu);
+    /** The gyro's rotation from VO's reference frame to time t, in the optical frame. */
+    std::optional<vision::RotationPrior> gyroSinceReference(double t,
+                                                            const Eigen::Isometry3d& T_robot_optical) const;
     /** A node at this frame: `edge` from the last node (or the root when there is none). */
     /** From the last node to a frame `gap` seconds after the last tracked one, by the last
      * velocity. */
@@ -97,6 +107,8 @@ class VisualOdometryNRD : public NodeDecider {
 
     Params params_;
     vision::RgbdVisualOdometry vo_;
+    odometry::GyroIntegrator gyro_;
+    std::size_t gyro_priors_{0};  // frames given the gyro's rotation
     Anchor reference_;    // VO's reference frame
     Anchor last_tracked_;  // the last frame VO tracked (it may become the reference)
     std::shared_ptr<const vision::FrameFeatures> last_tracked_features_;
