@@ -65,6 +65,10 @@ void RgbdVisualOdometry::Params::loadFromConfigFile(const mrpt::config::CConfigF
     depthSampling.columns = s.getInt("depth_grid_columns", depthSampling.columns);
     depthSampling.depthNoise = ransac.depthNoise;
     depthIcp.minObserved = s.getInt("depth_min_observed", depthIcp.minObserved);
+    gyroDepthMinObserved = s.getInt("gyro_depth_min_observed", gyroDepthMinObserved);
+    if (gyroDepthMinObserved < 0 || gyroDepthMinObserved > 6) {
+        s.fail("gyro_depth_min_observed", "must be 0..6 (0: off; directions of a rigid motion)");
+    }
     if (depthModelKeyframes < 1) s.fail("depth_model_keyframes", "must be >= 1");
     if (depthSampling.columns < 8) s.fail("depth_grid_columns", "must be >= 8");
     if (depthIcp.minObserved < 1 || depthIcp.minObserved > 6) {
@@ -93,7 +97,8 @@ void RgbdVisualOdometry::Params::dumpToTextStream(std::ostream& out) const {
         << "depth_with_features = " << (depthWithFeatures ? "true" : "false") << "\n"
         << "depth_model_keyframes = " << depthModelKeyframes << "\n"
         << "depth_grid_columns = " << depthSampling.columns << "\n"
-        << "depth_min_observed = " << depthIcp.minObserved << "  [of 6 directions]\n";
+        << "depth_min_observed = " << depthIcp.minObserved << "  [of 6 directions]\n"
+        << "gyro_depth_min_observed = " << gyroDepthMinObserved << "  [of 6; 0: off]\n";
 }
 
 RgbdVisualOdometry::RgbdVisualOdometry() : RgbdVisualOdometry(Params()) {}
@@ -220,10 +225,24 @@ DepthAlignment RgbdVisualOdometry::alignDepth(const DepthCloud& cloud, double ti
                                               const RotationPrior* rotation) const {
     Eigen::Isometry3d initial = prior ? prior->T_ref_cur : constantVelocity(timestamp);
     // The gyro's rotation starts the alignment (a turn in front of a wall is what constant
-    // velocity gets wrong). As a measurement in the solve it leaked into the directions the
-    // depth does not pin (measured: docs/results/camera-only.md) - not yet.
+    // velocity gets wrong).
     if (rotation) initial.linear() = rotation->R_ref_cur;
-    return icp_.align(depth_model_, cloud, initial);
+    if (!rotation || !(rotation->translationSigma > 0) || params_.gyroDepthMinObserved == 0)
+        return icp_.align(depth_model_, cloud, initial);
+    // The rotation measured, the translation as loose as the carrier allows: solved with the
+    // depth, which then need pin only what the rotation leaves (a wall's distance).
+    MotionPrior measured;
+    measured.T_ref_cur = initial;
+    measured.covariance.setZero();
+    measured.covariance.topLeftCorner<3, 3>().diagonal().setConstant(rotation->sigma * rotation->sigma);
+    measured.covariance.bottomRightCorner<3, 3>().diagonal().setConstant(
+        rotation->translationSigma * rotation->translationSigma);
+    DepthAlignment d = icp_.align(depth_model_, cloud, initial, &measured);
+    if (d.success && d.observed < params_.gyroDepthMinObserved) {
+        d.success = false;
+        d.failure = DepthAlignFailure::Unobservable;
+    }
+    return d;
 }
 
 VoResult RgbdVisualOdometry::processFrame(const RgbdFrame& frame, const MotionPrior* prior,

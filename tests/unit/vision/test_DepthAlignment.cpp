@@ -4,6 +4,8 @@
 #include <lodestone/vision/depth/PointToPlaneIcp.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
+#include <opencv2/imgproc.hpp>
+
 #include "SimTestWorlds.h"
 
 using namespace lodestone::vision;
@@ -55,14 +57,15 @@ DepthAlignment alignFrames(const lodestone::sim::World& world, const Eigen::Isom
                                    initial);
 }
 
-/** A plain corridor 2 m wide and 62 m long (x from -2 to 60), nothing at its ends in range. */
-lodestone::sim::Scenario plainCorridor() {
+/** A plain corridor 2 m wide and 62 m long (x from -2 to 60), nothing at its ends in range (or
+ * its walls of another surface). */
+lodestone::sim::Scenario plainCorridor(const std::string& surface = "plain") {
     lodestone::sim::Scenario sc = lodestone::test::boxScenario("plain");
     sc.walls.clear();
     for (const double y : {-1.0, 1.0}) {
         lodestone::sim::WallSpec w;
         w.name = "side";
-        w.surface = lodestone::sim::SurfaceSpec::parse("plain");
+        w.surface = lodestone::sim::SurfaceSpec::parse(surface);
         w.points = {{-2, y}, {60, y}};
         sc.walls.push_back(w);
     }
@@ -242,7 +245,12 @@ TEST(RgbdVisualOdometryParams, DepthKeysAreReadAndChecked) {
     EXPECT_EQ(p.depthIcp.minObserved, 4);
     EXPECT_EQ(p.depthModelKeyframes, 2);
     EXPECT_EQ(p.depthSampling.columns, 40);
+    EXPECT_EQ(p.gyroDepthMinObserved, 0) << "off unless asked for";
+    mrpt::config::CConfigFileMemory withGyro("[vo]\ngyro_depth_min_observed = 3\n");
+    p.loadFromConfigFile(withGyro, "vo");
+    EXPECT_EQ(p.gyroDepthMinObserved, 3);
     for (const char* bad : {"[vo]\ndepth_min_observed = 7\n", "[vo]\ndepth_model_keyframes = 0\n",
+                            "[vo]\ngyro_depth_min_observed = 7\n",
                             "[vo]\ndepth_grid_columns = 2\n", "[vo]\ndepth_aligment = true\n"}) {
         mrpt::config::CConfigFileMemory b(bad);
         RgbdVisualOdometry::Params q;
@@ -287,3 +295,50 @@ TEST(PointToPlaneIcp, WithAMeasuredMotionTheCorridorsMoveAlongComesFromIt) {
     EXPECT_LT(translationSigma(a, across), 0.005);
 }
 
+
+// A gyro's rotation and the depth solved as one (`gyro_depth_min_observed`): facing one wall the
+// depth pins 3 directions - too few alone - and with the rotation measured the motion counts:
+// the turn the gyro's, the distance to the wall the depth's, the move along the wall as loose as
+// the carrier allows. Off, the same frame is a failure.
+TEST(RgbdVisualOdometry, AGyroAndOneWallSolvedAsOneGiveALooseMotion) {
+    const lodestone::sim::World world(plainCorridor("posters"), 3);
+    // Facing the wall at y = 1 from 1.1 m; then 4 cm closer, 3 cm along it, turned 2 deg.
+    const Eigen::Isometry3d ref = cameraPose({5.0, -0.1, 1.2}, M_PI / 2);
+    const Eigen::Isometry3d cur = cameraPose({5.03, -0.06, 1.2}, M_PI / 2 + 0.035);
+    const Eigen::Isometry3d truth = opticalMotion(ref, cur);
+    RgbdFrame first = render(world, ref, 11), second = render(world, cur, 12);
+    lodestone::sim::CameraSpec cam;
+    lodestone::sim::RgbdRenderer renderer(world, cam, 11);
+    lodestone::sim::Random rng(11);
+    cv::Mat3b rgb;
+    cv::Mat_<uint16_t> depth;
+    renderer.render(ref, rng, rgb, depth);
+    cv::cvtColor(rgb, first.gray, cv::COLOR_BGR2GRAY);  // the first frame's features start VO
+    second.gray = cv::Mat1b::zeros(first.gray.size());  // the second has none
+    second.timestamp = first.timestamp + 0.1;
+    RotationPrior gyro;
+    gyro.R_ref_cur = truth.linear();
+    gyro.sigma = 0.002;
+    gyro.translationSigma = 0.05;
+    const auto run = [&](int gyroDepthMinObserved) {
+        RgbdVisualOdometry::Params p;
+        p.depthAlignment = true;
+        p.gyroDepthMinObserved = gyroDepthMinObserved;
+        RgbdVisualOdometry vo(p);
+        vo.process(first);
+        return vo.process(second, nullptr, &gyro);
+    };
+    const VoResult off = run(0);
+    EXPECT_FALSE(off.success) << "the depth alone pins " << off.depthObserved << " of 6";
+    const VoResult on = run(3);
+    ASSERT_TRUE(on.success && on.depthAligned) << toString(on.failure);
+    EXPECT_EQ(on.depthObserved, 3);
+    EXPECT_LT(angleOf(truth.inverse() * on.T_ref_cur), 0.2 * M_PI / 180);
+    // The wall's normal is the optical z; along the wall, the optical x.
+    const Eigen::Vector3d err = on.T_ref_cur.translation() - truth.translation();
+    EXPECT_LT(std::abs(err.z()), 0.005) << "the distance to the wall is measured";
+    const Eigen::Matrix3d C = on.covariance.bottomRightCorner<3, 3>();
+    EXPECT_LT(std::sqrt(C(2, 2)), 0.005);
+    EXPECT_GT(std::sqrt(C(0, 0)), 0.03) << "the move along the wall is not measured";
+    EXPECT_LT(std::abs(err.x()), 3 * std::sqrt(C(0, 0))) << "and its sigma holds the error";
+}

@@ -2,6 +2,7 @@
 #include <lodestone/graphslam/nrd/KeyframeCloud.h>
 #include <lodestone/graphslam/Se3Pose.h>
 #include <lodestone/graphslam/nrd/VisualOdometryNRD.h>
+#include <lodestone/odometry/FadingVelocity.h>
 #include <lodestone/odometry/RgbdObservationFrame.h>
 #include <lodestone/vision/Se3Covariance.h>
 
@@ -60,6 +61,12 @@ void VisualOdometryNRD::configure(const mrpt::config::CConfigFileBase& ini) {
     p.gyro.biasStd = s.getDouble("gyro_bias_deg", p.gyro.biasStd * 180 / M_PI) * M_PI / 180;
     if (!(p.gyro.noiseStd >= 0)) s.fail("gyro_noise_deg", "must be >= 0");
     if (!(p.gyro.biasStd >= 0)) s.fail("gyro_bias_deg", "must be >= 0");
+    p.gyroBridgeMaxSeconds = s.getDouble("gyro_bridge_max_seconds", p.gyroBridgeMaxSeconds);
+    p.bridgeSpeedSigma = s.getDouble("bridge_speed_sigma", p.bridgeSpeedSigma);
+    p.bridgeVelocitySeconds = s.getDouble("bridge_velocity_seconds", p.bridgeVelocitySeconds);
+    if (!(p.gyroBridgeMaxSeconds >= 0)) s.fail("gyro_bridge_max_seconds", "must be >= 0");
+    if (!(p.bridgeSpeedSigma > 0)) s.fail("bridge_speed_sigma", "must be > 0");
+    if (!(p.bridgeVelocitySeconds > 0)) s.fail("bridge_velocity_seconds", "must be > 0");
     if (!(p.lostEdgeSigma > 0)) s.fail("lost_edge_sigma", "must be > 0");
     s.finish();
     params_ = p;
@@ -103,7 +110,10 @@ std::optional<vision::RotationPrior> VisualOdometryNRD::gyroSinceReference(
     // The gyro's body rotation seen in the optical frame: C^T R C, C the optical frame's
     // rotation in the gyro's.
     const Eigen::Matrix3d C = gyro_.sensorOnRobot().linear().transpose() * T_robot_optical.linear();
-    return vision::RotationPrior{C.transpose() * r->R * C, r->sigma};
+    // How far the carrier may have gone meanwhile: the fading velocity's spread over the time.
+    const odometry::FadingVelocity fading{params_.bridgeSpeedSigma, params_.bridgeVelocitySeconds};
+    return vision::RotationPrior{C.transpose() * r->R * C, r->sigma,
+                                 std::sqrt(fading.displacementVariance(t - *since))};
 }
 
 void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& scan) {
@@ -120,9 +130,14 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
     const auto r = vo_.process(odometry::frameFromObservation(*scan), nullptr,
                                rotation ? &*rotation : nullptr);
     if (params_.useGyro) {
-        // Keep what the next frame's rotation needs: from VO's reference (or this frame) on.
+        // Keep what the next frame's rotation needs: from VO's reference (or this frame) on,
+        // and from the last tracked frame (a bridge across a gap, this frame's restart
+        // included), for as long as a gap may be bridged.
         const auto since = vo_.referenceTimestamp();
-        gyro_.dropBefore(since ? std::min(*since, t) : t);
+        double keep = since ? std::min(*since, t) : t;
+        if (std::isfinite(last_tracked_.t) && t - last_tracked_.t <= params_.gyroBridgeMaxSeconds)
+            keep = std::min(keep, last_tracked_.t);
+        gyro_.dropBefore(keep);
     }
     const mrpt::poses::CPose3DPDFGaussian here;  // a frame at the new node: identity, certain
     if (r.failure == vision::VoFailure::NoReference) {
@@ -133,18 +148,25 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
             ++gaps_;
             gap_seconds_.push_back(gap);
         }
-        std::optional<mrpt::poses::CPose3DPDFGaussian> found;
+        std::optional<mrpt::poses::CPose3DPDFGaussian> found, byGyro;
         if (!first && r.frameFeatures) found = relocalize(*r.frameFeatures, T_robot_optical);
+        if (!first && !found && params_.useGyro && gap <= params_.gyroBridgeMaxSeconds)
+            byGyro = bridgeByGyro(t);
         if (found) {
             // The view came back: the graph goes on from where it was seen before.
             ++relocalized_;
             registerAt(*scan, t, r.frameFeatures, *found, false);
+        } else if (byGyro) {
+            // The gyro saw every turn of the gap: the segment goes on, loose where it must.
+            ++bridged_by_gyro_;
+            registerAt(*scan, t, r.frameFeatures, *byGyro, false);
         } else if (!first && gap <= params_.bridgeMaxSeconds && last_step_seconds_ > 0) {
             // A short gap: where the last velocity carries the camera, as sure as a
             // constant-velocity model is over that long.
             ++bridged_;
             registerAt(*scan, t, r.frameFeatures, bridge(gap), false);
         } else {
+            if (!first) unbridged_gap_seconds_.push_back(gap);
             registerAt(*scan, t, r.frameFeatures, here, !first);
         }
         reference_ = {t, here};
@@ -231,6 +253,30 @@ mrpt::poses::CPose3DPDFGaussian VisualOdometryNRD::bridge(double gap) const {
     return edge;
 }
 
+std::optional<mrpt::poses::CPose3DPDFGaussian> VisualOdometryNRD::bridgeByGyro(double t) const {
+    const auto g = gyro_.between(last_tracked_.t, t);
+    if (!g) return std::nullopt;
+    const double gap = t - last_tracked_.t;
+    // The gyro's body rotation in the robot frame: S R S^T, S the gyro's rotation on the robot.
+    const Eigen::Matrix3d S = gyro_.sensorOnRobot().linear();
+    Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
+    step.linear() = S * g->R * S.transpose();
+    // The velocity before the gap (the last tracked frame's, in its own frame) fading over it.
+    const odometry::FadingVelocity fading{params_.bridgeSpeedSigma, params_.bridgeVelocitySeconds};
+    Eigen::Vector3d v0 = Eigen::Vector3d::Zero();
+    if (last_step_seconds_ > 0) {
+        const mrpt::math::TPoint3D d = last_step_.translation();
+        v0 = Eigen::Vector3d(d.x, d.y, d.z) / last_step_seconds_;
+    }
+    step.translation() = fading.meanDisplacement(v0, gap);
+    Eigen::Matrix<double, 6, 6> cov = Eigen::Matrix<double, 6, 6>::Zero();  // (rotation, translation)
+    cov.topLeftCorner<3, 3>() = g->sigma * g->sigma * Eigen::Matrix3d::Identity();
+    cov.bottomRightCorner<3, 3>() = fading.displacementVariance(gap) * Eigen::Matrix3d::Identity();
+    mrpt::poses::CPose3DPDFGaussian edge = last_tracked_.pdf;
+    edge += mrpt::poses::CPose3DPDFGaussian(poseOf3D(step), mrptCovarianceOf(cov));
+    return edge;
+}
+
 void VisualOdometryNRD::registerAt(const mrpt::obs::CObservation3DRangeScan& scan, double t,
                                    const std::shared_ptr<const vision::FrameFeatures>& features,
                                    const mrpt::poses::CPose3DPDFGaussian& edge, bool restart) {
@@ -311,7 +357,12 @@ JsonObject VisualOdometryNRD::describe() const {
         .set("relocalize_keyframes", params_.relocalizeKeyframes)
         .set("bridge_max_seconds", params_.bridgeMaxSeconds)
         .set("camera_label", params_.cameraLabel);
-    if (params_.useGyro) params.set("gyro_label", params_.gyroLabel);
+    if (params_.useGyro) {
+        params.set("gyro_label", params_.gyroLabel)
+            .set("gyro_bridge_max_seconds", params_.gyroBridgeMaxSeconds)
+            .set("bridge_speed_sigma", params_.bridgeSpeedSigma)
+            .set("bridge_velocity_seconds", params_.bridgeVelocitySeconds);
+    }
     JsonObject stats;
     stats.set("rgbd_frames", frames_)
         .set("failed_frames", failed_frames_)
@@ -319,6 +370,8 @@ JsonObject VisualOdometryNRD::describe() const {
         .set("vo_gaps", gaps_)
         .set("vo_gap_seconds", gap_seconds_)
         .set("vo_gaps_bridged", bridged_)
+        .set("vo_gaps_bridged_by_gyro", bridged_by_gyro_)
+        .set("vo_unbridged_gap_seconds", unbridged_gap_seconds_)
         .set("vo_gaps_relocalized", relocalized_)
         .set("segments", segment_ + 1)
         .set("vo_ms_per_frame", detail::voTimingJson(vo_.totals()));

@@ -52,10 +52,13 @@ struct VoTotals {
 };
 
 /** A rotation another sensor measured between the reference frame and this one (a gyro's,
- * moved into the optical frame): R_ref_cur and its per-axis sigma [rad]. */
+ * moved into the optical frame): R_ref_cur and its per-axis sigma [rad]; and how far the
+ * carrier may have moved meanwhile, per axis [m] (0: unknown - the rotation only starts the
+ * depth alignment). */
 struct RotationPrior {
     Eigen::Matrix3d R_ref_cur{Eigen::Matrix3d::Identity()};
     double sigma{0.01};
+    double translationSigma{0};
 };
 
 /** What one frame gave. */
@@ -114,6 +117,12 @@ class RgbdVisualOdometry {
         /** With depth alignment, also where the features aligned: both solved as one (the
          * features' motion and covariance as a measurement in the depth's Gauss-Newton). */
         bool depthWithFeatures{false};
+        /** Where the features fail and a rotation prior says how far the carrier may have
+         * moved: the depth and the rotation solved as one (the rotation and constant velocity's
+         * translation a measurement, loose by `translationSigma`), the motion counting when the
+         * depth pins this many directions (3: a plain wall - with the rotation, 4 of 6
+         * measured); 0: the rotation only starts the alignment. */
+        int gyroDepthMinObserved{0};
         int depthModelKeyframes{1};  ///< keyframes in the local model depth aligns with (1: see docs/results/camera-only.md)
         DepthSampling depthSampling;  ///< columns from `depth_grid_columns`; noise from RANSAC's
         PointToPlaneIcp::Params depthIcp;

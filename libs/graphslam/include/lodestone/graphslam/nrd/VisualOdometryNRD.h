@@ -28,8 +28,14 @@ namespace lodestone::graphslam {
  * restarts from is first aligned (VO's matching and RANSAC) with the last tracked frame and
  * the segment's latest keyframes (`relocalize_keyframes`, newest first): a view that came back
  * after a blank wall or a blur joins the graph there, with an edge from that frame composed
- * with VO's, and no gap is left. Else a short gap (`bridge_max_seconds`) is bridged by the camera's last velocity, the edge's covariance that
- * of a constant-velocity model with white-noise acceleration over the gap; after a longer one
+ * with VO's, and no gap is left. With a gyro (`use_gyro`) that covers the gap, a gap of up to
+ * `gyro_bridge_max_seconds` is bridged by it: the gyro's rotation over the gap, and a
+ * translation from the carrier's last velocity fading as a velocity does that nothing measures
+ * (a first-order Gauss-Markov process: `bridge_speed_sigma`, `bridge_velocity_seconds`), its
+ * covariance growing with the gap - the segment goes on, its edge loose where nothing saw the
+ * motion. Else a short gap (`bridge_max_seconds`) is bridged by the camera's last velocity, the
+ * edge's covariance that of a constant-velocity model with white-noise acceleration over the
+ * gap; after a longer one
  * the frame it starts from is the first node of a new segment, tied to the last node by a very
  * weak edge (`lost_edge_sigma`), as after a kidnap; the visual loop closer relocalizes it
  * (SlamEngine, Relocalizer). Its record carries when tracking was lost and found again.
@@ -59,6 +65,13 @@ class VisualOdometryNRD : public NodeDecider {
         bool useGyro{false};
         std::string gyroLabel;
         odometry::GyroIntegrator::Params gyro;
+        /** A VO gap the gyro covers, this long at most [s], is bridged by it (0: never). Its
+         * translation: the velocity before the gap decaying with time constant
+         * `bridgeVelocitySeconds` [s] towards a carrier's speed spread `bridgeSpeedSigma`
+         * [m/s per axis]. */
+        double gyroBridgeMaxSeconds{10.0};
+        double bridgeSpeedSigma{0.5};
+        double bridgeVelocitySeconds{1.0};
         vision::RgbdVisualOdometry::Params visual;  ///< [visual_odometry]
     };
 
@@ -85,16 +98,19 @@ class VisualOdometryNRD : public NodeDecider {
     /** The gyro's rotation from VO's reference frame to time t, in the optical frame. */
     std::optional<vision::RotationPrior> gyroSinceReference(double t,
                                                             const Eigen::Isometry3d& T_robot_optical) const;
-    /** A node at this frame: `edge` from the last node (or the root when there is none). */
     /** From the last node to a frame `gap` seconds after the last tracked one, by the last
      * velocity. */
     mrpt::poses::CPose3DPDFGaussian bridge(double gap) const;
+    /** The same across a gap from the last tracked frame to time t, by the gyro's rotation and
+     * the fading velocity; nothing when the gyro does not cover the gap. */
+    std::optional<mrpt::poses::CPose3DPDFGaussian> bridgeByGyro(double t) const;
     /** The restart frame aligned with a recent frame of the segment: the edge from the last
      * node to it, if one aligns. */
     std::optional<mrpt::poses::CPose3DPDFGaussian> relocalize(
         const vision::FrameFeatures& current, const Eigen::Isometry3d& T_robot_camera);
     /** Node `from`'s pose relative to the last node, with covariance (the segment's edges). */
     mrpt::poses::CPose3DPDFGaussian relativeToLastNode(TNodeID from) const;
+    /** A node at this frame: `edge` from the last node (or the root when there is none). */
     void registerAt(const mrpt::obs::CObservation3DRangeScan& scan, double t,
                     const std::shared_ptr<const vision::FrameFeatures>& features,
                     const mrpt::poses::CPose3DPDFGaussian& edge, bool restart);
@@ -116,6 +132,8 @@ class VisualOdometryNRD : public NodeDecider {
     mrpt::poses::CPose3D since_keyframe_;  // the last node relative to the last keyframe
     int segment_{0};
     std::size_t frames_{0}, failed_frames_{0}, keyframes_{0}, gaps_{0}, bridged_{0}, relocalized_{0};
+    std::size_t bridged_by_gyro_{0};
+    std::vector<double> unbridged_gap_seconds_;  // the gaps that opened a new segment
     mrpt::poses::CPose3D last_step_;  // the last motion between tracked frames ...
     double last_step_seconds_{0};      // ... and how long it took
     std::vector<double> gap_seconds_;  // from the last tracked frame to VO's restart

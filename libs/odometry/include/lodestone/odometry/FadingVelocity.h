@@ -1,0 +1,23 @@
+#pragma once
+
+#include <Eigen/Core>
+
+namespace lodestone::odometry {
+
+/** Where a carrier went while nothing measured its motion: its velocity a first-order
+ * Gauss-Markov process (Ornstein-Uhlenbeck; Singer's manoeuvre model), each axis apart -
+ * the velocity known at the start fades with time constant `correlationSeconds` towards zero
+ * mean, spread `speedSigma` (how fast the carrier moves when it does). Over a short gap it is a
+ * constant-velocity model with white-noise acceleration; over a long one a random walk whose
+ * displacement grows with the square root of time, never a straight line at the last speed. */
+struct FadingVelocity {
+    double speedSigma{0.5};          ///< [m/s] per axis, the stationary velocity's sigma
+    double correlationSeconds{1.0};  ///< [s] how long a velocity persists
+
+    /** Expected displacement over `seconds` from velocity `v0`: v0 tau (1 - e^-T/tau). */
+    Eigen::Vector3d meanDisplacement(const Eigen::Vector3d& v0, double seconds) const;
+    /** Its variance per axis [m^2]: sigma^2 tau^2 (2 T/tau - 3 + 4 e^-T/tau - e^-2T/tau). */
+    double displacementVariance(double seconds) const;
+};
+
+}  // namespace lodestone::odometry

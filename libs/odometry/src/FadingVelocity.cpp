@@ -1,0 +1,21 @@
+#include <lodestone/odometry/FadingVelocity.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace lodestone::odometry {
+
+Eigen::Vector3d FadingVelocity::meanDisplacement(const Eigen::Vector3d& v0, double seconds) const {
+    const double tau = correlationSeconds, T = std::max(0.0, seconds);
+    return v0 * (tau * -std::expm1(-T / tau));
+}
+
+double FadingVelocity::displacementVariance(double seconds) const {
+    const double tau = correlationSeconds, u = std::max(0.0, seconds) / tau;
+    // For small u the bracket cancels to 2 u^3 / 3: take the series there (no cancellation).
+    const double bracket =
+        u < 1e-3 ? 2.0 * u * u * u / 3.0 : 2 * u - 3 + 4 * std::exp(-u) - std::exp(-2 * u);
+    return speedSigma * speedSigma * tau * tau * bracket;
+}
+
+}  // namespace lodestone::odometry

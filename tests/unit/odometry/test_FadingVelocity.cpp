@@ -1,0 +1,56 @@
+// The fading-velocity model (a Gauss-Markov velocity): its mean and variance against a Monte
+// Carlo run of the process itself, and its two limits (constant velocity, random walk).
+#include <gtest/gtest.h>
+#include <lodestone/odometry/FadingVelocity.h>
+
+#include <cmath>
+#include <random>
+
+using lodestone::odometry::FadingVelocity;
+
+TEST(FadingVelocity, MatchesTheProcessSimulated) {
+    const FadingVelocity model{0.5, 1.0};
+    const double v0 = 0.3, T = 3.0, dt = 1e-3;
+    std::mt19937_64 rng(7);
+    std::normal_distribution<double> n01;
+    // Exact discretization of the velocity: v' = a v + s w, a = e^-dt/tau, s^2 = sigma^2 (1 - a^2).
+    const double a = std::exp(-dt / model.correlationSeconds);
+    const double s = model.speedSigma * std::sqrt(1 - a * a);
+    const int runs = 4000;
+    double sum = 0, sum2 = 0;
+    for (int r = 0; r < runs; ++r) {
+        double v = v0, x = 0;
+        for (double t = 0; t < T - 1e-9; t += dt) {
+            const double next = a * v + s * n01(rng);
+            x += 0.5 * (v + next) * dt;
+            v = next;
+        }
+        sum += x;
+        sum2 += x * x;
+    }
+    const double mean = sum / runs, var = sum2 / runs - mean * mean;
+    const double modelMean = model.meanDisplacement(Eigen::Vector3d(v0, 0, 0), T).x();
+    const double modelVar = model.displacementVariance(T);
+    // Sampling error of the mean: sqrt(var / runs) ~ 0.014 m; of the variance ~ 2.2 % (5 and
+    // 4.5 sigma allowed; the seed is fixed).
+    EXPECT_NEAR(mean, modelMean, 0.07);
+    EXPECT_NEAR(var / modelVar, 1.0, 0.1);
+}
+
+TEST(FadingVelocity, ShortGapsAreConstantVelocityLongOnesARandomWalk) {
+    const FadingVelocity model{0.5, 1.0};
+    const Eigen::Vector3d v0(0.3, -0.1, 0.0);
+    // Short: the last velocity carried on, sigma as white-noise acceleration of
+    // q = 2 sigma^2 / tau: var = q T^3 / 3.
+    const double t = 0.01;
+    // (the velocity has faded by t / 2 tau on average: second order)
+    EXPECT_NEAR((model.meanDisplacement(v0, t) - v0 * t * (1 - t / 2)).norm(), 0, 1e-7);
+    EXPECT_NEAR(model.displacementVariance(t) / (2 * 0.25 / 1.0 * t * t * t / 3), 1.0, 0.02);
+    // Long: the mean stops at v0 tau, the variance grows as 2 sigma^2 tau T.
+    EXPECT_NEAR((model.meanDisplacement(v0, 50) - v0).norm(), 0, 1e-9);
+    EXPECT_NEAR(model.displacementVariance(100) / (2 * 0.25 * 100), 1.0, 0.03);
+    // Continuous across the series' switch, zero at zero.
+    EXPECT_NEAR(model.displacementVariance(0.999e-3) / model.displacementVariance(1.001e-3), 1.0, 0.01);
+    EXPECT_EQ(model.displacementVariance(0), 0.0);
+    EXPECT_EQ(model.meanDisplacement(v0, 0).norm(), 0.0);
+}
