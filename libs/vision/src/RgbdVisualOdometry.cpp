@@ -213,9 +213,16 @@ Eigen::Isometry3d RgbdVisualOdometry::constantVelocity(double timestamp) const {
 }
 
 void RgbdVisualOdometry::trackedAt(const Eigen::Isometry3d& T_ref_cur, double timestamp,
-                                   bool becameReference) {
+                                   bool becameReference, bool measured, double velocitySeconds) {
     last_step_ = last_in_ref_.inverse() * T_ref_cur;
     last_step_dt_ = timestamp - last_time_;
+    if (measured && timestamp > reference_time_) {
+        // Over the whole stretch since the reference: a frame's own step is too short to say.
+        velocity_ = T_ref_cur.translation() / (timestamp - reference_time_);
+    } else if (last_step_dt_ > 0) {
+        velocity_ *= std::exp(-last_step_dt_ / velocitySeconds);
+    }
+    if (becameReference) velocity_ = T_ref_cur.linear().transpose() * velocity_;
     last_time_ = timestamp;
     last_in_ref_ = becameReference ? Eigen::Isometry3d::Identity() : T_ref_cur;
 }
@@ -233,6 +240,10 @@ DepthAlignment RgbdVisualOdometry::alignDepth(const DepthCloud& cloud, double ti
     // depth, which then need pin only what the rotation leaves (a wall's distance).
     MotionPrior measured;
     measured.T_ref_cur = initial;
+    // Where the depth does not pin it, the carrier went on as its velocity fades (not constant
+    // velocity: a walker stops to turn, and a step's velocity turns with the camera).
+    const double tau = rotation->velocitySeconds, dt = std::max(0.0, timestamp - last_time_);
+    measured.T_ref_cur.translation() = last_in_ref_.translation() - velocity_ * (tau * std::expm1(-dt / tau));
     measured.covariance.setZero();
     measured.covariance.topLeftCorner<3, 3>().diagonal().setConstant(rotation->sigma * rotation->sigma);
     measured.covariance.bottomRightCorner<3, 3>().diagonal().setConstant(
@@ -287,6 +298,7 @@ VoResult RgbdVisualOdometry::processFrame(const RgbdFrame& frame, const MotionPr
         last_in_ref_.setIdentity();
         last_time_ = frame.timestamp;
         last_step_dt_ = 0;
+        velocity_.setZero();
         failures_ = 0;
         state_ = VoState::Initializing;
         r.state = state_;
@@ -366,7 +378,8 @@ VoResult RgbdVisualOdometry::processFrame(const RgbdFrame& frame, const MotionPr
     r.state = state_;
     const bool keyframe = est.transform.translation().norm() >= params_.keyframeDistance ||
                           angle >= params_.keyframeAngle;
-    trackedAt(est.transform, frame.timestamp, keyframe);
+    trackedAt(est.transform, frame.timestamp, keyframe, !r.depthAligned,
+              rotation ? rotation->velocitySeconds : 1.0);
     if (keyframe) becomeReference(est.transform, !r.depthAligned || r.depthObserved == 6);
     return r;
 }

@@ -113,7 +113,8 @@ std::optional<vision::RotationPrior> VisualOdometryNRD::gyroSinceReference(
     // How far the carrier may have gone meanwhile: the fading velocity's spread over the time.
     const odometry::FadingVelocity fading{params_.bridgeSpeedSigma, params_.bridgeVelocitySeconds};
     return vision::RotationPrior{C.transpose() * r->R * C, r->sigma,
-                                 std::sqrt(fading.displacementVariance(t - *since))};
+                                 std::sqrt(fading.displacementVariance(t - *since)),
+                                 params_.bridgeVelocitySeconds};
 }
 
 void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& scan) {

@@ -59,6 +59,10 @@ struct RotationPrior {
     Eigen::Matrix3d R_ref_cur{Eigen::Matrix3d::Identity()};
     double sigma{0.01};
     double translationSigma{0};
+    /** How long the carrier's velocity persists where nothing measures it [s]: the translation
+     * the depth does not pin follows the last measured velocity, fading with this time
+     * constant (a first-order Gauss-Markov velocity, as odometry::FadingVelocity). */
+    double velocitySeconds{1.0};
 };
 
 /** What one frame gave. */
@@ -118,8 +122,8 @@ class RgbdVisualOdometry {
          * features' motion and covariance as a measurement in the depth's Gauss-Newton). */
         bool depthWithFeatures{false};
         /** Where the features fail and a rotation prior says how far the carrier may have
-         * moved: the depth and the rotation solved as one (the rotation and constant velocity's
-         * translation a measurement, loose by `translationSigma`), the motion counting when the
+         * moved: the depth and the rotation solved as one (the rotation and the fading
+         * velocity's translation a measurement, loose by `translationSigma`), the motion counting when the
          * depth pins this many directions (3: a plain wall - with the rotation, 4 of 6
          * measured); 0: the rotation only starts the alignment. */
         int gyroDepthMinObserved{0};
@@ -174,8 +178,11 @@ class RgbdVisualOdometry {
                               const RotationPrior* rotation) const;
     /** The frame's pose in the reference by constant velocity since the last tracked frame. */
     Eigen::Isometry3d constantVelocity(double timestamp) const;
-    /** Remembers a tracked frame's pose in the reference, for constant velocity. */
-    void trackedAt(const Eigen::Isometry3d& T_ref_cur, double timestamp, bool becameReference);
+    /** Remembers a tracked frame's pose in the reference, for constant velocity; and the
+     * carrier's velocity - measured since the reference where the features aligned, faded by
+     * `velocitySeconds` where only the depth did. */
+    void trackedAt(const Eigen::Isometry3d& T_ref_cur, double timestamp, bool becameReference,
+                   bool measured, double velocitySeconds);
     /** RANSAC on given matches (the second half of `align`). */
     Alignment alignMatches(const FrameFeatures& reference, const FrameFeatures& current,
                            const std::vector<cv::DMatch>& matches, std::uint64_t seed) const;
@@ -193,6 +200,8 @@ class RgbdVisualOdometry {
     double last_time_{0};
     Eigen::Isometry3d last_step_{Eigen::Isometry3d::Identity()};
     double last_step_dt_{0};
+    /** The carrier's velocity at the last tracked frame, in the reference's frame [m/s]. */
+    Eigen::Vector3d velocity_{Eigen::Vector3d::Zero()};
     std::optional<FrameFeatures> reference_;
     double reference_time_{0};
     int failures_{0};
