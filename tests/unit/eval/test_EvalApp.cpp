@@ -1,26 +1,15 @@
 #include <gtest/gtest.h>
-#include <EvalApp.h>
 #include <lodestone/io/TumTrajectory.h>
 
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
+#include "EvalCommand.h"
 #include "TestPaths.h"
 
 using namespace lodestone;
 
-namespace {
-int evalCmd(std::vector<std::string> args, std::string& out, std::string& err) {
-    args.insert(args.begin(), "lodestone-eval");
-    std::vector<const char*> argv;
-    for (const auto& a : args) argv.push_back(a.c_str());
-    std::ostringstream o, e;
-    const int code = eval::runEvalApp(static_cast<int>(argv.size()), argv.data(), o, e);
-    out = o.str();
-    err = e.str();
-    return code;
-}
-}  // namespace
+using test::evalCmd;
 
 TEST(EvalApp, ReportsTheMetricsAndDrawsThePlot) {
     test::TempDir dir;

@@ -1,5 +1,4 @@
 #include <gtest/gtest.h>
-#include <EvalApp.h>
 #include <lodestone/eval/SegmentEval.h>
 #include <lodestone/outputs/NodeTable.h>
 #include <lodestone/outputs/RunFiles.h>
@@ -7,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "EvalCommand.h"
 #include "TestPaths.h"
 
 using namespace lodestone;
@@ -33,16 +33,7 @@ void writeRun(const test::TempDir& dir) {
         << R"({"engine": {"node_decider": {"stats": {"vo_gap_seconds": [0.4, 6.5, 1.1]}}}})";
 }
 
-int evalCmd(std::vector<std::string> args, std::string& out, std::string& err) {
-    args.insert(args.begin(), "lodestone-eval");
-    std::vector<const char*> argv;
-    for (const auto& a : args) argv.push_back(a.c_str());
-    std::ostringstream o, e;
-    const int code = eval::runEvalApp(static_cast<int>(argv.size()), argv.data(), o, e);
-    out = o.str();
-    err = e.str();
-    return code;
-}
+using test::evalCmd;
 }  // namespace
 
 TEST(SegmentEval, EachSegmentOnItsOwnSeesPastWhereItWasLeft) {

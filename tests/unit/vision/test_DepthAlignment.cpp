@@ -38,6 +38,7 @@ RgbdFrame render(const lodestone::sim::World& world, const Eigen::Isometry3d& po
     cv::Mat_<uint16_t> depth;
     renderer.render(pose, rng, rgb, depth);
     RgbdFrame f;
+    cv::cvtColor(rgb, f.gray, cv::COLOR_BGR2GRAY);
     f.depth = depthToMetres(depth, 0.001);
     f.intrinsics = {cam.fx, cam.fy, cam.cx, cam.cy, cam.width, cam.height};
     return f;
@@ -70,6 +71,18 @@ lodestone::sim::Scenario plainCorridor(const std::string& surface = "plain") {
         sc.walls.push_back(w);
     }
     return sc;
+}
+
+/** A cloud of one point 2 m straight ahead, facing the camera. */
+DepthCloud onePointAhead() {
+    DepthCloud one;
+    one.points = Eigen::Matrix3Xf::Zero(3, 1);
+    one.points.col(0) << 0, 0, 2;
+    one.normals = Eigen::Matrix3Xf::Zero(3, 1);
+    one.normals.col(0) << 0, 0, -1;
+    one.sigma = Eigen::VectorXf::Constant(1, 0.01f);
+    one.normalVariance = Eigen::VectorXf::Constant(1, 1e-4f);
+    return one;
 }
 
 double angleOf(const Eigen::Isometry3d& T) { return Eigen::AngleAxisd(T.rotation()).angle(); }
@@ -192,13 +205,7 @@ TEST(PointToPlaneIcp, NoDepthGivesNoMotion) {
 // The model keeps the keyframes before the reference, moved into its frame: a frame that turned
 // back towards what only an older keyframe saw still finds its surfaces.
 TEST(DepthModel, OlderKeyframesAreMovedIntoTheReferenceFrame) {
-    DepthCloud one;
-    one.points = Eigen::Matrix3Xf::Zero(3, 1);
-    one.points.col(0) << 0, 0, 2;
-    one.normals = Eigen::Matrix3Xf::Zero(3, 1);
-    one.normals.col(0) << 0, 0, -1;
-    one.sigma = Eigen::VectorXf::Constant(1, 0.01f);
-    one.normalVariance = Eigen::VectorXf::Constant(1, 1e-4f);
+    const DepthCloud one = onePointAhead();
     DepthModel model(2);
     model.addReference(one, Eigen::Isometry3d::Identity());
     // The next reference is 0.5 m forward of the first: the old point is 1.5 m ahead of it.
@@ -220,13 +227,7 @@ TEST(DepthModel, OlderKeyframesAreMovedIntoTheReferenceFrame) {
 // A reference reached by a motion that left directions loose cannot place the keyframes before
 // it: they are dropped rather than kept at a guessed place.
 TEST(DepthModel, ALooseMotionDropsTheOlderKeyframes) {
-    DepthCloud one;
-    one.points = Eigen::Matrix3Xf::Zero(3, 1);
-    one.points.col(0) << 0, 0, 2;
-    one.normals = Eigen::Matrix3Xf::Zero(3, 1);
-    one.normals.col(0) << 0, 0, -1;
-    one.sigma = Eigen::VectorXf::Constant(1, 0.01f);
-    one.normalVariance = Eigen::VectorXf::Constant(1, 1e-4f);
+    const DepthCloud one = onePointAhead();
     DepthModel model(3);
     model.addReference(one, Eigen::Isometry3d::Identity());
     model.addReference(one, Eigen::Isometry3d::Identity());
@@ -306,15 +307,9 @@ TEST(RgbdVisualOdometry, AGyroAndOneWallSolvedAsOneGiveALooseMotion) {
     const Eigen::Isometry3d ref = cameraPose({5.0, -0.1, 1.2}, M_PI / 2);
     const Eigen::Isometry3d cur = cameraPose({5.03, -0.06, 1.2}, M_PI / 2 + 0.035);
     const Eigen::Isometry3d truth = opticalMotion(ref, cur);
-    RgbdFrame first = render(world, ref, 11), second = render(world, cur, 12);
-    lodestone::sim::CameraSpec cam;
-    lodestone::sim::RgbdRenderer renderer(world, cam, 11);
-    lodestone::sim::Random rng(11);
-    cv::Mat3b rgb;
-    cv::Mat_<uint16_t> depth;
-    renderer.render(ref, rng, rgb, depth);
-    cv::cvtColor(rgb, first.gray, cv::COLOR_BGR2GRAY);  // the first frame's features start VO
-    second.gray = cv::Mat1b::zeros(first.gray.size());  // the second has none
+    const RgbdFrame first = render(world, ref, 11);  // its features start VO ...
+    RgbdFrame second = render(world, cur, 12);
+    second.gray = cv::Mat1b::zeros(first.gray.size());  // ... the second has none
     second.timestamp = first.timestamp + 0.1;
     RotationPrior gyro;
     gyro.R_ref_cur = truth.linear();

@@ -2,7 +2,6 @@
 #include <lodestone/graphslam/nrd/KeyframeCloud.h>
 #include <lodestone/graphslam/Se3Pose.h>
 #include <lodestone/graphslam/nrd/VisualOdometryNRD.h>
-#include <lodestone/odometry/FadingVelocity.h>
 #include <lodestone/odometry/RgbdObservationFrame.h>
 #include <lodestone/vision/Se3Covariance.h>
 
@@ -62,11 +61,12 @@ void VisualOdometryNRD::configure(const mrpt::config::CConfigFileBase& ini) {
     if (!(p.gyro.noiseStd >= 0)) s.fail("gyro_noise_deg", "must be >= 0");
     if (!(p.gyro.biasStd >= 0)) s.fail("gyro_bias_deg", "must be >= 0");
     p.gyroBridgeMaxSeconds = s.getDouble("gyro_bridge_max_seconds", p.gyroBridgeMaxSeconds);
-    p.bridgeSpeedSigma = s.getDouble("bridge_speed_sigma", p.bridgeSpeedSigma);
-    p.bridgeVelocitySeconds = s.getDouble("bridge_velocity_seconds", p.bridgeVelocitySeconds);
+    auto& fading = p.bridgeVelocity;
+    fading.speedSigma = s.getDouble("bridge_speed_sigma", fading.speedSigma);
+    fading.correlationSeconds = s.getDouble("bridge_velocity_seconds", fading.correlationSeconds);
     if (!(p.gyroBridgeMaxSeconds >= 0)) s.fail("gyro_bridge_max_seconds", "must be >= 0");
-    if (!(p.bridgeSpeedSigma > 0)) s.fail("bridge_speed_sigma", "must be > 0");
-    if (!(p.bridgeVelocitySeconds > 0)) s.fail("bridge_velocity_seconds", "must be > 0");
+    if (!(fading.speedSigma > 0)) s.fail("bridge_speed_sigma", "must be > 0");
+    if (!(fading.correlationSeconds > 0)) s.fail("bridge_velocity_seconds", "must be > 0");
     if (!(p.lostEdgeSigma > 0)) s.fail("lost_edge_sigma", "must be > 0");
     s.finish();
     params_ = p;
@@ -111,10 +111,10 @@ std::optional<vision::RotationPrior> VisualOdometryNRD::gyroSinceReference(
     // rotation in the gyro's.
     const Eigen::Matrix3d C = gyro_.sensorOnRobot().linear().transpose() * T_robot_optical.linear();
     // How far the carrier may have gone meanwhile: the fading velocity's spread over the time.
-    const odometry::FadingVelocity fading{params_.bridgeSpeedSigma, params_.bridgeVelocitySeconds};
+    const auto& fading = params_.bridgeVelocity;
     return vision::RotationPrior{C.transpose() * r->R * C, r->sigma,
                                  std::sqrt(fading.displacementVariance(t - *since)),
-                                 params_.bridgeVelocitySeconds};
+                                 fading.correlationSeconds};
 }
 
 void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& scan) {
@@ -263,7 +263,7 @@ std::optional<mrpt::poses::CPose3DPDFGaussian> VisualOdometryNRD::bridgeByGyro(d
     Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
     step.linear() = S * g->R * S.transpose();
     // The velocity before the gap (the last tracked frame's, in its own frame) fading over it.
-    const odometry::FadingVelocity fading{params_.bridgeSpeedSigma, params_.bridgeVelocitySeconds};
+    const auto& fading = params_.bridgeVelocity;
     Eigen::Vector3d v0 = Eigen::Vector3d::Zero();
     if (last_step_seconds_ > 0) {
         const mrpt::math::TPoint3D d = last_step_.translation();
@@ -361,8 +361,8 @@ JsonObject VisualOdometryNRD::describe() const {
     if (params_.useGyro) {
         params.set("gyro_label", params_.gyroLabel)
             .set("gyro_bridge_max_seconds", params_.gyroBridgeMaxSeconds)
-            .set("bridge_speed_sigma", params_.bridgeSpeedSigma)
-            .set("bridge_velocity_seconds", params_.bridgeVelocitySeconds);
+            .set("bridge_speed_sigma", params_.bridgeVelocity.speedSigma)
+            .set("bridge_velocity_seconds", params_.bridgeVelocity.correlationSeconds);
     }
     JsonObject stats;
     stats.set("rgbd_frames", frames_)

@@ -2,6 +2,7 @@
 
 #include <lodestone/graphslam/NodeDecider.h>
 #include <lodestone/graphslam/nrd/NodeSpacing.h>
+#include <lodestone/odometry/FadingVelocity.h>
 #include <lodestone/odometry/GyroIntegrator.h>
 #include <lodestone/vision/RgbdVisualOdometry.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
@@ -66,12 +67,10 @@ class VisualOdometryNRD : public NodeDecider {
         std::string gyroLabel;
         odometry::GyroIntegrator::Params gyro;
         /** A VO gap the gyro covers, this long at most [s], is bridged by it (0: never). Its
-         * translation: the velocity before the gap decaying with time constant
-         * `bridgeVelocitySeconds` [s] towards a carrier's speed spread `bridgeSpeedSigma`
-         * [m/s per axis]. */
+         * translation: the velocity before the gap fading as `bridgeVelocity` says
+         * (`bridge_velocity_seconds`, `bridge_speed_sigma`). */
         double gyroBridgeMaxSeconds{10.0};
-        double bridgeSpeedSigma{0.5};
-        double bridgeVelocitySeconds{1.0};
+        odometry::FadingVelocity bridgeVelocity;
         vision::RgbdVisualOdometry::Params visual;  ///< [visual_odometry]
     };
 
