@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <lodestone/graphslam/erd/magnetic/PathUncertainty.h>
 
+#include <Eigen/LU>
 #include <random>
 
 using namespace lodestone;
@@ -141,5 +142,28 @@ TEST(PathUncertainty, TheRelativeGateHoldsTheTrueOffsetAlongOneChain) {
         const auto strong = relativeGateCoverage(0.005, a, b);
         EXPECT_GE(strong.inside, 0.98) << a << " -> " << b;
         EXPECT_LT(strong.nees, 2.5) << a << " -> " << b;
+    }
+}
+
+TEST(PathUncertainty, ASegmentsGateDistanceIsTheLeastOfItsPoints) {
+    // The window closer passes over a node whose whole interval lies outside the gate: the
+    // bound must never exceed any point's distance, and should be the least of them.
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-3, 3);
+    for (int trial = 0; trial < 200; ++trial) {
+        const Eigen::Matrix2d L = (Eigen::Matrix2d() << u(rng), 0, u(rng), u(rng)).finished();
+        const Eigen::Matrix2d S = L * L.transpose() + 0.05 * Eigen::Matrix2d::Identity();
+        const Eigen::Vector2d a(u(rng), u(rng)), p(u(rng), u(rng));
+        // (every fifth segment a single point: a node with no interval)
+        const Eigen::Vector2d b = trial % 5 == 0 ? a : Eigen::Vector2d(u(rng), u(rng));
+        const double bound = graphslam::closure::PathUncertainty::segmentDistance2(S, a, b, p);
+        double least = INFINITY;
+        const Eigen::Matrix2d M = S.inverse();
+        for (int k = 0; k <= 2000; ++k) {
+            const Eigen::Vector2d d = p - (a + (k / 2000.0) * (b - a));
+            least = std::min(least, d.dot(M * d));
+        }
+        EXPECT_LE(bound, least * (1 + 1e-9) + 1e-12) << "trial " << trial;
+        EXPECT_GE(bound, least - 1e-3 * (1 + least)) << "trial " << trial;
     }
 }

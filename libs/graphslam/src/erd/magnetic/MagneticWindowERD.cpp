@@ -200,6 +200,23 @@ MagneticWindowERD::Prior MagneticWindowERD::priorAt(const magnetic::SupernodeTra
     return p;
 }
 
+double MagneticWindowERD::nodeGateBound(const magnetic::TrackSample& sample, TNodeID qNode,
+                                        const Eigen::Vector2d& here) const {
+    const int segment = sample.segment, qSegment = path_.segment[qNode];
+    if (!sameFrame(segment, qSegment)) return 0;  // across a kidnap: everywhere
+    const auto k = static_cast<TNodeID>(sample.node);
+    const Eigen::Matrix2d S = segment == qSegment
+                                  ? path_.uncertainty.relativeGateCovariance(k, qNode)
+                                  : path_.uncertainty.gateCovariance(qNode);
+    // positionAtSample places the node's samples between node k - 1 and k (at node k when it
+    // has no interval).
+    const Eigen::Vector2d b(poses_[k]->x(), poses_[k]->y());
+    const Eigen::Vector2d a = intervalFraction(k, sample.s)
+                                  ? Eigen::Vector2d(poses_[k - 1]->x(), poses_[k - 1]->y())
+                                  : b;
+    return closure::PathUncertainty::segmentDistance2(S, a, b, here);
+}
+
 void MagneticWindowERD::query(std::size_t first) {
     const auto t0 = Clock::now();
     ++stats_.queries;
@@ -217,14 +234,26 @@ void MagneticWindowERD::query(std::size_t first) {
         const Eigen::Vector2d here = positionAtSample(queried(), newest);
         // Every stored reading the robot left at least min_travel_gap ago, inside the gate:
         // forward on the queried sensor's track, backward on its mirror's.
+        // A node's samples lie between it and the node before: a node whose whole interval
+        // is outside the gate is passed over without weighing each sample (the margin keeps
+        // a bound's rounding from dropping a sample the exact test would keep).
+        const double passOver = params_.gateChi2 * (1 + 1e-6) + 1e-9;
         const auto scan = [&](const magnetic::SupernodeTrack& track, bool forward, bool backward) {
             const auto& stored = track.samples();
-            for (std::size_t c = 0; c < stored.size() && leftBehind(stored[c], samples[newest].s);
-                 ++c) {
-                const Prior p = priorAt(track, c, qNode, here);
-                if (p.gate2 > params_.gateChi2) continue;
-                if (forward) compareAt(track, c, WindowDirection::Forward, first, p, candidates);
-                if (backward) compareAt(track, c, WindowDirection::Backward, first, p, candidates);
+            for (std::size_t c = 0; c < stored.size() && leftBehind(stored[c], samples[newest].s);) {
+                std::size_t end = c + 1;  // the node's samples: [c, end)
+                while (end < stored.size() && stored[end].node == stored[c].node) ++end;
+                if (nodeGateBound(stored[c], qNode, here) > passOver) {
+                    c = end;
+                    continue;
+                }
+                for (; c < end && leftBehind(stored[c], samples[newest].s); ++c) {
+                    const Prior p = priorAt(track, c, qNode, here);
+                    if (p.gate2 > params_.gateChi2) continue;
+                    if (forward) compareAt(track, c, WindowDirection::Forward, first, p, candidates);
+                    if (backward)
+                        compareAt(track, c, WindowDirection::Backward, first, p, candidates);
+                }
             }
         };
         if (&mirrored() == &queried()) {

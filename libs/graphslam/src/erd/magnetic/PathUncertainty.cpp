@@ -1,6 +1,7 @@
 #include <lodestone/graphslam/erd/magnetic/PathUncertainty.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -93,14 +94,21 @@ Eigen::Matrix3d PathUncertainty::covariance(TNodeID id) const {
     return sigma_.at(id).topLeftCorner<3, 3>();
 }
 
+Eigen::Matrix2d PathUncertainty::gateCovariance(TNodeID id) const {
+    return sigma_.at(id).topLeftCorner<2, 2>() +
+           params_.floor * params_.floor * Eigen::Matrix2d::Identity();
+}
+
 double PathUncertainty::gateDistance2(TNodeID id, const Eigen::Vector2d& d) const {
-    const Eigen::Matrix2d S = sigma_.at(id).topLeftCorner<2, 2>() +
-                              params_.floor * params_.floor * Eigen::Matrix2d::Identity();
-    return d.dot(S.ldlt().solve(d));
+    return d.dot(gateCovariance(id).ldlt().solve(d));
 }
 
 double PathUncertainty::relativeGateDistance2(TNodeID target, TNodeID query,
                                               const Eigen::Vector2d& d) const {
+    return d.dot(relativeGateCovariance(target, query).ldlt().solve(d));
+}
+
+Eigen::Matrix2d PathUncertainty::relativeGateCovariance(TNodeID target, TNodeID query) const {
     const Matrix4& Sa = sigma_.at(target);
     const Matrix4& Sb = sigma_.at(query);
     Eigen::Matrix2d S;
@@ -133,7 +141,19 @@ double PathUncertainty::relativeGateDistance2(TNodeID target, TNodeID query,
         S = Sb.topLeftCorner<2, 2>() + Sa.topLeftCorner<2, 2>();
     }
     S += params_.floor * params_.floor * Eigen::Matrix2d::Identity();
-    return d.dot(S.ldlt().solve(d));
+    return S;
+}
+
+double PathUncertainty::segmentDistance2(const Eigen::Matrix2d& S, const Eigen::Vector2d& a,
+                                         const Eigen::Vector2d& b, const Eigen::Vector2d& p) {
+    // The quadratic form along a + t (b - a) is least at t = r'M e / e'M e (M = S^-1),
+    // clamped to the segment.
+    const Eigen::LDLT<Eigen::Matrix2d> ldlt(S);
+    const Eigen::Vector2d e = b - a, r = p - a, Me = ldlt.solve(e);
+    const double eMe = e.dot(Me);
+    const double t = eMe > 0 ? std::clamp(r.dot(Me) / eMe, 0.0, 1.0) : 0.0;
+    const Eigen::Vector2d d = r - t * e;
+    return d.dot(ldlt.solve(d));
 }
 
 }  // namespace lodestone::graphslam::closure

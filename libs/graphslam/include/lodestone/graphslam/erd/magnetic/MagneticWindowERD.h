@@ -180,6 +180,10 @@ class MagneticWindowERD : public EdgeDecider {
                 Outcome& out);
     Prior priorAt(const magnetic::SupernodeTrack& track, std::size_t c, TNodeID qNode,
                   const Eigen::Vector2d& here) const;
+    /** A lower bound of priorAt's gate distance for every sample of `sample`'s node (0 across
+     * a kidnap): the gate's least distance to the node's interval. */
+    double nodeGateBound(const magnetic::TrackSample& sample, TNodeID qNode,
+                         const Eigen::Vector2d& here) const;
     /** The truth's stage for the query ending at `first` + n - 1 (MagneticWindowFunnel.cpp). */
     std::optional<std::size_t> diagnose(std::size_t first, const Outcome& out);
     JsonObject describeTruth() const;

@@ -51,6 +51,13 @@ class PathUncertainty {
      * robot may have drifted". Otherwise both uncertainties added. Plus floor^2 I, as
      * gateDistance2. */
     double relativeGateDistance2(TNodeID target, TNodeID query, const Eigen::Vector2d& d) const;
+    /** The covariances the two gate distances weigh an offset by (floor^2 I included). */
+    Eigen::Matrix2d gateCovariance(TNodeID id) const;
+    Eigen::Matrix2d relativeGateCovariance(TNodeID target, TNodeID query) const;
+    /** The least squared Mahalanobis distance, under covariance `S`, from `p` to the segment
+     * from `a` to `b`: a lower bound of the gate distance of every place on it. */
+    static double segmentDistance2(const Eigen::Matrix2d& S, const Eigen::Vector2d& a,
+                                   const Eigen::Vector2d& b, const Eigen::Vector2d& p);
     std::size_t size() const { return steps_.size(); }
     const Params& params() const { return params_; }
 
