@@ -59,6 +59,7 @@ void MagneticWindowERD::configure(const mrpt::config::CConfigFileBase& ini) {
     p.confirm = s.getBool("confirm", p.confirm);
     p.passDisplacement = s.getBool("pass_displacement", p.passDisplacement);
     p.fineAmplitude = s.getBool("fine_amplitude", p.fineAmplitude);
+    p.mapThinningRadius = s.getDouble("map_thinning_radius", p.mapThinningRadius);
     p.sigmaAlongFloor = s.getDouble("sigma_along_floor", p.sigmaAlongFloor);
     p.sigmaCross = s.getDouble("sigma_cross", p.sigmaCross);
     p.turnFloorDeg = s.getDouble("turn_floor_deg", p.turnFloorDeg);
@@ -80,6 +81,7 @@ void MagneticWindowERD::configure(const mrpt::config::CConfigFileBase& ini) {
         s.fail("min_posterior", "must be in (0.5, 1)");
     if (!(p.distinctRadius > 0)) s.fail("distinct_radius", "must be > 0");
     if (!(p.closureEvery >= 0)) s.fail("closure_every", "must be >= 0");
+    if (!(p.mapThinningRadius >= 0)) s.fail("map_thinning_radius", "must be >= 0");
     if (!(p.sigmaAlongFloor > 0) || !(p.sigmaCross > 0) || !(p.turnFloorDeg >= 0))
         s.fail("sigma_cross", "sigmas must be > 0");
     s.finish();
@@ -95,6 +97,7 @@ bool MagneticWindowERD::updateState(mrpt::obs::CActionCollection::Ptr,
 }
 
 void MagneticWindowERD::onNode(TNodeID id) {
+    if (id == map_nodes_ && map_nodes_ > 0) thinMap();  // the map's nodes are all in
     const int segment = nodes_->at(id).segment;
     // (the graph's nodes are never erased: their addresses hold, their values follow the solves)
     poses_.push_back(&m_graph->nodes.at(id));
@@ -238,8 +241,10 @@ void MagneticWindowERD::query(std::size_t first) {
         // is outside the gate is passed over without weighing each sample (the margin keeps
         // a bound's rounding from dropping a sample the exact test would keep).
         const double passOver = params_.gateChi2 * (1 + 1e-6) + 1e-9;
-        const auto scan = [&](const magnetic::SupernodeTrack& track, bool forward, bool backward) {
+        const auto scan = [&](const Sensor& sensor, bool forward, bool backward) {
+            const auto& track = *sensor.track;
             const auto& stored = track.samples();
+            const auto& redundant = sensor.redundant;
             for (std::size_t c = 0; c < stored.size() && leftBehind(stored[c], samples[newest].s);) {
                 std::size_t end = c + 1;  // the node's samples: [c, end)
                 while (end < stored.size() && stored[end].node == stored[c].node) ++end;
@@ -248,6 +253,7 @@ void MagneticWindowERD::query(std::size_t first) {
                     continue;
                 }
                 for (; c < end && leftBehind(stored[c], samples[newest].s); ++c) {
+                    if (c < redundant.size() && redundant[c]) continue;
                     const Prior p = priorAt(track, c, qNode, here);
                     if (p.gate2 > params_.gateChi2) continue;
                     if (forward) compareAt(track, c, WindowDirection::Forward, first, p, candidates);
@@ -256,11 +262,12 @@ void MagneticWindowERD::query(std::size_t first) {
                 }
             }
         };
-        if (&mirrored() == &queried()) {
-            scan(queried(), true, true);
+        const Sensor& own = sensors_.at(params_.sensorLabel);
+        if (mirror_.empty()) {
+            scan(own, true, true);
         } else {
-            scan(queried(), true, false);
-            scan(mirrored(), false, true);
+            scan(own, true, false);
+            scan(sensors_.at(mirror_), false, true);
         }
         decide(first, excitation, candidates, out);
     }
@@ -506,6 +513,7 @@ JsonObject MagneticWindowERD::describe() const {
         .set("confirm", params_.confirm)
         .set("pass_displacement", params_.passDisplacement)
         .set("fine_amplitude", params_.fineAmplitude)
+        .set("map_thinning_radius", params_.mapThinningRadius)
         .set("sigma_cross", params_.sigmaCross)
         .set("turn_floor_deg", params_.turnFloorDeg);
     JsonObject stats;
@@ -521,7 +529,9 @@ JsonObject MagneticWindowERD::describe() const {
         .set("confirmed", stats_.confirmed)
         .set("edges", stats_.edges)
         .set("forward_edges", stats_.forward)
-        .set("backward_edges", stats_.backward);
+        .set("backward_edges", stats_.backward)
+        .set("map_readings", stats_.mapReadings)
+        .set("map_readings_thinned", stats_.mapReadingsThinned);
     describeQueryTimes(stats, stats_.queryMs);
     JsonObject out;
     out.set("class", getClassName()).set("params", params).set("stats", stats);

@@ -96,6 +96,13 @@ class MagneticWindowERD : public EdgeDecider {
          * apart - while unrelated places differ by the window's whole spread (a broad part
          * that passes a metre apart still share). false: one amplitude, the spread, for both. */
         bool fineAmplitude{false};
+        /** [m] a loaded map's reading is not a target when an earlier pass of the map runs
+         * within this of it, both its windows' lengths before and after (within twice this):
+         * a map holds each line of the floor once, not once per session that walked it.
+         * Two lines 0.1 m apart differ by 2 sf^2 (1 - exp(-r^2 / 2 l^2)) = 0.12 sf^2 at
+         * l = 0.28 m: under the reading noise (window_sigma = 1 uT) for a field spread sf up to
+         * 2.9 uT. 0: every map reading is a target. */
+        double mapThinningRadius{0.1};
         double sigmaAlongFloor{0.03};  ///< [m]
         double sigmaCross{0.20};       ///< [m]
         double turnFloorDeg{2.0};      ///< [deg] added to the field's turn sigma
@@ -104,6 +111,7 @@ class MagneticWindowERD : public EdgeDecider {
     struct Stats {
         std::size_t queries{0}, flat{0}, noCandidate{0}, noFit{0}, ambiguous{0}, accepted{0},
             unmeasured{0}, confirmed{0}, forward{0}, backward{0}, edges{0};
+        std::size_t mapReadings{0}, mapReadingsThinned{0};  ///< of a loaded map (thinMap)
         std::vector<double> queryMs;
     };
 
@@ -274,7 +282,12 @@ class MagneticWindowERD : public EdgeDecider {
     struct Sensor {
         std::unique_ptr<magnetic::SupernodeTrack> track;
         Eigen::Vector3d position;  ///< on the robot [m]
+        std::vector<char> redundant{};  ///< per sample of a loaded map: not a target (thinMap)
     };
+    /** A loaded map's readings thinned (map_thinning_radius), once all its nodes are in
+     * (MagneticWindowMapThinning.cpp). */
+    void thinMap();
+    void thinTrack(Sensor& sensor);
     std::map<std::string, Sensor> sensors_;           // the queried one and its mirror
     std::string mirror_;                              // the mirror's label ("": none)
     MagneticPath path_;                               // travel, segment, pose uncertainty per node
