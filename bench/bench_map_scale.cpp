@@ -79,22 +79,34 @@ std::size_t bytesOnDisk(const std::string& dir) {
     return n;
 }
 
-/** Engine ms per node of the run's own nodes (nodes.csv's engine_ms after the map's). */
-double msPerRunNode(const std::string& out, std::size_t mapNodes) {
+/** Engine ms of each of the run's own nodes (nodes.csv's engine_ms after the map's). */
+std::vector<double> msOfRunNodes(const std::string& out, std::size_t mapNodes) {
     std::ifstream in(out + "/nodes.csv");
     std::string line;
     std::getline(in, line);
-    double sum = 0;
-    std::size_t n = 0;
+    std::vector<double> ms;
     for (std::size_t id = 0; std::getline(in, line); ++id) {
         if (id < mapNodes) continue;
-        const auto ms = std::stod(line.substr(line.find_last_of(',') + 1));
-        if (std::isfinite(ms)) {
-            sum += ms;
-            ++n;
-        }
+        const auto v = std::stod(line.substr(line.find_last_of(',') + 1));
+        if (std::isfinite(v)) ms.push_back(v);
     }
-    return n ? sum / double(n) : NAN;
+    return ms;
+}
+
+double msPerRunNode(const std::string& out, std::size_t mapNodes) {
+    const auto ms = msOfRunNodes(out, mapNodes);
+    double sum = 0;
+    for (const double v : ms) sum += v;
+    return ms.empty() ? NAN : sum / double(ms.size());
+}
+
+/** The run's per-node engine ms at quantile q (0.5: the median). */
+double msQuantile(const std::string& out, std::size_t mapNodes, double q) {
+    auto ms = msOfRunNodes(out, mapNodes);
+    if (ms.empty()) return NAN;
+    const auto at = ms.begin() + static_cast<long>(q * double(ms.size() - 1));
+    std::nth_element(ms.begin(), at, ms.end());
+    return *at;
 }
 
 }  // namespace
@@ -142,16 +154,20 @@ int main(int argc, char** argv) {
                     walk.duration / walk.seconds);
 
         // Sessions extending the map in turn.
-        std::printf("| session | map nodes before | engine ms a node | real-time factor | relocated after [m] |\n|---|---|---|---|---|\n");
+        std::printf("| session | map nodes before | map readings: targets / all | engine ms a node: mean / median / 95 %% | real-time factor | relocated after [m] |\n|---|---|---|---|---|---|\n");
         std::string current = map;
         for (int s = 1; s <= sessions; ++s) {
             const std::size_t before = maps::readMap(current).nodes.size();
             const std::string next = dir + "/map_" + std::to_string(s);
             const auto t = runWalk(dir, "session_" + std::to_string(s), 1, 10 + s, config, current,
                                    next, true);
-            std::printf("| %d | %zu | %.2f | %.0fx | %.1f |\n", s, before,
-                        msPerRunNode(t.out, before), t.duration / t.seconds,
-                        numberIn(slurp(t.out + "/report.json"), "travel_to_relocation_m"));
+            const std::string report = slurp(t.out + "/report.json");
+            const double all = numberIn(report, "map_readings");
+            std::printf("| %d | %zu | %.0f / %.0f | %.2f / %.2f / %.2f | %.0fx | %.1f |\n", s,
+                        before, all - numberIn(report, "map_readings_thinned"), all,
+                        msPerRunNode(t.out, before), msQuantile(t.out, before, 0.5),
+                        msQuantile(t.out, before, 0.95), t.duration / t.seconds,
+                        numberIn(report, "travel_to_relocation_m"));
             std::fflush(stdout);
             current = next;
         }

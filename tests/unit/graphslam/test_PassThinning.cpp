@@ -30,7 +30,7 @@ const auto kOneFrame = [](int, int) { return true; };
 
 TEST(PassThinning, ALineWalkedAgainEitherWayIsHeldOnce) {
     std::vector<PlacedReading> r;
-    pass(r, {0, 0}, {10, 0}, 0);        // the first pass: kept
+    pass(r, {0, 0}, {10, 0}, 0);  // the first pass: kept
     const std::size_t again = r.size();
     pass(r, {0, 0.04}, {10, 0.04}, 1);  // the same line, 4 cm over
     const std::size_t back = r.size();
@@ -72,8 +72,8 @@ TEST(PassThinning, NothingIsHeldAcrossFramesOrWithinOnePass) {
     std::vector<PlacedReading> r;
     pass(r, {0, 0}, {10, 0}, 0);
     pass(r, {0, 0}, {10, 0}, 1);  // a segment that never joined the first
-    const auto apart = graphslam::closure::redundantReadings(
-        r, 39, 0.1, 4.0, [](int a, int b) { return a == b; });
+    const auto apart =
+        graphslam::closure::redundantReadings(r, 39, 0.1, 4.0, [](int a, int b) { return a == b; });
     EXPECT_EQ(redundantIn(apart, 0, r.size()), 0u);
     const auto joined = graphslam::closure::redundantReadings(r, 39, 0.1, 4.0, kOneFrame);
     EXPECT_GT(redundantIn(joined, 0, r.size()), 100u);
@@ -84,7 +84,7 @@ TEST(PassThinning, NothingIsHeldAcrossFramesOrWithinOnePass) {
                           slow.size()),
               0u);
     // Radius 0: thinning off.
-    EXPECT_EQ(redundantIn(graphslam::closure::redundantReadings(r, 39, 0, 4.0, kOneFrame), 0,
-                          r.size()),
-              0u);
+    EXPECT_EQ(
+        redundantIn(graphslam::closure::redundantReadings(r, 39, 0, 4.0, kOneFrame), 0, r.size()),
+        0u);
 }

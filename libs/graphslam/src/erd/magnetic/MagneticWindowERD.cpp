@@ -245,7 +245,13 @@ void MagneticWindowERD::query(std::size_t first) {
             const auto& track = *sensor.track;
             const auto& stored = track.samples();
             const auto& redundant = sensor.redundant;
-            for (std::size_t c = 0; c < stored.size() && leftBehind(stored[c], samples[newest].s);) {
+            const auto& nextTarget = sensor.nextTarget;
+            for (std::size_t c = 0;
+                 c < stored.size() && leftBehind(stored[c], samples[newest].s);) {
+                if (c < nextTarget.size() && nextTarget[c] != c) {  // a map's lines walked again
+                    c = nextTarget[c];
+                    continue;
+                }
                 std::size_t end = c + 1;  // the node's samples: [c, end)
                 while (end < stored.size() && stored[end].node == stored[c].node) ++end;
                 if (nodeGateBound(stored[c], qNode, here) > passOver) {
@@ -256,7 +262,8 @@ void MagneticWindowERD::query(std::size_t first) {
                     if (c < redundant.size() && redundant[c]) continue;
                     const Prior p = priorAt(track, c, qNode, here);
                     if (p.gate2 > params_.gateChi2) continue;
-                    if (forward) compareAt(track, c, WindowDirection::Forward, first, p, candidates);
+                    if (forward)
+                        compareAt(track, c, WindowDirection::Forward, first, p, candidates);
                     if (backward)
                         compareAt(track, c, WindowDirection::Backward, first, p, candidates);
                 }

@@ -283,6 +283,9 @@ class MagneticWindowERD : public EdgeDecider {
         std::unique_ptr<magnetic::SupernodeTrack> track;
         Eigen::Vector3d position;  ///< on the robot [m]
         std::vector<char> redundant{};  ///< per sample of a loaded map: not a target (thinMap)
+        /** Per sample of a loaded map: the first target from it on (the map's size: none), so
+         * a query's scan costs the map's targets, not every reading it holds. */
+        std::vector<std::size_t> nextTarget{};
     };
     /** A loaded map's readings thinned (map_thinning_radius), once all its nodes are in
      * (MagneticWindowMapThinning.cpp). */

@@ -9,7 +9,7 @@ namespace lodestone::graphslam::closure {
 /** A stored magnetometer reading where the graph has it. */
 struct PlacedReading {
     Eigen::Vector2d at{0, 0};
-    double s{0};      ///< [m] travel
+    double s{0};  ///< [m] travel
     int segment{0};
 };
 
