@@ -316,6 +316,7 @@ int timingRun(const std::string& out, const std::string& magneticIni) {
     registerAllClasses();
     datasets::OdometryDriftModel model;
     model.seed = 1;
+    fs::create_directories(out);
     const auto imported = datasets::writeMagneticRecording(syntheticLongWalk(21), out + "/laps21.rawlog", model);
     slamapp::SlamRunOptions o;
     o.rawlog = imported.rawlog;

@@ -37,7 +37,7 @@ void MagneticGpERD::diagnose(const magnetic::Supernode& q, const Trace& trace) {
     const auto& samples = track_->samples();
     const auto& supernodes = track_->supernodes();
     const auto qNode = static_cast<TNodeID>(samples[q.last - 1].node);
-    const TruthPositions truth(*truth_, *nodes_, path_);
+    const TruthPositions truth(*truth_, *nodes_, path_, map_nodes_);
     const io::TumPose* qPose = truth.atNode(qNode);
     const auto qAt = truth.atSample(samples[q.last - 1]);
     if (!qPose || !qAt) return;

@@ -36,7 +36,7 @@ std::optional<std::size_t> MagneticWindowERD::diagnose(std::size_t first, const 
     const auto& samples = queried().samples();
     const std::size_t newest = first + n_ - 1;
     const auto qNode = static_cast<TNodeID>(samples[newest].node);
-    const TruthPositions truth(*truth_, *nodes_, path_);
+    const TruthPositions truth(*truth_, *nodes_, path_, map_nodes_);
     const io::TumPose* q = truth.atNode(qNode);
     const auto qAt = truth.atSample(samples[newest]);
     if (!q || !qAt) return std::nullopt;

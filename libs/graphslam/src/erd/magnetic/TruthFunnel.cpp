@@ -5,6 +5,7 @@
 namespace lodestone::graphslam {
 
 const io::TumPose* TruthPositions::atNode(TNodeID id) const {
+    if (id < first_node_) return nullptr;
     return io::poseNearest(truth_, nodes_.at(id).timestamp, 0.1);
 }
 
@@ -26,6 +27,7 @@ std::optional<std::size_t> TruthPositions::nearestSample(
     std::optional<std::size_t> place;
     double nearest = radius;
     for (std::size_t c = 0; c < samples.size() && samples[c].s <= travelBefore; ++c) {
+        if (samples[c].node < first_node_) continue;  // (a map's: no truth here)
         const auto t = atSample(samples[c]);
         if (!t) continue;
         const double d = (*t - here).norm();

@@ -24,12 +24,14 @@ struct FunnelRecord {
     double fit{NAN};
 };
 
-/** The run's true positions of the magnetic closers' readings (diagnostics only). */
+/** The run's true positions of the magnetic closers' readings (diagnostics only). A loaded
+ * map's nodes (below `firstNode`) were recorded by another run: this run's truth says nothing
+ * of them. */
 class TruthPositions {
   public:
     TruthPositions(const std::vector<io::TumPose>& truth, const NodeStore& nodes,
-                   const MagneticPath& path)
-        : truth_(truth), nodes_(nodes), path_(path) {}
+                   const MagneticPath& path, TNodeID firstNode)
+        : truth_(truth), nodes_(nodes), path_(path), first_node_(firstNode) {}
     /** The truth nearest node `id`'s time (within 0.1 s), if any. */
     const io::TumPose* atNode(TNodeID id) const;
     /** Where the track sample truly was: between its node and the previous one, by travel. */
@@ -44,6 +46,7 @@ class TruthPositions {
     const std::vector<io::TumPose>& truth_;
     const NodeStore& nodes_;
     const MagneticPath& path_;
+    TNodeID first_node_;
 };
 
 /** report.json's truth_funnel: counts by stage (named), the share of records at stages from
