@@ -84,6 +84,7 @@ void SlamEngine::startInMap(const Graph& graph, std::vector<NodeRecord> records,
     relocalizer_seen_ = map_nodes_;
     erd_->setMapNodes(map_nodes_);
     nrd_->continueAfterMap(map_nodes_ - 1, segments);
+    gso_->adoptMap(map_nodes_);
     if (frozen) gso_->holdFixed(map_nodes_);
 }
 

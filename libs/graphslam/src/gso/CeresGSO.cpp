@@ -39,6 +39,8 @@ void CeresGSO::configure(const mrpt::config::CConfigFileBase& ini) {
     solver_ = std::make_unique<PoseGraphSolver>(o);
 }
 
+void CeresGSO::adoptMap(TNodeID count) { nodes_at_last_full_ = count; }
+
 void CeresGSO::holdFixed(TNodeID count) {
     params_.solver.fixedBelow = count;
     solver_ = std::make_unique<PoseGraphSolver>(params_.solver);

@@ -27,6 +27,9 @@ class GraphOptimizer : public mrpt::graphslam::optimizers::CGraphSlamOptimizer<G
     /** Nodes with an ID below `count` never move again (a map loaded to localize in). The
      * default refuses: an optimizer that cannot hold nodes fixed cannot localize. */
     virtual void holdFixed(TNodeID count);
+    /** The graph starts with a loaded map's `count` nodes, solved when the map was saved:
+     * what the optimizer counts as solved already (the default: nothing to count). */
+    virtual void adoptMap(TNodeID /*count*/) {}
     /** Nodes solved in SE(3) (6 dof) rather than x, y, yaw: the relocalizer's space. */
     virtual bool spatial() const { return false; }
     /** Solves everything the run still needs (at the end of the data). */

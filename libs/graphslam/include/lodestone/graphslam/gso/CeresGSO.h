@@ -47,6 +47,9 @@ class CeresGSO : public GraphOptimizer {
     bool justFullyOptimizedGraph() const override { return just_full_; }
     bool spatial() const override { return !params_.solver.planar; }
     void holdFixed(TNodeID count) override;
+    /** A loaded map is the last full solve: the graph's growth (full_solve_growth) counts from
+     * it, so the first closure of a run in a large map does not solve the whole map again. */
+    void adoptMap(TNodeID count) override;
     JsonObject describe() const override;
 
     /** Totals over the run. */
