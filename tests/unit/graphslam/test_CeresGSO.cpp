@@ -80,3 +80,30 @@ TEST(CeresGSO, AClosureTheWindowCannotAbsorbGoesToAFullSolve) {
     EXPECT_EQ(gso.stats().escalations, 1u);
     EXPECT_EQ(gso.stats().rejected, 0u);
 }
+
+TEST(CeresGSO, ALoadedMapCountsAsTheLastFullSolve) {
+    // The graph and every closure but the last solved (a map as saved), then the last closure
+    // as a run's first: with growth-triggered full solves at every doubling, a fresh optimizer
+    // solves the whole graph for it (nothing was solved yet, by its count); one that adopted
+    // the map solves around the closure alone.
+    SyntheticGraph s = SyntheticGraph::make({});
+    const LoopClosure lc = s.closures.back();
+    s.closures.pop_back();
+    Graph solved = s.graph;
+    for (const auto& c : s.closures) solved.insertEdge(c.from, c.to, c.constraint);
+    {
+        CeresGSO once;
+        startOn(solved, once, s.closures);
+    }
+    mrpt::config::CConfigFileMemory ini("[CeresGSO]\nlocal_window = 10\nfull_solve_growth = 1\n");
+    for (const bool adopted : {false, true}) {
+        Graph g = solved;
+        CeresGSO gso;
+        gso.configure(ini);
+        gso.setGraphPtr(&g);
+        if (adopted) gso.adoptMap(static_cast<TNodeID>(g.nodes.size()));
+        EXPECT_TRUE(addClosure(g, gso, lc));
+        EXPECT_EQ(gso.stats().fullSolves, adopted ? 0u : 1u) << adopted;
+        EXPECT_EQ(gso.justFullyOptimizedGraph(), !adopted) << adopted;
+    }
+}
