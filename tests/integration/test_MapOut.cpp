@@ -7,6 +7,8 @@
 #include <lodestone/maps/SavedMap.h>
 #include <lodestone/obs/registerAllClasses.h>
 
+#include <lodestone/io/RawlogSource.h>
+#include <lodestone/io/RawlogWriter.h>
 #include <lodestone/io/TumTrajectory.h>
 #include <mrpt/graphs/CNetworkOfPoses.h>
 #include <opencv2/imgcodecs.hpp>
@@ -168,6 +170,23 @@ TEST(MapIn, AForeignOrDamagedMapIsRefusedBeforeAnyWork) {
     EXPECT_EQ(foreign.exitCode, 1) << foreign.output;
     EXPECT_NE(foreign.output.find("MagneticWindowERD"), std::string::npos) << foreign.output;
     EXPECT_FALSE(std::filesystem::exists(dir.file("gp") + "/trajectory.tum"));
+    // The same walk with its magnetometer under another label: another sensor set, refused.
+    {
+        lodestone::io::RawlogSource in(dir.file("laps.rawlog"));
+        lodestone::io::RawlogWriter out(dir.file("other.rawlog"));
+        while (auto obs = in.next()) {
+            if (obs->sensorLabel == "MAG") obs->sensorLabel = "OTHER_MAG";
+            out.write(*obs);
+        }
+        out.close();
+    }
+    const auto otherSensor = lodestone::test::runCommand(
+        kSlam + " --rawlog " + dir.file("other.rawlog") + " --quiet --config " + kConfig +
+        " --out " + dir.file("other") + " --map-in " + dir.file("map"));
+    EXPECT_EQ(otherSensor.exitCode, 1) << otherSensor.output;
+    EXPECT_NE(otherSensor.output.find("OTHER_MAG"), std::string::npos) << otherSensor.output;
+    EXPECT_NE(otherSensor.output.find("magnetometers MAG"), std::string::npos) << otherSensor.output;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("other") + "/trajectory.tum"));
     // A node file cut short: named, exit 1, nothing written.
     const std::string nodes = dir.file("map") + "/nodes.bin";
     std::filesystem::resize_file(nodes, std::filesystem::file_size(nodes) / 2);

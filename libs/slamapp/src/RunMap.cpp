@@ -39,7 +39,8 @@ std::string configText(const SlamRunOptions& options) {
 }
 
 std::vector<std::uint32_t> loadMap(const SlamRunOptions& options, const std::string& runConfig,
-                                   graphslam::SlamEngine& engine) {
+                                   graphslam::SlamEngine& engine,
+                                   const std::set<std::string>& runMagnetometers) {
     maps::SavedMap map;
     try {
         map = maps::readMap(options.mapIn);
@@ -56,6 +57,17 @@ std::vector<std::uint32_t> loadMap(const SlamRunOptions& options, const std::str
     if (mapShape != runShape) {
         throw InputError(options.mapIn + ": made with " + mapShape + "; " + options.config +
                          " has " + runShape + " (a map is used with the deciders that made it)");
+    }
+    // The magnetic closers match a reading with the same magnetometer's: a run whose
+    // magnetometers the map never heard would never relocate in it.
+    const auto& heard = map.manifest.magnetometers;
+    for (const auto& label : runMagnetometers) {
+        if (heard.empty() || std::find(heard.begin(), heard.end(), label) != heard.end()) continue;
+        std::string list;
+        for (const auto& h : heard) list += (list.empty() ? "" : ", ") + h;
+        throw InputError(options.mapIn + ": made with magnetometers " + list + "; " +
+                         options.rawlog + " has readings from " + label +
+                         " (a map is used with the sensors that made it)");
     }
     try {
         engine.startInMap(map.graph, std::move(map.nodes), !options.extendMap);

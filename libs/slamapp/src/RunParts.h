@@ -41,6 +41,8 @@ struct RunInputs {
     std::size_t decodeThreads{0};
     std::unique_ptr<io::TumTrajectoryWriter> simTruth;  ///< --sim: the truth, as it is run
     std::vector<std::uint32_t> mapSessions;  ///< --map-in: the loaded map's sessions, by node
+    /** The magnetometers a rawlog's first observations come from (none known: live, --sim). */
+    std::set<std::string> prescannedMagnetometers;
 };
 
 /** The engine from the INI, the source (rawlog, simulator or live), the ground truth read, the
@@ -78,10 +80,12 @@ void writeOutputs(const RunInputs& in, const LoopOutcome& loop, const SlamRunOpt
                   std::ostream& out, std::ostream& err, SlamRunResult& result);
 
 /** The saved map of `options.mapIn` loaded into `engine` (before any data; localize: the map
- * held fixed); its nodes' sessions. Throws InputError naming the file when it cannot be read or was made by
- * other deciders than the INI names. */
+ * held fixed); its nodes' sessions. Throws InputError naming the file when it cannot be read,
+ * was made by other deciders than the INI names, or holds magnetometer readings and none from
+ * one of `runMagnetometers` (the labels the run's data was seen to carry; empty: not known). */
 std::vector<std::uint32_t> loadMap(const SlamRunOptions& options, const std::string& configText,
-                                   graphslam::SlamEngine& engine);
+                                   graphslam::SlamEngine& engine,
+                                   const std::set<std::string>& runMagnetometers = {});
 
 /** The run's map saved in options.mapOut (after every other output: a map that cannot be
  * written costs none of them; the error is reported, exit 1); what was saved, for report.json.

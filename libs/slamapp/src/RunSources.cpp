@@ -51,6 +51,7 @@ class PrescannedRawlog : public io::DataSource {
             const std::string bare = colons == std::string::npos ? name : name.substr(colons + 2);
             missing.erase(bare);
             classes.insert(bare);
+            if (bare == "CObservationMagnetometer") magnetometers_.insert(obs->sensorLabel);
             ahead_.push_back(std::move(obs));
         }
         if (!missing.empty()) {
@@ -75,9 +76,12 @@ class PrescannedRawlog : public io::DataSource {
     }
     std::string name() const override { return source_.name(); }
     double fractionRead() const { return source_.fractionRead(); }
+    /** The magnetometers' labels among the observations read ahead. */
+    const std::set<std::string>& magnetometers() const { return magnetometers_; }
 
   private:
     io::RawlogSource source_;
+    std::set<std::string> magnetometers_;
     std::deque<mrpt::obs::CObservation::Ptr> ahead_;
 };
 
@@ -107,6 +111,7 @@ void openRawlog(const SlamRunOptions& options, RunInputs& in) {
     if (!fs::exists(options.rawlog)) throw InputError("cannot open rawlog '" + options.rawlog + "'");
     auto rawlog = std::make_unique<PrescannedRawlog>(options.rawlog, in.engine->requiredObservations());
     const PrescannedRawlog* inner = rawlog.get();
+    in.prescannedMagnetometers = inner->magnetometers();
     if (options.decodeAhead == 0) {
         in.fractionRead = [inner] { return inner->fractionRead(); };
         in.source = std::move(rawlog);
@@ -157,7 +162,10 @@ RunInputs openInputs(const SlamRunOptions& options) {
     } else {
         openRawlog(options, in);
     }
-    if (!options.mapIn.empty()) in.mapSessions = loadMap(options, configText(options), *in.engine);
+    if (!options.mapIn.empty()) {
+        in.mapSessions =
+            loadMap(options, configText(options), *in.engine, in.prescannedMagnetometers);
+    }
     if (!options.groundTruth.empty()) {
         if (!fs::exists(options.groundTruth)) {
             throw InputError("cannot open ground truth '" + options.groundTruth + "'");
