@@ -1,6 +1,7 @@
 #include <lodestone/graphslam/erd/magnetic/TruthFunnel.h>
 
 #include <algorithm>
+#include <cstdint>
 
 namespace lodestone::graphslam {
 
@@ -11,10 +12,15 @@ const io::TumPose* TruthPositions::atNode(TNodeID id) const {
 
 std::optional<Eigen::Vector2d> TruthPositions::atSample(const magnetic::TrackSample& sample) const {
     const auto k = static_cast<TNodeID>(sample.node);
-    const io::TumPose* b = atNode(k);
+    return atSample(sample, atNode(k), k > 0 ? atNode(k - 1) : nullptr);
+}
+
+std::optional<Eigen::Vector2d> TruthPositions::atSample(const magnetic::TrackSample& sample,
+                                                        const io::TumPose* b,
+                                                        const io::TumPose* a) const {
+    const auto k = static_cast<TNodeID>(sample.node);
     if (!b) return std::nullopt;
     const Eigen::Vector2d pb(b->pose.x(), b->pose.y());
-    const io::TumPose* a = k > 0 ? atNode(k - 1) : nullptr;
     const double span = k > 0 ? path_.travel[k] - path_.travel[k - 1] : 0;
     if (!a || path_.segment[k - 1] != path_.segment[k] || span <= 0) return pb;
     const double f = std::clamp((sample.s - path_.travel[k - 1]) / span, 0.0, 1.0);
@@ -26,9 +32,18 @@ std::optional<std::size_t> TruthPositions::nearestSample(
     const Eigen::Vector2d& here, double radius) const {
     std::optional<std::size_t> place;
     double nearest = radius;
+    // (the truth at a node is looked up once for all its samples: they come in node order)
+    std::size_t node = SIZE_MAX;
+    const io::TumPose *b = nullptr, *a = nullptr;
     for (std::size_t c = 0; c < samples.size() && samples[c].s <= travelBefore; ++c) {
         if (samples[c].node < first_node_) continue;  // (a map's: no truth here)
-        const auto t = atSample(samples[c]);
+        if (samples[c].node != node) {
+            node = samples[c].node;
+            const auto k = static_cast<TNodeID>(node);
+            b = atNode(k);
+            a = k > 0 ? atNode(k - 1) : nullptr;
+        }
+        const auto t = atSample(samples[c], b, a);
         if (!t) continue;
         const double d = (*t - here).norm();
         if (d <= nearest) {

@@ -43,6 +43,9 @@ class TruthPositions {
                                              double radius) const;
 
   private:
+    /** atSample with the truth at its node (`b`) and the node before (`a`) looked up. */
+    std::optional<Eigen::Vector2d> atSample(const magnetic::TrackSample& sample,
+                                            const io::TumPose* b, const io::TumPose* a) const;
     const std::vector<io::TumPose>& truth_;
     const NodeStore& nodes_;
     const MagneticPath& path_;
