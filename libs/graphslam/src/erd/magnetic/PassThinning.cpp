@@ -1,10 +1,25 @@
 #include <lodestone/graphslam/erd/magnetic/PassThinning.h>
 
 #include <cmath>
-#include <cstdint>
-#include <unordered_map>
+#include <nanoflann.hpp>
 
 namespace lodestone::graphslam::closure {
+
+namespace {
+/** nanoflann's view of the kept readings: their places, by the order they were kept. */
+struct KeptReadings {
+    const std::vector<PlacedReading>& readings;
+    std::vector<std::size_t> ids;
+    std::size_t kdtree_get_point_count() const { return ids.size(); }
+    double kdtree_get_pt(std::size_t k, std::size_t d) const {
+        return readings[ids[k]].at[static_cast<Eigen::Index>(d)];
+    }
+    template <class Box>
+    bool kdtree_get_bbox(Box&) const {
+        return false;
+    }
+};
+}  // namespace
 
 std::vector<char> redundantReadings(const std::vector<PlacedReading>& readings, std::size_t reach,
                                     double radius, double minTravelGap,
@@ -25,27 +40,24 @@ std::vector<char> redundantReadings(const std::vector<PlacedReading>& readings, 
         return (near(k - reach, i - reach, ends) && near(k + reach, i + reach, ends)) ||
                (near(k + reach, i - reach, ends) && near(k - reach, i + reach, ends));
     };
-    // Kept readings by grid cell of the radius: a neighbour within it is in the 3 x 3 cells.
-    std::unordered_map<std::int64_t, std::vector<std::size_t>> kept;
-    const auto cell = [&](const Eigen::Vector2d& p, int dx, int dy) {
-        const auto x = static_cast<std::int64_t>(std::floor(p.x() / radius)) + dx;
-        const auto y = static_cast<std::int64_t>(std::floor(p.y() / radius)) + dy;
-        return (x << 32) ^ (y & 0xffffffff);
-    };
+    // The kept readings, indexed as they come (nanoflann's dynamic k-d tree over them).
+    KeptReadings kept{readings, {}};
+    using Tree = nanoflann::KDTreeSingleIndexDynamicAdaptor<
+        nanoflann::L2_Simple_Adaptor<double, KeptReadings>, KeptReadings, -1, std::size_t>;
+    Tree tree(2, kept, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+    std::vector<std::pair<std::size_t, double>> found;
     const auto held = [&](std::size_t i) {
-        for (int dx = -1; dx <= 1; ++dx) {
-            for (int dy = -1; dy <= 1; ++dy) {
-                const auto found = kept.find(cell(readings[i].at, dx, dy));
-                if (found == kept.end()) continue;
-                for (const std::size_t k : found->second) {
-                    const auto &a = readings[i], &b = readings[k];
-                    const bool anotherPass =
-                        a.segment != b.segment || std::abs(a.s - b.s) >= minTravelGap;
-                    if (anotherPass && sameFrame(a.segment, b.segment) && near(i, k, radius) &&
-                        together(i, k))
-                        return true;
-                }
-            }
+        found.clear();
+        // (a hair wider than the radius: nanoflann keeps distances below it, near() decides)
+        nanoflann::RadiusResultSet<double, std::size_t> near2(radius * radius * (1 + 1e-9), found);
+        tree.findNeighbors(near2, readings[i].at.data(), nanoflann::SearchParams());
+        for (const auto& hit : found) {
+            const std::size_t k = kept.ids[hit.first];
+            const auto &a = readings[i], &b = readings[k];
+            const bool anotherPass = a.segment != b.segment || std::abs(a.s - b.s) >= minTravelGap;
+            if (anotherPass && sameFrame(a.segment, b.segment) && near(i, k, radius) &&
+                together(i, k))
+                return true;
         }
         return false;
     };
@@ -54,7 +66,8 @@ std::vector<char> redundantReadings(const std::vector<PlacedReading>& readings, 
         if (held(i)) {
             redundant[i] = 1;
         } else {
-            kept[cell(readings[i].at, 0, 0)].push_back(i);
+            kept.ids.push_back(i);
+            tree.addPoints(kept.ids.size() - 1, kept.ids.size() - 1);
         }
     }
     return redundant;
