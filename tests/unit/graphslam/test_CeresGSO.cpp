@@ -33,6 +33,23 @@ void startOn(Graph& g, CeresGSO& gso, const std::vector<LoopClosure>& closures) 
     gso.optimizeGraph();
 }
 
+/** The synthetic graph with every closure but the last, solved (by a CeresGSO as startOn
+ * makes it); the last closure, still to come. */
+struct SolvedButLast {
+    Graph graph;
+    std::vector<LoopClosure> closures;
+    LoopClosure last;
+};
+SolvedButLast solvedButLast() {
+    SyntheticGraph s = SyntheticGraph::make({});
+    SolvedButLast r{s.graph, s.closures, s.closures.back()};
+    r.closures.pop_back();
+    for (const auto& c : r.closures) r.graph.insertEdge(c.from, c.to, c.constraint);
+    CeresGSO once;
+    startOn(r.graph, once, r.closures);
+    return r;
+}
+
 /** Feeds `lc` as a new closure and lets the optimizer decide how to solve. */
 bool addClosure(Graph& g, CeresGSO& gso, const LoopClosure& lc) {
     g.insertEdge(lc.from, lc.to, lc.constraint);
@@ -43,11 +60,9 @@ bool addClosure(Graph& g, CeresGSO& gso, const LoopClosure& lc) {
 
 TEST(CeresGSO, LocalSolvesMoveOnlyNodesNearTheClosure) {
     // All closures but the last, optimized: the last one is then a small, local correction.
-    SyntheticGraph s = SyntheticGraph::make({});
-    const LoopClosure lc = s.closures.back();
-    s.closures.pop_back();
+    const SolvedButLast s = solvedButLast();
+    const LoopClosure lc = s.last;
     Graph g = s.graph;
-    for (const auto& c : s.closures) g.insertEdge(c.from, c.to, c.constraint);
     CeresGSO gso;
     startOn(g, gso, s.closures);
     const Graph before = g;
@@ -86,23 +101,15 @@ TEST(CeresGSO, ALoadedMapCountsAsTheLastFullSolve) {
     // as a run's first: with growth-triggered full solves at every doubling, a fresh optimizer
     // solves the whole graph for it (nothing was solved yet, by its count); one that adopted
     // the map solves around the closure alone.
-    SyntheticGraph s = SyntheticGraph::make({});
-    const LoopClosure lc = s.closures.back();
-    s.closures.pop_back();
-    Graph solved = s.graph;
-    for (const auto& c : s.closures) solved.insertEdge(c.from, c.to, c.constraint);
-    {
-        CeresGSO once;
-        startOn(solved, once, s.closures);
-    }
+    const SolvedButLast solved = solvedButLast();
     mrpt::config::CConfigFileMemory ini("[CeresGSO]\nlocal_window = 10\nfull_solve_growth = 1\n");
     for (const bool adopted : {false, true}) {
-        Graph g = solved;
+        Graph g = solved.graph;
         CeresGSO gso;
         gso.configure(ini);
         gso.setGraphPtr(&g);
         if (adopted) gso.adoptMap(static_cast<TNodeID>(g.nodes.size()));
-        EXPECT_TRUE(addClosure(g, gso, lc));
+        EXPECT_TRUE(addClosure(g, gso, solved.last));
         EXPECT_EQ(gso.stats().fullSolves, adopted ? 0u : 1u) << adopted;
         EXPECT_EQ(gso.justFullyOptimizedGraph(), !adopted) << adopted;
     }
