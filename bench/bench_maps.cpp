@@ -32,7 +32,7 @@
 #include <regex>
 #include <sstream>
 
-#include "bench_reports.h"
+#include "map_runs.h"
 
 using namespace lodestone;
 
@@ -72,14 +72,6 @@ Run run(const sim::Scenario& scenario, std::uint64_t seed, const std::string& st
     return r;
 }
 
-/** The map's frame in the world: the map run's nodes aligned to its truth, once. */
-mrpt::poses::CPose3D mapFrame(const Run& mapRun, double& mapAte) {
-    const auto ate = eval::absoluteTrajectoryError(
-        io::readTumTrajectory(mapRun.out + "/trajectory.tum"), io::readTumTrajectory(mapRun.truth));
-    mapAte = ate.rmse;
-    return mrpt::poses::CPose3D(mrpt::math::CMatrixDouble44(ate.alignment.matrix()));
-}
-
 void printHeader() {
     std::printf(
         "| run | seed | relocated | travel to relocation [m] | relocation error [m / deg] | ATE "
@@ -90,47 +82,16 @@ void printHeader() {
 /** One row: `r` (a run started in `loaded`) judged in the map's frame `T_world_map`. */
 void printRow(const std::string& what, std::uint64_t seed, const Run& r,
               const maps::SavedMap& loaded, const mrpt::poses::CPose3D& T_world_map) {
-    const auto truth = io::readTumTrajectory(r.truth);
-    // (the first kidnap record: the run's start in the map)
-    const std::string all = slurp(r.out + "/report.json");
-    const std::string report = all.substr(std::min(all.size(), all.find("\"kidnaps\"")));
-    const bool relocated = report.find("\"relocated\": true") != std::string::npos;
-    const double travel = numberIn(report, "travel_to_relocation_m");
+    const auto j = judgeMapRun(r.out, r.truth, loaded, T_world_map);
     char error[64] = "-";
-    if (relocated) {
-        const mrpt::poses::CPose3D at(numberIn(report, "x"), numberIn(report, "y"), 0,
-                                      numberIn(report, "yaw"), 0, 0);
-        if (const auto* t = eval::truthAt(truth, numberIn(report, "relocation_time"), 0.05)) {
-            const auto e = (-t->pose) + (T_world_map + at);
-            std::snprintf(error, sizeof error, "%.3f / %.2f", std::hypot(e.x(), e.y()),
-                          std::abs(e.yaw()) * 180 / M_PI);
-        }
-    }
-    // The run's nodes on the map, in the map's frame, against the truth: no alignment.
-    const auto onMap = io::readTumTrajectory(r.out + "/trajectory.tum");
-    double sum = 0;
-    std::size_t pairs = 0;
-    for (const auto& p : onMap) {
-        const auto* t = eval::truthAt(truth, p.timestamp, 0.05);
-        if (!t) continue;
-        const auto world = T_world_map + p.pose;
-        sum += std::pow(world.x() - t->pose.x(), 2) + std::pow(world.y() - t->pose.y(), 2);
-        ++pairs;
-    }
-    // The loaded map's nodes: where the run left them (graph.graph) against where they were.
-    graphslam::Graph after;
-    after.loadFromTextFile(r.out + "/graph.graph");
-    double moved = 0;
-    for (const auto& [id, pose] : loaded.graph.nodes) {
-        const auto& a = after.nodes.at(id);
-        moved = std::max(moved, std::hypot(a.x() - pose.x(), a.y() - pose.y()));
-    }
+    if (std::isfinite(j.errorXY))
+        std::snprintf(error, sizeof error, "%.3f / %.2f", j.errorXY, j.errorYawDeg);
     char ate[32] = "-", travelText[32] = "-";
-    if (pairs) std::snprintf(ate, sizeof ate, "%.3f", std::sqrt(sum / double(pairs)));
-    if (std::isfinite(travel)) std::snprintf(travelText, sizeof travelText, "%.2f", travel);
+    if (std::isfinite(j.ate)) std::snprintf(ate, sizeof ate, "%.3f", j.ate);
+    if (std::isfinite(j.travel)) std::snprintf(travelText, sizeof travelText, "%.2f", j.travel);
     std::printf("| %s | %llu | %s | %s | %s | %s | %zu / %zu | %.4f | %.0fx |\n", what.c_str(),
-                static_cast<unsigned long long>(seed), relocated ? "yes" : "no", travelText, error,
-                ate, onMap.size(), r.result.nodes - loaded.nodes.size(), moved,
+                static_cast<unsigned long long>(seed), j.relocated ? "yes" : "no", travelText, error,
+                ate, j.onMap, r.result.nodes - loaded.nodes.size(), j.moved,
                 r.duration / r.seconds);
     std::fflush(stdout);
 }
@@ -220,7 +181,7 @@ int main(int argc, char** argv) {
         base.motion.laps = 1;
         const auto saved = maps::readMap(dir + "/map");
         double mapAte = 0;
-        const auto T_world_map = mapFrame(mapRun, mapAte);
+        const auto T_world_map = mapFrame(mapRun.out, mapRun.truth, mapAte);
         std::printf("The map: %zu nodes, its own ATE %.3f m (aligned once: the map's frame)\n\n",
                     saved.nodes.size(), mapAte);
         if (route.empty()) {

@@ -135,7 +135,7 @@ datasets::MagneticImportResult importSeed(const datasets::MagneticRecording& rec
 }
 
 TimedRun runImported(const datasets::MagneticImportResult& imported, const std::string& config,
-                     const std::string& outDir) {
+                     const std::string& outDir, const std::string& mapIn, const std::string& mapOut) {
     TimedRun run;
     run.options.rawlog = imported.rawlog;
     run.options.groundTruth = imported.groundTruth;
@@ -143,6 +143,8 @@ TimedRun runImported(const datasets::MagneticImportResult& imported, const std::
                              ? config
                              : std::string(LODESTONE_CONFIG_INI_DIR) + "/slam/" + config;
     run.options.outDir = outDir;
+    run.options.mapIn = mapIn;
+    run.options.mapOut = mapOut;
     run.options.quiet = true;
     std::ostringstream out, err;
     const auto t0 = std::chrono::steady_clock::now();

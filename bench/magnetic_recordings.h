@@ -37,7 +37,8 @@ lodestone::datasets::MagneticImportResult importSeed(const lodestone::datasets::
                                                double driftScale = 1.0);
 
 /** One quiet run of lodestone-slam's code path on an imported rawlog, read from disk: `config`
- * is a config_ini/ name, or a path when it names a folder. */
+ * is a config_ini/ name, or a path when it names a folder; started in the map `mapIn`
+ * (localize) and writing the map `mapOut` when given. */
 struct TimedRun {
     lodestone::slamapp::SlamRunOptions options;
     lodestone::slamapp::SlamRunResult result;
@@ -46,4 +47,5 @@ struct TimedRun {
     bool ok() const { return result.exitCode == 0 && result.ateRmse.has_value(); }
 };
 TimedRun runImported(const lodestone::datasets::MagneticImportResult& imported, const std::string& config,
-                     const std::string& outDir);
+                     const std::string& outDir, const std::string& mapIn = "",
+                     const std::string& mapOut = "");

@@ -13,6 +13,8 @@
 #include <mrpt/graphs/CNetworkOfPoses.h>
 #include <opencv2/imgcodecs.hpp>
 
+#include <Eigen/Core>
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -151,6 +153,87 @@ TEST(MapIn, ALaterRunRelocalizesInTheMapAndNeverMovesIt) {
     EXPECT_GT(trajectory.size(), 50u);
     EXPECT_LT(trajectory.size(), after.nodes.size() - map.nodes.size() + 1);
     EXPECT_NE(run.output.find("ATE RMSE"), std::string::npos) << run.output;
+}
+
+/** A room's field: the earth's and a few bumps a few decimetres wide over a 3 m square. */
+Eigen::Vector3d roomField(double x, double y) {
+    const double bumps[7][6] = {{0.5, 0.6, 0.3, 9, -4, 3},  {1.6, 0.4, 0.25, -7, 6, -5},
+                                {2.5, 1.2, 0.35, 5, 8, 4},   {1.2, 1.6, 0.3, -6, -7, 6},
+                                {0.4, 2.4, 0.25, 8, 3, -6},  {2.2, 2.6, 0.3, -5, -6, -4},
+                                {1.5, 2.9, 0.2, 6, -3, 5}};
+    Eigen::Vector3d b(15, 0, -45);
+    for (const auto& k : bumps) {
+        const double g = std::exp(-((x - k[0]) * (x - k[0]) + (y - k[1]) * (y - k[1])) / (2 * k[2] * k[2]));
+        b += g * Eigen::Vector3d(k[3], k[4], k[5]);
+    }
+    return b;
+}
+
+/** A walk through `corners` at 0.5 m/s, 10 Hz, reading roomField in the walker's frame. */
+lodestone::datasets::MagneticRecording walkThroughRoom(const std::vector<Eigen::Vector2d>& corners) {
+    lodestone::datasets::MagneticRecording rec;
+    rec.name = "room walk";
+    double t = 0, heading = 0;
+    for (std::size_t k = 0; k + 1 < corners.size(); ++k) {
+        const Eigen::Vector2d d = corners[k + 1] - corners[k];
+        heading += std::remainder(std::atan2(d.y(), d.x()) - heading, 2 * M_PI);
+        for (double s = 0; s < d.norm(); s += 0.05, t += 0.1) {
+            const Eigen::Vector2d p = corners[k] + d * (s / d.norm());
+            const Eigen::Vector3d b = roomField(p.x(), p.y());
+            const double c = std::cos(heading), sn = std::sin(heading);
+            rec.samples.push_back({t, p.x(), p.y(), heading, {c * b.x() + sn * b.y(), -sn * b.x() + c * b.y(), b.z()}});
+        }
+    }
+    return rec;
+}
+
+TEST(MapIn, ARunThatOnlyCrossesTheMappedLinesRelocalizesInTheFieldMap) {
+    // The map mows the room along x (lines 0.5 m apart); the later run crosses them on the
+    // diagonals and never follows one, either way: the window closer has no line to compare,
+    // the field map over the floor places it.
+    lodestone::registerAllClasses();
+    lodestone::test::TempDir dir;
+    // The field map's localizer alone: the map run then has no closures and its map is the
+    // exact odometry (the window closer has its own tests).
+    std::string ini = slurp(kConfig);
+    const auto children = ini.find("children =");
+    ASSERT_NE(children, std::string::npos);
+    ini.replace(children, ini.find('\n', children) - children, "children = MagneticFieldMapERD");
+    std::ofstream(dir.file("field_map.ini")) << ini;
+    const auto slamWith = [&](const std::string& rawlog, const std::string& out, const std::string& extra) {
+        return lodestone::test::runCommand(kSlam + " --rawlog " + rawlog + " --config " +
+                                           dir.file("field_map.ini") + " --quiet --out " + dir.file(out) +
+                                           " " + extra);
+    };
+    std::vector<Eigen::Vector2d> mowing;
+    for (int k = 0; k <= 6; ++k) {
+        mowing.emplace_back(k % 2 ? 3.0 : 0.0, 0.5 * k);
+        mowing.emplace_back(k % 2 ? 0.0 : 3.0, 0.5 * k);
+    }
+    lodestone::datasets::OdometryDriftModel exact;
+    exact.bias = exact.sp2 = exact.sh2 = 0;  // the map's frame is the reference's
+    lodestone::datasets::writeMagneticRecording(walkThroughRoom(mowing), dir.file("map.rawlog"), exact);
+    ASSERT_EQ(slamWith(dir.file("map.rawlog"), "first", "--map-out " + dir.file("map")).exitCode, 0);
+    lodestone::datasets::OdometryDriftModel drift;
+    drift.seed = 2;
+    const auto crossing = walkThroughRoom({{0.3, 0.2}, {2.8, 2.9}, {0.4, 2.7}, {2.6, 0.3}, {0.3, 1.4}});
+    lodestone::datasets::writeMagneticRecording(crossing, dir.file("cross.rawlog"), drift);
+    const auto run = slamWith(dir.file("cross.rawlog"), "cross", "--map-in " + dir.file("map"));
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    const std::string report = slurp(dir.file("cross") + "/report.json");
+    ASSERT_NE(report.find("\"relocations\": 1"), std::string::npos) << report.substr(0, 600);
+    // Where the run's nodes on the map are, against the walk's reference (the map's frame).
+    const auto onMap = lodestone::io::readTumTrajectory(dir.file("cross") + "/trajectory.tum");
+    const auto truth = lodestone::io::readTumTrajectory(dir.file("cross.gt.tum"));
+    ASSERT_GT(onMap.size(), 20u);
+    std::size_t near = 0;
+    for (const auto& p : onMap) {
+        const auto it = std::min_element(truth.begin(), truth.end(), [&](const auto& a, const auto& b) {
+            return std::abs(a.timestamp - p.timestamp) < std::abs(b.timestamp - p.timestamp);
+        });
+        near += std::hypot(p.pose.x() - it->pose.x(), p.pose.y() - it->pose.y()) < 0.3;
+    }
+    EXPECT_GT(double(near) / double(onMap.size()), 0.8) << near << " of " << onMap.size();
 }
 
 TEST(MapIn, AForeignOrDamagedMapIsRefusedBeforeAnyWork) {

@@ -4,6 +4,7 @@
 #include <lodestone/graphslam/DeciderRegistry.h>
 #include <lodestone/graphslam/nrd/FusedOdometryNRD.h>
 #include <lodestone/graphslam/nrd/VisualOdometryNRD.h>
+#include <lodestone/graphslam/erd/magnetic/MagneticFieldMapERD.h>
 #include <lodestone/graphslam/erd/magnetic/MagneticGpERD.h>
 #include <lodestone/graphslam/erd/visual/OrbSubmapERD.h>
 #include <lodestone/graphslam/erd/magnetic/MagneticWindowERD.h>
@@ -57,6 +58,7 @@ DeciderRegistry::DeciderRegistry() {
     registerEdgeDecider("OrbSubmapERD", [] { return std::make_unique<OrbSubmapERD>(); });
     registerEdgeDecider("MagneticGpERD", [] { return std::make_unique<MagneticGpERD>(); });
     registerEdgeDecider("MagneticWindowERD", [] { return std::make_unique<MagneticWindowERD>(); });
+    registerEdgeDecider("MagneticFieldMapERD", [] { return std::make_unique<MagneticFieldMapERD>(); });
     registerOptimizer("CeresGSO", [] { return std::make_unique<CeresGSO>(); });
 }
 

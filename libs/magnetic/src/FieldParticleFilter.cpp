@@ -86,6 +86,7 @@ bool FieldParticleFilter::measure(const Eigen::Vector3d& robotField) {
     applyMotion();
     const double noise = map_->hyperparameters().sigmaN * map_->hyperparameters().sigmaN +
                          params_.passSigma * params_.passSigma;
+    const double nu = params_.tailDof;
     double best = -std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < x_.size(); ++i) {
         const auto m = map_->at(x_[i], y_[i]);
@@ -94,7 +95,8 @@ bool FieldParticleFilter::measure(const Eigen::Vector3d& robotField) {
                                     s * robotField.x() + c * robotField.y(), robotField.z());
         const double v = m.variance + noise;
         const double r2 = (world - m.mean.cast<double>()).squaredNorm();
-        logw_[i] += -0.5 * (r2 / v + 3.0 * std::log(v));
+        logw_[i] += nu > 0 ? -0.5 * ((nu + 3.0) * std::log1p(r2 / (nu * v)) + 3.0 * std::log(v))
+                           : -0.5 * (r2 / v + 3.0 * std::log(v));
         best = std::max(best, logw_[i]);
     }
     for (double& w : logw_) w -= best;
@@ -121,13 +123,12 @@ void FieldParticleFilter::resample() {
         yaw[i] = yaw_[j];
     }
     // Copies of one particle would stay copies where the odometry is nearly exact: each is
-    // jittered by half a grid cell (and that over a metre in heading), the map's resolution.
-    const double sxy = 0.5 * map_->cellSize();
-    std::normal_distribution<double> jitterXY(0.0, sxy), jitterYaw(0.0, sxy);
+    // jittered by half a grid cell, the map's resolution. Not in heading: the odometry's own
+    // heading noise spreads it, and a jitter there would add up at every resampling.
+    std::normal_distribution<double> jitter(0.0, 0.5 * map_->cellSize());
     for (std::size_t i = 0; i < n; ++i) {
-        x[i] += jitterXY(rng_);
-        y[i] += jitterXY(rng_);
-        yaw[i] += jitterYaw(rng_);
+        x[i] += jitter(rng_);
+        y[i] += jitter(rng_);
     }
     x_.swap(x);
     y_.swap(y);

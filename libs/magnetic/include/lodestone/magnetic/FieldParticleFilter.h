@@ -18,6 +18,8 @@ struct FieldParticleFilterParams {
      * passes of one place differ by 0.5-0.8 uT on Kok's walks and by 1.2-4 uT between Aalto's
      * trials; the filter's result changed little between 1 and 5 uT there. */
     double passSigma{1.0};
+    /** Degrees of freedom of a Student-t residual (0: Gaussian). */
+    double tailDof{0};
     /** [m] travel between two weighings: readings closer than the field's length scale
      * repeat each other's errors (another day's disturbance is a field too), and weighing
      * each as new evidence makes the cloud collapse on a look-alike. 0: the length scale. */

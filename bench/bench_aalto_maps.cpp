@@ -1,0 +1,133 @@
+// A map of Aalto's room reused by later trials, measured through lodestone-slam's path (rawlogs
+// imported to disk, --map-out, then --map-in --mode localize):
+//   bench_aalto_maps DATA OUT_DIR [SLAM.ini] [--seeds N] [--trials 2,3,...]
+// DATA is ../shared/data/magnetic (exits 0 with a note when it is absent); SLAM.ini a
+// config_ini/ name or a path (default magnetic_window.ini). Trial 1 is mapped twice: with the
+// drift model's odometry (seed 1: the map a robot makes alone - Aalto's trials seldom revisit
+// their own path, so it is its odometry) and with the reference as odometry (a surveyed map).
+// Each other trial, imported with the drift model for seeds 1..N, is localized in each map and
+// judged in the map's frame (the map run aligned to its truth once, bench/map_runs.h): relocated
+// or not, the travel to the first relocation, its error (wrong: more than 1 m off), the share of
+// the run's nodes on the map within 0.3 m of the reference, and how far the map moved. Trials
+// 6-9 were recorded after metal shelves were brought in: the map's field is partly wrong there.
+#include <lodestone/maps/SavedMap.h>
+#include <lodestone/obs/registerAllClasses.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+#include <vector>
+
+#include "magnetic_recordings.h"
+#include "map_runs.h"
+
+using namespace lodestone;
+
+namespace {
+
+double median(std::vector<double> v) {
+    if (v.empty()) return NAN;
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+}
+
+double worst(const std::vector<double>& v) {
+    return v.empty() ? NAN : *std::max_element(v.begin(), v.end());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::vector<std::string> args(argv + 1, argv + argc);
+    int seeds = 3;
+    std::vector<int> trials{2, 3, 4, 5, 6, 7, 8, 9};
+    for (std::size_t i = 0; i + 1 < args.size();) {
+        if (args[i] == "--seeds") {
+            seeds = std::stoi(args[i + 1]);
+        } else if (args[i] == "--trials") {
+            trials.clear();
+            std::stringstream ss(args[i + 1]);
+            for (std::string t; std::getline(ss, t, ',');) trials.push_back(std::stoi(t));
+        } else {
+            ++i;
+            continue;
+        }
+        args.erase(args.begin() + static_cast<long>(i), args.begin() + static_cast<long>(i) + 2);
+    }
+    if (args.size() < 2) {
+        std::cerr
+            << "usage: bench_aalto_maps DATA OUT_DIR [SLAM.ini] [--seeds N] [--trials 2,3,...]\n";
+        return 2;
+    }
+    const std::string data = args[0] + "/aalto/invensense", dir = args[1];
+    const std::string config = args.size() > 2 ? args[2] : "magnetic_window.ini";
+    if (!std::filesystem::is_directory(data)) {
+        std::printf("bench_aalto_maps: %s is absent; nothing measured\n", data.c_str());
+        return 0;
+    }
+    try {
+        registerAllClasses();
+        std::filesystem::create_directories(dir);
+        for (const bool surveyed : {false, true}) {
+            const std::string tag = surveyed ? "surveyed" : "own";
+            const auto mapImport =
+                importSeed(datasets::readAaltoTrial(data, 1), dir + "/" + tag + "_t1.rawlog", 1,
+                           surveyed ? 0.0 : 1.0);
+            const auto mapRun = runImported(mapImport, config, dir + "/" + tag + "_t1_out", "",
+                                            dir + "/" + tag + "_map");
+            if (mapRun.result.exitCode != 0) throw std::runtime_error("mapping: " + mapRun.errors);
+            double mapAte = 0;
+            const auto T_world_map =
+                mapFrame(dir + "/" + tag + "_t1_out", mapImport.groundTruth, mapAte);
+            const auto saved = maps::readMap(dir + "/" + tag + "_map");
+            std::printf("\nMap: trial 1, %s - %zu nodes, its ATE %.3f m; %s, %d seeds\n\n",
+                        surveyed ? "the reference as odometry (surveyed)"
+                                 : "the drift model's odometry (seed 1)",
+                        saved.nodes.size(), mapAte, config.c_str(), seeds);
+            std::printf(
+                "| trial | relocated | travel to it median / worst [m] | its error median / worst "
+                "[m] "
+                "| wrong (> 1 m) | nodes on the map within 0.3 m: mean / worst | ATE on the map "
+                "median [m] | map moved [m] |\n|---|---|---|---|---|---|---|---|\n");
+            for (const int t : trials) {
+                const auto rec = datasets::readAaltoTrial(data, t);
+                std::vector<double> travel, error, within, ate;
+                int relocated = 0, wrong = 0;
+                double moved = 0;
+                for (int seed = 1; seed <= seeds; ++seed) {
+                    const std::string stem =
+                        dir + "/" + tag + "_t" + std::to_string(t) + "_s" + std::to_string(seed);
+                    const auto imported = importSeed(rec, stem + ".rawlog", seed);
+                    const auto r =
+                        runImported(imported, config, stem + "_out", dir + "/" + tag + "_map");
+                    if (r.result.exitCode != 0) throw std::runtime_error(stem + ": " + r.errors);
+                    const auto j =
+                        judgeMapRun(stem + "_out", imported.groundTruth, saved, T_world_map);
+                    moved = std::max(moved, j.moved);
+                    within.push_back(std::isfinite(j.within) ? j.within : 0.0);
+                    if (!j.relocated) continue;
+                    ++relocated;
+                    travel.push_back(j.travel);
+                    error.push_back(j.errorXY);
+                    wrong += !(j.errorXY <= 1.0);
+                    if (std::isfinite(j.ate)) ate.push_back(j.ate);
+                }
+                double meanWithin = 0;
+                for (double w : within) meanWithin += w / double(within.size());
+                std::printf(
+                    "| %d | %d/%d | %.2f / %.2f | %.3f / %.3f | %d | %.2f / %.2f | %.3f | %.4f |\n",
+                    t, relocated, seeds, median(travel), worst(travel), median(error), worst(error),
+                    wrong, meanWithin, *std::min_element(within.begin(), within.end()), median(ate),
+                    moved);
+                std::fflush(stdout);
+            }
+        }
+    } catch (const std::exception& e) {
+        std::cerr << "bench_aalto_maps: " << e.what() << "\n";
+        return 1;
+    }
+    return 0;
+}

@@ -1,0 +1,69 @@
+#include "map_runs.h"
+
+#include <lodestone/eval/TrajectoryError.h>
+#include <lodestone/graphslam/PoseGraph.h>
+#include <lodestone/io/TumTrajectory.h>
+#include <mrpt/math/CMatrixFixed.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "bench_reports.h"
+
+using namespace lodestone;
+
+mrpt::poses::CPose3D mapFrame(const std::string& mapRunOut, const std::string& mapRunTruth,
+                              double& mapAte) {
+    const auto ate = eval::absoluteTrajectoryError(
+        io::readTumTrajectory(mapRunOut + "/trajectory.tum"), io::readTumTrajectory(mapRunTruth));
+    mapAte = ate.rmse;
+    return mrpt::poses::CPose3D(mrpt::math::CMatrixDouble44(ate.alignment.matrix()));
+}
+
+MapRunJudgement judgeMapRun(const std::string& out, const std::string& truthPath,
+                            const maps::SavedMap& loaded, const mrpt::poses::CPose3D& T_world_map,
+                            double near) {
+    MapRunJudgement j;
+    const auto truth = io::readTumTrajectory(truthPath);
+    // (the first kidnap record: the run's start in the map)
+    const std::string all = slurp(out + "/report.json");
+    const std::string report = all.substr(std::min(all.size(), all.find("\"kidnaps\"")));
+    j.relocated = report.find("\"relocated\": true") != std::string::npos;
+    j.travel = numberIn(report, "travel_to_relocation_m");
+    if (j.relocated) {
+        const mrpt::poses::CPose3D at(numberIn(report, "x"), numberIn(report, "y"), 0,
+                                      numberIn(report, "yaw"), 0, 0);
+        if (const auto* t = eval::truthAt(truth, numberIn(report, "relocation_time"), 0.05)) {
+            const auto e = (-t->pose) + (T_world_map + at);
+            j.errorXY = std::hypot(e.x(), e.y());
+            j.errorYawDeg = std::abs(e.yaw()) * 180 / M_PI;
+        }
+    }
+    // The run's nodes on the map, in the map's frame, against the truth: no alignment.
+    const auto onMap = io::readTumTrajectory(out + "/trajectory.tum");
+    double sum = 0;
+    std::size_t pairs = 0, close = 0;
+    for (const auto& p : onMap) {
+        const auto* t = eval::truthAt(truth, p.timestamp, 0.05);
+        if (!t) continue;
+        const auto world = T_world_map + p.pose;
+        const double d2 =
+            std::pow(world.x() - t->pose.x(), 2) + std::pow(world.y() - t->pose.y(), 2);
+        sum += d2;
+        close += d2 <= near * near;
+        ++pairs;
+    }
+    j.onMap = onMap.size();
+    if (pairs) {
+        j.ate = std::sqrt(sum / double(pairs));
+        j.within = double(close) / double(pairs);
+    }
+    // The loaded map's nodes: where the run left them (graph.graph) against where they were.
+    graphslam::Graph after;
+    after.loadFromTextFile(out + "/graph.graph");
+    for (const auto& [id, pose] : loaded.graph.nodes) {
+        const auto& a = after.nodes.at(id);
+        j.moved = std::max(j.moved, std::hypot(a.x() - pose.x(), a.y() - pose.y()));
+    }
+    return j;
+}
