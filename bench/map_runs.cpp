@@ -33,7 +33,9 @@ MapRunJudgement judgeMapRun(const std::string& out, const std::string& truthPath
     if (j.relocated) {
         const mrpt::poses::CPose3D at(numberIn(report, "x"), numberIn(report, "y"), 0,
                                       numberIn(report, "yaw"), 0, 0);
-        if (const auto* t = eval::truthAt(truth, numberIn(report, "relocation_time"), 0.05)) {
+        j.relocatedPose = at;
+        j.relocationTime = numberIn(report, "relocation_time");
+        if (const auto* t = eval::truthAt(truth, j.relocationTime, 0.05)) {
             const auto e = (-t->pose) + (T_world_map + at);
             j.errorXY = std::hypot(e.x(), e.y());
             j.errorYawDeg = std::abs(e.yaw()) * 180 / M_PI;

@@ -17,6 +17,8 @@ mrpt::poses::CPose3D mapFrame(const std::string& mapRunOut, const std::string& m
 struct MapRunJudgement {
     bool relocated{false};
     double travel{NAN};                     ///< [m] to the first relocation
+    double relocationTime{NAN};             ///< [s]
+    mrpt::poses::CPose3D relocatedPose;     ///< in the map's frame
     double errorXY{NAN}, errorYawDeg{NAN};  ///< of the relocated pose [m, deg]
     double ate{NAN};                        ///< the run's nodes on the map, map frame [m]
     double within{NAN};                     ///< share of them within `near` of the truth

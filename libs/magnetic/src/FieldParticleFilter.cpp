@@ -86,38 +86,57 @@ bool FieldParticleFilter::measure(const Eigen::Vector3d& robotField) {
     applyMotion();
     const double noise = map_->hyperparameters().sigmaN * map_->hyperparameters().sigmaN +
                          params_.passSigma * params_.passSigma;
+    if (log_variance_.empty()) {
+        // Per cell (the last entry: off the band) the residual's variance and its log: the
+        // weighing's cost is then a lookup, a turn and a log per particle.
+        log_variance_.resize(map_->cells() + 1);
+        variance_.resize(map_->cells() + 1);
+        for (std::size_t k = 0; k <= map_->cells(); ++k) {
+            const auto m = map_->cellPrediction(k < map_->cells() ? std::int64_t(k) : -1);
+            variance_[k] = m.variance + noise;
+            log_variance_[k] = std::log(variance_[k]);
+        }
+    }
     const double nu = params_.tailDof;
     double best = -std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < x_.size(); ++i) {
-        const auto m = map_->at(x_[i], y_[i]);
+        const std::int64_t cell = map_->cellIndex(x_[i], y_[i]);
+        const auto m = map_->cellPrediction(cell);
+        const std::size_t k = cell < 0 ? map_->cells() : static_cast<std::size_t>(cell);
         const double c = std::cos(yaw_[i]), s = std::sin(yaw_[i]);
         const Eigen::Vector3d world(c * robotField.x() - s * robotField.y(),
                                     s * robotField.x() + c * robotField.y(), robotField.z());
-        const double v = m.variance + noise;
+        const double v = variance_[k];
         const double r2 = (world - m.mean.cast<double>()).squaredNorm();
-        logw_[i] += nu > 0 ? -0.5 * ((nu + 3.0) * std::log1p(r2 / (nu * v)) + 3.0 * std::log(v))
-                           : -0.5 * (r2 / v + 3.0 * std::log(v));
+        logw_[i] += nu > 0
+                        ? -0.5 * ((nu + 3.0) * std::log1p(r2 / (nu * v)) + 3.0 * log_variance_[k])
+                        : -0.5 * (r2 / v + 3.0 * log_variance_[k]);
         best = std::max(best, logw_[i]);
     }
     for (double& w : logw_) w -= best;
     ++weighings_;
     cloud_ = cloud();
-    if (cloud_.effectiveShare < params_.resampleShare) resample();
+    if (cloud_.effectiveShare < params_.resampleShare) {
+        const std::size_t tracking = params_.trackingParticles > 0
+                                         ? params_.trackingParticles
+                                         : std::max<std::size_t>(1, params_.particles / 20);
+        resample(cloud_.converged ? std::min(tracking, params_.particles) : params_.particles);
+    }
     return true;
 }
 
-void FieldParticleFilter::resample() {
-    const std::size_t n = x_.size();
-    std::vector<double> cumulative(n);
+void FieldParticleFilter::resample(std::size_t n) {
+    const std::size_t m = x_.size();
+    std::vector<double> cumulative(m);
     double sum = 0;
-    for (std::size_t i = 0; i < n; ++i) cumulative[i] = (sum += std::exp(logw_[i]));
+    for (std::size_t i = 0; i < m; ++i) cumulative[i] = (sum += std::exp(logw_[i]));
     std::uniform_real_distribution<double> start(0.0, 1.0);
     const double u0 = start(rng_);
     std::vector<double> x(n), y(n), yaw(n);
     std::size_t j = 0;
     for (std::size_t i = 0; i < n; ++i) {
         const double u = (u0 + static_cast<double>(i)) / static_cast<double>(n) * sum;
-        while (j + 1 < n && cumulative[j] < u) ++j;
+        while (j + 1 < m && cumulative[j] < u) ++j;
         x[i] = x_[j];
         y[i] = y_[j];
         yaw[i] = yaw_[j];
@@ -148,8 +167,9 @@ FieldParticleFilter::Estimate FieldParticleFilter::estimate() const {
 FieldParticleFilter::Estimate FieldParticleFilter::cloud() const {
     Estimate e;
     double sum = 0, sum2 = 0, sx = 0, sy = 0, sc = 0, ss = 0;
+    std::vector<double> weight(x_.size());
     for (std::size_t i = 0; i < x_.size(); ++i) {
-        const double w = std::exp(logw_[i]);
+        const double w = weight[i] = std::exp(logw_[i]);
         sum += w;
         sum2 += w * w;
         sx += w * x_[i];
@@ -161,7 +181,7 @@ FieldParticleFilter::Estimate FieldParticleFilter::cloud() const {
     e.effectiveShare = sum * sum / sum2 / static_cast<double>(x_.size());
     Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
     for (std::size_t i = 0; i < x_.size(); ++i) {
-        const double w = std::exp(logw_[i]) / sum;
+        const double w = weight[i] / sum;
         const Eigen::Vector3d d(x_[i] - e.pose.x(), y_[i] - e.pose.y(),
                                 std::remainder(yaw_[i] - e.pose.z(), 2 * M_PI));
         cov += w * d * d.transpose();

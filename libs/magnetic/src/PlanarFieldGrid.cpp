@@ -1,6 +1,7 @@
 #include <lodestone/magnetic/PlanarFieldGrid.h>
 
 #include <Eigen/Cholesky>
+#include <algorithm>
 #include <cmath>
 #include <nanoflann.hpp>
 #include <stdexcept>
@@ -103,13 +104,46 @@ PlanarFieldGrid::PlanarFieldGrid(const Eigen::MatrixX2d& points, const Eigen::Ma
         cells_[c].mean = (mu + w.transpose() * Y).transpose().cast<float>();
         cells_[c].variance = static_cast<float>(std::max(0.0, f2 - ks.dot(w)));
     }
+
+    std::int64_t x0 = cell_ij_.front().first, x1 = x0, y0 = cell_ij_.front().second, y1 = y0;
+    for (const auto& [ix, iy] : cell_ij_) {
+        x0 = std::min(x0, ix);
+        x1 = std::max(x1, ix);
+        y0 = std::min(y0, iy);
+        y1 = std::max(y1, iy);
+    }
+    constexpr std::int64_t kMaxDense = 32'000'000;  // 128 MB of indices
+    if ((x1 - x0 + 1) * (y1 - y0 + 1) <= kMaxDense) {
+        dense_x0_ = x0;
+        dense_y0_ = y0;
+        dense_nx_ = x1 - x0 + 1;
+        dense_ny_ = y1 - y0 + 1;
+        dense_.assign(static_cast<std::size_t>(dense_nx_ * dense_ny_), -1);
+        for (std::size_t c = 0; c < cell_ij_.size(); ++c)
+            dense_[static_cast<std::size_t>((cell_ij_[c].second - y0) * dense_nx_ +
+                                            cell_ij_[c].first - x0)] = static_cast<std::int32_t>(c);
+    }
+}
+
+std::int64_t PlanarFieldGrid::cellIndex(double x, double y) const {
+    const std::int64_t ix = index(x), iy = index(y);
+    if (!dense_.empty()) {
+        const std::int64_t dx = ix - dense_x0_, dy = iy - dense_y0_;
+        if (dx < 0 || dy < 0 || dx >= dense_nx_ || dy >= dense_ny_) return -1;
+        return dense_[static_cast<std::size_t>(dy * dense_nx_ + dx)];
+    }
+    const auto it = index_.find(key(ix, iy));
+    return it == index_.end() ? -1 : static_cast<std::int64_t>(it->second);
+}
+
+PlanarFieldGrid::Prediction PlanarFieldGrid::cellPrediction(std::int64_t i) const {
+    if (i < 0) return {prior_mean_, prior_variance_, false};
+    const Cell& c = cells_[static_cast<std::size_t>(i)];
+    return {c.mean, c.variance, true};
 }
 
 PlanarFieldGrid::Prediction PlanarFieldGrid::at(double x, double y) const {
-    const auto it = index_.find(key(index(x), index(y)));
-    if (it == index_.end()) return {prior_mean_, prior_variance_, false};
-    const Cell& c = cells_[it->second];
-    return {c.mean, c.variance, true};
+    return cellPrediction(cellIndex(x, y));
 }
 
 Eigen::MatrixX2d PlanarFieldGrid::cellCentres() const {

@@ -13,6 +13,10 @@ namespace lodestone::magnetic {
 
 struct FieldParticleFilterParams {
     std::size_t particles{100000};
+    /** Particles while the cloud holds one place (0: a twentieth of `particles`): a converged
+     * cloud spans a few cells, and the global count would cost twenty times as much to follow
+     * it. Back to `particles` at the next resampling once it no longer holds one place. */
+    std::size_t trackingParticles{0};
     /** [uT] per component: what a later pass reads beyond what the map predicts and the
      * reading noise - another day's disturbances, a magnetometer mounted a little apart. Two
      * passes of one place differ by 0.5-0.8 uT on Kok's walks and by 1.2-4 uT between Aalto's
@@ -72,7 +76,7 @@ class FieldParticleFilter {
 
   private:
     void applyMotion();
-    void resample();
+    void resample(std::size_t n);
     Estimate cloud() const;
 
     std::shared_ptr<const PlanarFieldGrid> map_;
@@ -80,6 +84,7 @@ class FieldParticleFilter {
     double spacing_{0}, converged_sigma_{0};
     std::mt19937_64 rng_;
     std::vector<double> x_, y_, yaw_, logw_;
+    std::vector<double> variance_, log_variance_;  ///< of a residual, per map cell (last: off it)
     Eigen::Vector3d pending_{Eigen::Vector3d::Zero()};
     Eigen::Matrix3d pending_cov_{Eigen::Matrix3d::Zero()};
     Estimate cloud_;

@@ -41,6 +41,10 @@ class PlanarFieldGrid {
         bool known{false};  ///< inside the band (else the prior)
     };
     Prediction at(double x, double y) const;
+    /** The band's cell holding (x, y), -1 off the band; cellPrediction(i) is at() for it. What
+     * a caller weighing many points caches per cell. */
+    std::int64_t cellIndex(double x, double y) const;
+    Prediction cellPrediction(std::int64_t i) const;
 
     /** The centres of the band's cells (n x 2): where a particle may start. */
     Eigen::MatrixX2d cellCentres() const;
@@ -63,6 +67,10 @@ class PlanarFieldGrid {
     Eigen::Vector3f prior_mean_;
     float prior_variance_{0};
     std::unordered_map<std::uint64_t, std::uint32_t> index_;
+    // The same as a dense raster over the band's bounding box, when that is not too large: a
+    // lookup is then one load instead of a hash probe (the particle filter's hot path).
+    std::vector<std::int32_t> dense_;
+    std::int64_t dense_x0_{0}, dense_y0_{0}, dense_nx_{0}, dense_ny_{0};
     std::vector<Cell> cells_;
     std::vector<std::pair<std::int64_t, std::int64_t>> cell_ij_;
 };
