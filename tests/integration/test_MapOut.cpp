@@ -234,6 +234,18 @@ TEST(MapIn, ARunThatOnlyCrossesTheMappedLinesRelocalizesInTheFieldMap) {
         near += std::hypot(p.pose.x() - it->pose.x(), p.pose.y() - it->pose.y()) < 0.3;
     }
     EXPECT_GT(double(near) / double(onMap.size()), 0.8) << near << " of " << onMap.size();
+
+    // A map whose band would need more cells than the INI allows: no field map, the run goes
+    // on without the localizer and says why.
+    const auto cap = ini.find("grid_max_cells");
+    ASSERT_NE(cap, std::string::npos);
+    ini.replace(cap, ini.find('\n', cap) - cap, "grid_max_cells = 100");
+    std::ofstream(dir.file("field_map.ini")) << ini;
+    const auto capped = slamWith(dir.file("cross.rawlog"), "capped", "--map-in " + dir.file("map"));
+    ASSERT_EQ(capped.exitCode, 0) << capped.output;
+    const std::string cappedReport = slurp(dir.file("capped") + "/report.json");
+    EXPECT_NE(cappedReport.find("\"relocations\": 0"), std::string::npos);
+    EXPECT_NE(cappedReport.find("more than 100 cells"), std::string::npos);
 }
 
 TEST(MapIn, AForeignOrDamagedMapIsRefusedBeforeAnyWork) {

@@ -37,6 +37,8 @@ void MagneticFieldMapERD::configure(const mrpt::config::CConfigFileBase& ini) {
     p.filter.seed =
         static_cast<std::uint64_t>(s.getDouble("seed", static_cast<double>(p.filter.seed)));
     p.grid.cell = s.getDouble("grid_cell", p.grid.cell);
+    p.grid.maxCells = static_cast<std::size_t>(
+        s.getDouble("grid_max_cells", static_cast<double>(p.grid.maxCells)));
     p.closureEvery = s.getDouble("closure_every", p.closureEvery);
     p.sigmaFloor = s.getDouble("sigma_floor", p.sigmaFloor);
     if (!(p.saturation > 0)) s.fail("saturation", "must be > 0");
@@ -48,6 +50,7 @@ void MagneticFieldMapERD::configure(const mrpt::config::CConfigFileBase& ini) {
     if (!(p.filter.convergedSigma >= 0)) s.fail("converged_sigma", "must be >= 0");
     if (!(p.filter.convergedYawSigma > 0)) s.fail("converged_yaw_sigma_deg", "must be > 0");
     if (!(p.grid.cell > 0.005 && p.grid.cell <= 1)) s.fail("grid_cell", "must be in (0.005, 1]");
+    if (!(p.grid.maxCells >= 1)) s.fail("grid_max_cells", "must be >= 1");
     if (!(p.closureEvery > 0)) s.fail("closure_every", "must be > 0");
     if (!(p.sigmaFloor > 0)) s.fail("sigma_floor", "must be > 0");
     s.finish();
@@ -216,7 +219,17 @@ void MagneticFieldMapERD::buildFieldMap() {
         P.row(static_cast<Eigen::Index>(i)) = points[i].transpose();
         F.row(static_cast<Eigen::Index>(i)) = fields[i].transpose();
     }
-    auto grid = std::make_shared<magnetic::PlanarFieldGrid>(P, F, h, params_.grid);
+    std::shared_ptr<magnetic::PlanarFieldGrid> grid;
+    try {
+        grid = std::make_shared<magnetic::PlanarFieldGrid>(P, F, h, params_.grid);
+    } catch (const std::invalid_argument& e) {
+        // A map too large for the raster (or a fit gone wrong): the run goes on without this
+        // localizer - the other loop closers still relocate it - and says why.
+        stats_.disabled = e.what();
+        MRPT_LOG_WARN_STREAM("MagneticFieldMapERD: no field map, localizer off: " << e.what());
+        map_readings_ = {};
+        return;
+    }
     stats_.mapReadings = map_readings_.size();
     stats_.gridReadings = points.size();
     stats_.gridCells = grid->cells();
@@ -268,6 +281,7 @@ JsonObject MagneticFieldMapERD::describe() const {
         .set("converged_sigma", params_.filter.convergedSigma)
         .set("converged_yaw_sigma_deg", params_.filter.convergedYawSigma * 180 / M_PI)
         .set("grid_cell", params_.grid.cell)
+        .set("grid_max_cells", params_.grid.maxCells)
         .set("closure_every", params_.closureEvery)
         .set("sigma_floor", params_.sigmaFloor)
         .set("seed", static_cast<std::size_t>(params_.filter.seed));
@@ -284,7 +298,8 @@ JsonObject MagneticFieldMapERD::describe() const {
         .set("weighings", stats_.weighings)
         .set("closures", stats_.closures)
         .set("strong_closures", stats_.strongClosures)
-        .set("first_converged_travel", stats_.firstConvergedTravel);
+        .set("first_converged_travel", stats_.firstConvergedTravel)
+        .set("disabled", stats_.disabled);
     describeQueryTimes(stats, stats_.weighMs);
     JsonObject out;
     out.set("class", getClassName()).set("params", params).set("stats", stats);

@@ -25,7 +25,8 @@ namespace lodestone::graphslam {
  *
  * Without a loaded map it does nothing. INI section [MagneticFieldMapERD]: sensor_label,
  * saturation, particles, pass_sigma, tail_dof, update_spacing, converged_sigma,
- * converged_yaw_sigma_deg, grid_cell, closure_every, sigma_floor, seed. */
+ * converged_yaw_sigma_deg, grid_cell, grid_max_cells (a larger map's band: no field map, the
+ * localizer off and report.json's `disabled` says why), closure_every, sigma_floor, seed. */
 class MagneticFieldMapERD : public EdgeDecider {
   public:
     struct Params {
@@ -42,6 +43,7 @@ class MagneticFieldMapERD : public EdgeDecider {
         magnetic::GpHyperparameters fitted;
         double buildSeconds{0};
         double firstConvergedTravel{NAN};  ///< [m] along the run's segment
+        std::string disabled;  ///< why there is no field map (empty: there is one, or no map)
         std::vector<double> weighMs;
     };
 
