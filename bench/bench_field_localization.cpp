@@ -1,7 +1,10 @@
 // Localization from nothing in a magnetic map of the floor, on Aalto's trials (Solin et al.
 // 2018: one room, nine trials of a small robot, Vicon reference), judged against the reference:
 //   bench_field_localization DATA [--seeds N] [--particles N] [--pass-sigma UT]
-//                            [--map reference|odometry] [--trials 2,3,...]
+//                            [--map reference|odometry] [--trials 2,3,...] [--tail-dof NU]
+//                            [--converged-sigma M] [--trace 1]
+// (--tail-dof 4: the Student-t residual magnetic_window.ini uses; 0, the default here, Gaussian;
+// --trace 1 prints the error and the cloud's spread at every weighing.)
 // DATA is ../shared/data/magnetic (exits 0 with a note when it is absent). Trial 1 is the map:
 // its readings placed by the reference (a surveyed map) or by its own drifting odometry (a map
 // made by the robot alone, judged after one rigid alignment to the reference), the field turned
@@ -206,7 +209,8 @@ int main(int argc, char** argv) {
     if (!parse(argc, argv, a)) {
         std::fprintf(stderr,
                      "usage: bench_field_localization DATA [--seeds N] [--particles N] "
-                     "[--pass-sigma UT] [--map reference|odometry] [--trials 2,3,...]\n");
+                     "[--pass-sigma UT] [--map reference|odometry] [--trials 2,3,...] "
+                     "[--tail-dof NU] [--converged-sigma M] [--trace 1]\n");
         return 2;
     }
     const std::string dir = a.data + "/aalto/invensense";
