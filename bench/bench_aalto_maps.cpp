@@ -71,20 +71,31 @@ int main(int argc, char** argv) {
     std::vector<std::string> args(argv + 1, argv + argc);
     int seeds = 3;
     std::vector<int> trials{2, 3, 4, 5, 6, 7, 8, 9};
-    for (std::size_t i = 0; i + 1 < args.size();) {
+    bool usable = true;
+    for (std::size_t i = 0; usable && i + 1 < args.size();) {
         if (args[i] == "--seeds") {
-            seeds = std::stoi(args[i + 1]);
+            try {
+                seeds = std::stoi(args[i + 1]);
+            } catch (const std::exception&) {
+                usable = false;
+            }
         } else if (args[i] == "--trials") {
             trials.clear();
             std::stringstream ss(args[i + 1]);
-            for (std::string t; std::getline(ss, t, ',');) trials.push_back(std::stoi(t));
+            for (std::string t; usable && std::getline(ss, t, ',');) {
+                try {
+                    trials.push_back(std::stoi(t));
+                } catch (const std::exception&) {
+                    usable = false;
+                }
+            }
         } else {
             ++i;
             continue;
         }
         args.erase(args.begin() + static_cast<long>(i), args.begin() + static_cast<long>(i) + 2);
     }
-    if (args.size() < 2) {
+    if (!usable || args.size() < 2 || seeds < 1 || trials.empty()) {
         std::cerr
             << "usage: bench_aalto_maps DATA OUT_DIR [SLAM.ini] [--seeds N] [--trials 2,3,...]\n";
         return 2;

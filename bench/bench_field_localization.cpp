@@ -206,7 +206,12 @@ double median(std::vector<double> v) {
 
 int main(int argc, char** argv) {
     Args a;
-    if (!parse(argc, argv, a)) {
+    bool parsed = false;
+    try {
+        parsed = parse(argc, argv, a);
+    } catch (const std::exception&) {  // a number that is not one
+    }
+    if (!parsed) {
         std::fprintf(stderr,
                      "usage: bench_field_localization DATA [--seeds N] [--particles N] "
                      "[--pass-sigma UT] [--map reference|odometry] [--trials 2,3,...] "
