@@ -122,6 +122,7 @@ PlanarFieldGrid::PlanarFieldGrid(const Eigen::MatrixX2d& points, const Eigen::Ma
         for (std::size_t c = 0; c < cell_ij_.size(); ++c)
             dense_[static_cast<std::size_t>((cell_ij_[c].second - y0) * dense_nx_ +
                                             cell_ij_[c].first - x0)] = static_cast<std::int32_t>(c);
+        index_ = {};  // the raster answers every lookup: the hash was only the build's
     }
 }
 
