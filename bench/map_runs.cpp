@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <unordered_map>
 
 #include "bench_reports.h"
 
@@ -20,9 +22,33 @@ mrpt::poses::CPose3D mapFrame(const std::string& mapRunOut, const std::string& m
     return mrpt::poses::CPose3D(mrpt::math::CMatrixDouble44(ate.alignment.matrix()));
 }
 
+Coverage nearPath(const std::vector<Eigen::Vector2d>& path, double radius) {
+    // Buckets of `radius`: a query looks at its own and the eight around it.
+    const auto cell = [radius](double v) {
+        return static_cast<std::int64_t>(std::floor(v / radius));
+    };
+    const auto key = [](std::int64_t ix, std::int64_t iy) {
+        return (static_cast<std::uint64_t>(ix) << 32) ^ static_cast<std::uint32_t>(iy);
+    };
+    auto buckets =
+        std::make_shared<std::unordered_map<std::uint64_t, std::vector<Eigen::Vector2d>>>();
+    for (const auto& p : path) (*buckets)[key(cell(p.x()), cell(p.y()))].push_back(p);
+    return [buckets, radius, cell, key](double x, double y) {
+        const std::int64_t ix = cell(x), iy = cell(y);
+        for (std::int64_t dx = -1; dx <= 1; ++dx)
+            for (std::int64_t dy = -1; dy <= 1; ++dy) {
+                const auto it = buckets->find(key(ix + dx, iy + dy));
+                if (it == buckets->end()) continue;
+                for (const auto& p : it->second)
+                    if ((p - Eigen::Vector2d(x, y)).squaredNorm() <= radius * radius) return true;
+            }
+        return false;
+    };
+}
+
 MapRunJudgement judgeMapRun(const std::string& out, const std::string& truthPath,
                             const maps::SavedMap& loaded, const mrpt::poses::CPose3D& T_world_map,
-                            double near) {
+                            double near, const Coverage& covered) {
     MapRunJudgement j;
     const auto truth = io::readTumTrajectory(truthPath);
     // (the first kidnap record: the run's start in the map)
@@ -44,7 +70,7 @@ MapRunJudgement judgeMapRun(const std::string& out, const std::string& truthPath
     // The run's nodes on the map, in the map's frame, against the truth: no alignment.
     const auto onMap = io::readTumTrajectory(out + "/trajectory.tum");
     double sum = 0;
-    std::size_t pairs = 0, close = 0;
+    std::size_t pairs = 0, close = 0, inside = 0, closeInside = 0;
     for (const auto& p : onMap) {
         const auto* t = eval::truthAt(truth, p.timestamp, 0.05);
         if (!t) continue;
@@ -54,6 +80,16 @@ MapRunJudgement judgeMapRun(const std::string& out, const std::string& truthPath
         sum += d2;
         close += d2 <= near * near;
         ++pairs;
+        if (covered && covered(t->pose.x(), t->pose.y())) {
+            ++inside;
+            closeInside += d2 <= near * near;
+        }
+    }
+    if (covered && pairs) {
+        j.coveredShare = double(inside) / double(pairs);
+        if (inside) j.withinCovered = double(closeInside) / double(inside);
+        if (pairs > inside)
+            j.withinUncovered = double(close - closeInside) / double(pairs - inside);
     }
     j.onMap = onMap.size();
     if (pairs) {

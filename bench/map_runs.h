@@ -6,8 +6,11 @@
 #include <lodestone/maps/SavedMap.h>
 #include <mrpt/poses/CPose3D.h>
 
+#include <Eigen/Core>
 #include <cstddef>
+#include <functional>
 #include <string>
+#include <vector>
 
 /** The map's frame in the world: the map run's trajectory (OUT/trajectory.tum) aligned to its
  * truth; `mapAte` its ATE. */
@@ -23,11 +26,21 @@ struct MapRunJudgement {
     double ate{NAN};                        ///< the run's nodes on the map, map frame [m]
     double within{NAN};                     ///< share of them within `near` of the truth
     std::size_t onMap{0};                   ///< the run's nodes on the map (trajectory.tum)
-    double moved{0};                        ///< [m] how far the loaded map's nodes moved
+    /** Split by whether the map holds the place (the `covered` predicate): the share of the
+     * run's nodes whose truth is covered, and `within` over those and over the rest. */
+    double coveredShare{NAN}, withinCovered{NAN}, withinUncovered{NAN};
+    double moved{0};  ///< [m] how far the loaded map's nodes moved
 };
 
+/** Whether the map holds the place (x, y) of the world: e.g. the map run passed near it. */
+using Coverage = std::function<bool(double x, double y)>;
+
+/** Covered: within `radius` of a point of `path` (world frame) - where a map run passed. */
+Coverage nearPath(const std::vector<Eigen::Vector2d>& path, double radius);
+
 /** The run whose outputs are in `out` (report.json, trajectory.tum, graph.graph), started in
- * `loaded`, against the truth `truthPath`. */
+ * `loaded`, against the truth `truthPath`; `covered` (optional) splits `within`. */
 MapRunJudgement judgeMapRun(const std::string& out, const std::string& truthPath,
                             const lodestone::maps::SavedMap& loaded,
-                            const mrpt::poses::CPose3D& T_world_map, double near = 0.3);
+                            const mrpt::poses::CPose3D& T_world_map, double near = 0.3,
+                            const Coverage& covered = {});
