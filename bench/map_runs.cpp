@@ -70,7 +70,7 @@ MapRunJudgement judgeMapRun(const std::string& out, const std::string& truthPath
     // The run's nodes on the map, in the map's frame, against the truth: no alignment.
     const auto onMap = io::readTumTrajectory(out + "/trajectory.tum");
     double sum = 0;
-    std::size_t pairs = 0, close = 0, inside = 0, closeInside = 0;
+    std::size_t judged = 0, pairs = 0, close = 0, inside = 0, closeInside = 0;
     for (const auto& p : onMap) {
         const auto* t = eval::truthAt(truth, p.timestamp, 0.05);
         if (!t) continue;
@@ -78,6 +78,10 @@ MapRunJudgement judgeMapRun(const std::string& out, const std::string& truthPath
         const double d2 =
             std::pow(world.x() - t->pose.x(), 2) + std::pow(world.y() - t->pose.y(), 2);
         sum += d2;
+        ++judged;
+        // The share within `near`: the poses after the first relocation (before it the run's
+        // nodes are placed only by the odometry back from there).
+        if (!(p.timestamp >= j.relocationTime)) continue;
         close += d2 <= near * near;
         ++pairs;
         if (covered && covered(t->pose.x(), t->pose.y())) {
@@ -92,10 +96,8 @@ MapRunJudgement judgeMapRun(const std::string& out, const std::string& truthPath
             j.withinUncovered = double(close - closeInside) / double(pairs - inside);
     }
     j.onMap = onMap.size();
-    if (pairs) {
-        j.ate = std::sqrt(sum / double(pairs));
-        j.within = double(close) / double(pairs);
-    }
+    if (judged) j.ate = std::sqrt(sum / double(judged));
+    if (pairs) j.within = double(close) / double(pairs);
     // The loaded map's nodes: where the run left them (graph.graph) against where they were.
     graphslam::Graph after;
     after.loadFromTextFile(out + "/graph.graph");

@@ -24,7 +24,7 @@ struct MapRunJudgement {
     mrpt::poses::CPose3D relocatedPose;     ///< in the map's frame
     double errorXY{NAN}, errorYawDeg{NAN};  ///< of the relocated pose [m, deg]
     double ate{NAN};                        ///< the run's nodes on the map, map frame [m]
-    double within{NAN};                     ///< share of them within `near` of the truth
+    double within{NAN};  ///< share of them after the first relocation within `near` of the truth
     std::size_t onMap{0};                   ///< the run's nodes on the map (trajectory.tum)
     /** Split by whether the map holds the place (the `covered` predicate): the share of the
      * run's nodes whose truth is covered, and `within` over those and over the rest. */
