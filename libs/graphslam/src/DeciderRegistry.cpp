@@ -4,6 +4,7 @@
 #include <lodestone/graphslam/DeciderRegistry.h>
 #include <lodestone/graphslam/nrd/FusedOdometryNRD.h>
 #include <lodestone/graphslam/nrd/VisualOdometryNRD.h>
+#include <lodestone/graphslam/erd/magnetic/MagneticCrossingERD.h>
 #include <lodestone/graphslam/erd/magnetic/MagneticFieldMapERD.h>
 #include <lodestone/graphslam/erd/magnetic/MagneticGpERD.h>
 #include <lodestone/graphslam/erd/visual/OrbSubmapERD.h>
@@ -59,6 +60,7 @@ DeciderRegistry::DeciderRegistry() {
     registerEdgeDecider("MagneticGpERD", [] { return std::make_unique<MagneticGpERD>(); });
     registerEdgeDecider("MagneticWindowERD", [] { return std::make_unique<MagneticWindowERD>(); });
     registerEdgeDecider("MagneticFieldMapERD", [] { return std::make_unique<MagneticFieldMapERD>(); });
+    registerEdgeDecider("MagneticCrossingERD", [] { return std::make_unique<MagneticCrossingERD>(); });
     registerOptimizer("CeresGSO", [] { return std::make_unique<CeresGSO>(); });
 }
 

@@ -13,9 +13,7 @@
 namespace lodestone::graphslam {
 
 namespace {
-constexpr double kFitStep = 0.05;          // [m] the fit's readings, by travel
-constexpr std::size_t kFitStretch = 200;   // readings a stretch
-constexpr std::size_t kFitStretches = 40;  // at most, spread over the map
+constexpr double kFitStep = 0.05;  // [m] the grid's readings, averaged by travel
 }  // namespace
 
 MagneticFieldMapERD::MagneticFieldMapERD() { setClassName("MagneticFieldMapERD"); }
@@ -64,18 +62,6 @@ bool MagneticFieldMapERD::updateState(mrpt::obs::CActionCollection::Ptr,
     return stats_.closures > before;
 }
 
-Eigen::Vector3d MagneticFieldMapERD::poseAt(TNodeID k, double travel) const {
-    const auto& b = m_graph->nodes.at(k);
-    if (k == 0 || path_.segment[k - 1] != path_.segment[k] ||
-        path_.travel[k] <= path_.travel[k - 1])
-        return {b.x(), b.y(), b.yaw()};
-    const auto& a = m_graph->nodes.at(k - 1);
-    const double f = std::clamp(
-        (travel - path_.travel[k - 1]) / (path_.travel[k] - path_.travel[k - 1]), 0.0, 1.0);
-    return {a.x() + f * (b.x() - a.x()), a.y() + f * (b.y() - a.y()),
-            a.yaw() + f * std::remainder(b.yaw() - a.yaw(), 2 * M_PI)};
-}
-
 void MagneticFieldMapERD::onNode(TNodeID id) {
     const NodeRecord& rec = nodes_->at(id);
     const bool newSegment = path_.segment.empty() || rec.segment != path_.segment.back();
@@ -91,7 +77,7 @@ void MagneticFieldMapERD::onNode(TNodeID id) {
                 last_reading_ = b;
                 return;
             }
-            const Eigen::Vector3d pose = poseAt(id, s);
+            const Eigen::Vector3d pose = path_.poseAt(*m_graph, id, s);
             const double c = std::cos(pose.z()), sn = std::sin(pose.z());
             map_readings_.push_back({pose.head<2>(),
                                      {c * b.x() - sn * b.y(), sn * b.x() + c * b.y(), b.z()},
@@ -133,54 +119,19 @@ void MagneticFieldMapERD::onNode(TNodeID id) {
     if (segment_travel_ - last_closure_travel_ >= params_.closureEvery) propose(id, e);
 }
 
-namespace {
-Eigen::MatrixXd rowsOf(const std::vector<Eigen::Vector3d>& rows) {
-    Eigen::MatrixXd m(static_cast<Eigen::Index>(rows.size()), 3);
-    for (std::size_t i = 0; i < rows.size(); ++i)
-        m.row(static_cast<Eigen::Index>(i)) = rows[i].transpose();
-    return m;
-}
-}  // namespace
-
-std::vector<magnetic::FieldStretch> MagneticFieldMapERD::fitStretches(
-    const std::vector<MapReading>& readings) {
-    // Stretches of one segment, a reading every kFitStep metres, kFitStretch readings each (a
-    // last one of at least half that), at most kFitStretches spread over the whole map.
-    std::vector<magnetic::FieldStretch> stretches;
-    magnetic::FieldStretch current;
-    std::vector<Eigen::Vector3d> rows;
-    const auto flush = [&] {
-        current.readings = rowsOf(rows);
-        if (current.travel.size() >= kFitStretch / 2) stretches.push_back(current);
-        current = {};
-        rows.clear();
-    };
-    double lastTravel = -std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < readings.size(); ++i) {
-        const auto& r = readings[i];
-        if (i > 0 && r.segment != readings[i - 1].segment) {
-            flush();
-            lastTravel = -std::numeric_limits<double>::infinity();
-        }
-        if (r.travel - lastTravel < kFitStep) continue;
-        lastTravel = r.travel;
-        current.travel.push_back(r.travel);
-        rows.push_back(r.field);
-        if (rows.size() == kFitStretch) flush();
-    }
-    flush();
-    if (stretches.size() <= kFitStretches) return stretches;
-    std::vector<magnetic::FieldStretch> spread;
-    for (std::size_t k = 0; k < kFitStretches; ++k)
-        spread.push_back(stretches[k * stretches.size() / kFitStretches]);
-    return spread;
-}
-
 void MagneticFieldMapERD::buildFieldMap() {
     if (map_readings_.empty()) return;  // a map without this magnetometer: nothing to localize in
     const auto t0 = Clock::now();
     // The hyperparameters from the map's own readings along its path.
-    const auto stretches = fitStretches(map_readings_);
+    std::vector<double> travel;
+    std::vector<int> segment;
+    std::vector<Eigen::Vector3d> field;
+    for (const auto& r : map_readings_) {
+        travel.push_back(r.travel);
+        segment.push_back(r.segment);
+        field.push_back(r.field);
+    }
+    const auto stretches = fieldFitStretches(travel, segment, field);
     magnetic::GpHyperparameters h;
     if (!stretches.empty()) {
         const auto fit = magnetic::fitHyperparameters(stretches, h);

@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace lodestone::graphslam {
 
@@ -86,6 +87,57 @@ JsonObject& describeQueryTimes(JsonObject& stats, const std::vector<double>& que
     }
     return stats.set("query_ms_mean", queryMs.empty() ? 0.0 : total / double(queryMs.size()))
         .set("query_ms_max", worst);
+}
+
+}  // namespace lodestone::graphslam
+
+namespace lodestone::graphslam {
+
+Eigen::Vector3d MagneticPath::poseAt(const Graph& graph, TNodeID k, double at) const {
+    const auto& b = graph.nodes.at(k);
+    if (k == 0 || segment[k - 1] != segment[k] || travel[k] <= travel[k - 1])
+        return {b.x(), b.y(), b.yaw()};
+    const auto& a = graph.nodes.at(k - 1);
+    const double f = std::clamp((at - travel[k - 1]) / (travel[k] - travel[k - 1]), 0.0, 1.0);
+    return {a.x() + f * (b.x() - a.x()), a.y() + f * (b.y() - a.y()),
+            a.yaw() + f * std::remainder(b.yaw() - a.yaw(), 2 * M_PI)};
+}
+
+std::vector<magnetic::FieldStretch> fieldFitStretches(const std::vector<double>& travel,
+                                                      const std::vector<int>& segment,
+                                                      const std::vector<Eigen::Vector3d>& field) {
+    constexpr double kStep = 0.05;          // [m] a reading every
+    constexpr std::size_t kStretch = 200;   // readings a stretch
+    constexpr std::size_t kStretches = 40;  // at most, spread over the path
+    std::vector<magnetic::FieldStretch> stretches;
+    magnetic::FieldStretch current;
+    std::vector<Eigen::Vector3d> rows;
+    const auto flush = [&] {
+        current.readings.resize(static_cast<Eigen::Index>(rows.size()), 3);
+        for (std::size_t i = 0; i < rows.size(); ++i)
+            current.readings.row(static_cast<Eigen::Index>(i)) = rows[i].transpose();
+        if (current.travel.size() >= kStretch / 2) stretches.push_back(current);
+        current = {};
+        rows.clear();
+    };
+    double last = -std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < travel.size(); ++i) {
+        if (i > 0 && segment[i] != segment[i - 1]) {
+            flush();
+            last = -std::numeric_limits<double>::infinity();
+        }
+        if (travel[i] - last < kStep) continue;
+        last = travel[i];
+        current.travel.push_back(travel[i]);
+        rows.push_back(field[i]);
+        if (rows.size() == kStretch) flush();
+    }
+    flush();
+    if (stretches.size() <= kStretches) return stretches;
+    std::vector<magnetic::FieldStretch> spread;
+    for (std::size_t k = 0; k < kStretches; ++k)
+        spread.push_back(stretches[k * stretches.size() / kStretches]);
+    return spread;
 }
 
 }  // namespace lodestone::graphslam

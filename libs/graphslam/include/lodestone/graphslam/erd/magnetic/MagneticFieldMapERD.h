@@ -67,11 +67,7 @@ class MagneticFieldMapERD : public EdgeDecider {
         int segment{0};
     };
     void onNode(TNodeID id);
-    static std::vector<magnetic::FieldStretch> fitStretches(
-        const std::vector<MapReading>& readings);
     void buildFieldMap();
-    /** The reading's place and heading on the graph: along the node's step by travel. */
-    Eigen::Vector3d poseAt(TNodeID node, double travel) const;
     void propose(TNodeID id, const magnetic::FieldParticleFilter::Estimate& e);
 
     Params params_;

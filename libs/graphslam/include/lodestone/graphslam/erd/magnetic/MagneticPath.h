@@ -4,6 +4,7 @@
 #include <lodestone/graphslam/PoseGraph.h>
 #include <lodestone/graphslam/ReportJson.h>
 #include <lodestone/graphslam/erd/magnetic/PathUncertainty.h>
+#include <lodestone/magnetic/HyperparameterFit.h>
 
 #include <Eigen/Core>
 #include <functional>
@@ -47,6 +48,9 @@ class MagneticPath {
      * `targetYaw` and `yawVariance`: the uncertainty pinned there, in the map frame. */
     void pinClosure(TNodeID query, double targetYaw, const Eigen::Matrix2d& positionCov,
                     double yawVariance);
+    /** Where `graph` has a reading taken at `travel` during node `node`'s step: along the step
+     * from node - 1 by travel (x, y, yaw; at the node itself across a segment start). */
+    Eigen::Vector3d poseAt(const Graph& graph, TNodeID node, double travel) const;
     /** The reading counts into report.json's stats: readings, dropped_readings,
      * other_sensor_readings. */
     JsonObject& describeCounts(JsonObject& stats) const;
@@ -56,6 +60,13 @@ class MagneticPath {
     closure::PathUncertainty uncertainty;
     Counts counts;
 };
+
+/** Readings along a path (their travel, segment and world-frame field, in order) as stretches
+ * for magnetic::fitHyperparameters: a reading every 0.05 m of travel, 200 a stretch within
+ * one segment (a last one of at least half that), at most 40 spread over the whole path. */
+std::vector<magnetic::FieldStretch> fieldFitStretches(const std::vector<double>& travel,
+                                                      const std::vector<int>& segment,
+                                                      const std::vector<Eigen::Vector3d>& field);
 
 /** The covariance of a place on a path whose step is `step` (the step's own frame): variance
  * `along2` along it, `across2` across it (a sequence of the field places a node along the
