@@ -69,6 +69,9 @@ PlanarFieldGrid::PlanarFieldGrid(const Eigen::MatrixX2d& points, const Eigen::Ma
         }
     }
 
+    if (cell_ij_.empty())  // a reach below half a cell: nothing to hold the field
+        throw std::invalid_argument("PlanarFieldGrid: no cell within reach of a reading");
+
     // Each cell: a GP on its nearest readings.
     Positions positions{&points};
     Tree tree(2, positions, nanoflann::KDTreeSingleIndexAdaptorParams(10));

@@ -10,7 +10,7 @@ namespace lodestone::magnetic {
 
 namespace {
 
-constexpr std::size_t kNullPlaces = 512;
+constexpr std::size_t kNullPlaces = 128;
 
 /** The stretch scored against the map at anchor poses, one heading at a time. */
 class Scorer {

@@ -131,3 +131,12 @@ TEST(FieldParticleFilter, IsDeterministicForASeed) {
     EXPECT_EQ(a.estimate().pose, b.estimate().pose);
     EXPECT_EQ(a.estimate().covariance, b.estimate().covariance);
 }
+
+TEST(PlanarFieldGrid, ALengthScaleBelowHalfACellIsRefusedNotACrash) {
+    // (A hyperparameter fit run off to zero: no cell lies within reach of any reading.)
+    auto h = lodestone::testing::roomHyperparameters();
+    h.lengthScale = 0.001;
+    const Eigen::MatrixX2d P = Eigen::MatrixX2d::Zero(3, 2);  // 0.035 m from a cell centre
+    const Eigen::MatrixX3d F = Eigen::MatrixX3d::Constant(3, 3, 10.0);
+    EXPECT_THROW(PlanarFieldGrid(P, F, h), std::invalid_argument);
+}

@@ -51,7 +51,6 @@ void MagneticCrossingERD::configure(const mrpt::config::CConfigFileBase& ini) {
     if (!(p.sigmaFloor > 0)) s.fail("sigma_floor", "must be > 0");
     if (!(p.grid.cell > 0.005 && p.grid.cell <= 1)) s.fail("grid_cell", "must be in (0.005, 1]");
     s.finish();
-    p.match.fineStep = p.grid.cell;
     params_ = p;
 }
 
@@ -105,7 +104,10 @@ void MagneticCrossingERD::fit() {
     if (stretches.empty()) return;
     const auto result =
         magnetic::fitHyperparameters(stretches, h_ ? *h_ : magnetic::GpHyperparameters{});
-    if (!result.hyperparameters.valid()) return;
+    // A length scale below the readings' spacing is not one they can show (a fit run off to
+    // zero): the last fit stays.
+    if (!result.hyperparameters.valid() || result.hyperparameters.lengthScale < params_.grid.cell)
+        return;
     h_ = result.hyperparameters;
     stats_.fitted = *h_;
     ++stats_.fits;
@@ -171,9 +173,16 @@ void MagneticCrossingERD::query(TNodeID id) {
         std::size_t begin, end;
     };
     std::vector<PassMatch> matches;
+    // The maps' cells: a sixth of the length scale where the field is smoother than grid_cell's
+    // (a field of 0.8 m, as on Kok's walks, needs no 5 cm raster).
+    auto grid = params_.grid;
+    grid.cell = std::max(grid.cell, l / 6);
     for (std::size_t k = 0; k + 1 < passStart.size(); ++k) {
         const std::size_t begin = passStart[k], end = passStart[k + 1];
-        if (stretch.size() < 2 || end - begin < 2) continue;
+        // A pass too short to hold min_support of the stretch is skipped unweighed.
+        if (stretch.size() < 2 || end - begin < 2 ||
+            double(end - begin) * std::min(1.0, params_.grid.cell / l) < params_.minSupport)
+            continue;
         Eigen::MatrixX2d P(static_cast<Eigen::Index>(end - begin), 2);
         Eigen::MatrixX3d F(static_cast<Eigen::Index>(end - begin), 3);
         for (std::size_t i = begin; i < end; ++i) {
@@ -182,7 +191,7 @@ void MagneticCrossingERD::query(TNodeID id) {
         }
         std::unique_ptr<magnetic::PlanarFieldGrid> map;
         try {
-            map = std::make_unique<magnetic::PlanarFieldGrid>(P, F, *h_, params_.grid);
+            map = std::make_unique<magnetic::PlanarFieldGrid>(P, F, *h_, grid);
         } catch (const std::invalid_argument&) {
             continue;
         }
@@ -193,8 +202,15 @@ void MagneticCrossingERD::query(TNodeID id) {
                 (points[nearest] - anchor.head<2>()).squaredNorm())
                 nearest = i;
         const Eigen::Matrix2d prior = path_.uncertainty.relativeGateCovariance(nodeOf[nearest], id);
+        // Headings within three sigmas of both ends' heading uncertainty, at most max_yaw_deg.
+        auto match = params_.match;
+        match.step = std::max(match.step, grid.cell);
+        match.fineStep = grid.cell;
+        const double yawVariance = path_.uncertainty.covariance(id)(2, 2) +
+                                   path_.uncertainty.covariance(nodeOf[nearest])(2, 2);
+        match.maxYaw = std::min(match.maxYaw, 3 * std::sqrt(yawVariance) + match.yawStep);
         matches.push_back(
-            {magnetic::matchStretch(*map, stretch, anchor, prior, params_.match), begin, end});
+            {magnetic::matchStretch(*map, stretch, anchor, prior, match), begin, end});
     }
     if (matches.empty()) {
         ++stats_.offMap;

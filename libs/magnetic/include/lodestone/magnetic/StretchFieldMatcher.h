@@ -34,7 +34,7 @@ struct StretchMatchParams {
  * pose on a grid within the prior's gate is scored by the stretch's readings against the map
  * (each a Student-t residual under the map's variance + sigma_n^2 + passSigma^2), as a log
  * likelihood ratio against the reading coming from a place of the map drawn at random (a mixture
- * over up to 512 of its cells: a calm reading matches a calm place anywhere, and the prior's
+ * over up to 128 of its cells: a calm reading matches a calm place anywhere, and the prior's
  * Gaussian would call that evidence; off the map's band a reading weighs nothing). The result is a
  * posterior over the grid (the prior a Gaussian in position, flat in heading), its moments refined
  * around its best cell, and the evidence that the stretch is somewhere on the map at all. */

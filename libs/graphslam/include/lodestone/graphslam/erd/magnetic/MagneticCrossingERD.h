@@ -65,7 +65,8 @@ class MagneticCrossingERD : public EdgeDecider {
     const Stats& stats() const { return stats_; }
 
   private:
-    /** A reading averaged over `grid.cell` of travel, in the levelled robot frame. */
+    /** A reading averaged over `grid.cell` of travel, in the levelled robot frame (the maps'
+     * cells: that, or a sixth of the fitted length scale if larger). */
     struct Reading {
         TNodeID node{0};
         double travel{0};
