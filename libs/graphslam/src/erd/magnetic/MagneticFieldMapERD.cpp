@@ -93,6 +93,7 @@ void MagneticFieldMapERD::onNode(TNodeID id) {
         segment_travel_ = 0;
         last_closure_travel_ = -std::numeric_limits<double>::infinity();
         converged_since_ = std::numeric_limits<double>::infinity();
+        anchored_ = false;
     } else if (const auto e = m_graph->edges.find({id - 1, id}); e != m_graph->edges.end()) {
         const auto& step = e->second;
         constexpr int kAt[3] = {0, 1, 3};  // x, y, yaw in MRPT's 6D order
@@ -110,12 +111,23 @@ void MagneticFieldMapERD::onNode(TNodeID id) {
         }
     }
     const auto e = filter_->estimate();
-    if (!e.converged) {
-        converged_since_ = std::numeric_limits<double>::infinity();
-        return;
+    // Once the segment was placed (the cloud held one place: position and heading) and joined,
+    // it is tracked: a closure whenever the position is one place, the heading's uncertainty
+    // carried in the closure's covariance rather than stopping them - without them the graph drifts
+    // on the odometry alone while the cloud still knows where it is.
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> spread(e.covariance.topLeftCorner<2, 2>());
+    // Only once the relocalizer joined the segment to the map: before that a closure is its
+    // evidence, and that asks for one place in heading too.
+    const bool tracking =
+        anchored_ && sameFrame(path_.segment.front(), path_.segment[id]) &&
+        std::sqrt(std::max(0.0, spread.eigenvalues().maxCoeff())) < filter_->convergedSigma();
+    if (!e.converged) converged_since_ = std::numeric_limits<double>::infinity();
+    if (!e.converged && !tracking) return;
+    if (e.converged) {
+        anchored_ = true;
+        if (std::isnan(stats_.firstConvergedTravel)) stats_.firstConvergedTravel = segment_travel_;
+        converged_since_ = std::min(converged_since_, segment_travel_);
     }
-    if (std::isnan(stats_.firstConvergedTravel)) stats_.firstConvergedTravel = segment_travel_;
-    converged_since_ = std::min(converged_since_, segment_travel_);
     if (segment_travel_ - last_closure_travel_ >= params_.closureEvery) propose(id, e);
 }
 

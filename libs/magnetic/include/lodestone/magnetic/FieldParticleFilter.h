@@ -73,6 +73,9 @@ class FieldParticleFilter {
     };
     Estimate estimate() const;
     std::size_t weighings() const { return weighings_; }
+    /** [m] the position sigma below which the cloud holds one place (convergedSigma, or half
+     * the length scale). */
+    double convergedSigma() const { return converged_sigma_; }
 
   private:
     void applyMotion();

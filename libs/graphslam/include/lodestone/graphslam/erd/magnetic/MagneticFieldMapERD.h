@@ -17,8 +17,10 @@ namespace lodestone::graphslam {
  * (magnetic::PlanarFieldGrid, its hyperparameters fitted on those readings); the run - each
  * segment from its start, since nothing says where it began or which way it faced - is placed in
  * it by Monte Carlo localization (magnetic::FieldParticleFilter) on the graph's odometry steps and
- * the magnetometer's readings. Once the particle cloud holds one place, a closure from the map
- * node nearest that place to the newest node is proposed every `closure_every` metres of travel:
+ * the magnetometer's readings. Once the particle cloud holds one place (position and heading),
+ * a closure from the map node nearest that place to the newest node is proposed every
+ * `closure_every` metres of travel, and from then on whenever the position is one place (the
+ * heading's spread in the closure's covariance):
  * the relocalizer merges the run into the map on two that agree, and after that they keep the run
  * on the map. Unlike the sequence matchers it needs no earlier pass along the same line: a path
  * that crosses the mapped ones is placed too, either way.
@@ -78,7 +80,8 @@ class MagneticFieldMapERD : public EdgeDecider {
     std::unique_ptr<magnetic::FieldParticleFilter> filter_;
     std::optional<Eigen::Vector3d> last_reading_;  ///< of the newest node, robot frame
     double segment_travel_{0}, last_closure_travel_{-INFINITY};
-    double converged_since_{INFINITY};  ///< [m] segment travel since which the cloud held one place
+    double converged_since_{INFINITY};
+    bool anchored_{false};  ///< the segment's cloud has held one place (then: tracked)  ///< [m] segment travel since which the cloud held one place
 };
 
 }  // namespace lodestone::graphslam
