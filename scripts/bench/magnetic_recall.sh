@@ -5,7 +5,7 @@
 # synthetic loop and a synthetic corridor walked back and forth. Each recording is imported with
 # the drift model for seeds 1..N and run with each INI; a markdown table, a row per recording
 # and INI (bench/bench_magnetic_recall.cpp says what each column counts).
-# Usage: scripts/bench/magnetic_recall.sh [SEEDS] [INI ...]   (SIM_SEEDS=N: corridor_shuttle seeds, 3)
+# Usage: scripts/bench/magnetic_recall.sh [SEEDS] [INI ...]   (SIM_SEEDS=N: corridor_shuttle seeds, 3; 0: none)
 #   (default: 10 seeds; magnetic_only.ini, the sequence matcher with GP correction, against
 #   magnetic_window.ini, the window method; a few minutes)
 set -euo pipefail
@@ -29,6 +29,7 @@ command -v taskset > /dev/null && pin=(taskset -c 0)
 # magnetic closer replaced by MagneticWindowERD (magnetic_window.ini's section), and with both;
 # lodestone-eval closures counts the passes by direction.
 sim_seeds=${SIM_SEEDS:-3}
+[ "$sim_seeds" -gt 0 ] || exit 0
 sim="$root/build/apps/lodestone-sim/lodestone-sim"
 slam="$root/build/apps/lodestone-slam/lodestone-slam"
 evaluate="$root/build/apps/lodestone-eval/lodestone-eval"
