@@ -248,14 +248,8 @@ void MagneticCrossingERD::query(TNodeID id) {
             target = i;
     const TNodeID from = nodeOf[target];
     const auto& t = m_graph->nodes.at(from);
-    const mrpt::poses::CPose2D targetPose(t.x(), t.y(), t.yaw()),
-        here(m.pose.x(), m.pose.y(), m.pose.z());
-    Eigen::Matrix3d J = Eigen::Matrix3d::Identity();
-    J.topLeftCorner<2, 2>() = Eigen::Rotation2Dd(-t.yaw()).toRotationMatrix();
-    Eigen::Matrix3d cov = J * m.covariance * J.transpose();
-    cov(0, 0) += params_.sigmaFloor * params_.sigmaFloor;
-    cov(1, 1) += params_.sigmaFloor * params_.sigmaFloor;
-    const mrpt::poses::CPosePDFGaussian z(here - targetPose, mrpt::math::CMatrixDouble33(cov));
+    const auto z = closureFrom({t.x(), t.y(), t.yaw()}, m.pose, m.covariance, params_.sigmaFloor);
+    const Eigen::Matrix3d cov = z.cov.asEigen();
     registerClosure(from, id, planarConstraint(z), stats_.closures, false, m.logEvidence);
     path_.pinClosure(id, t.yaw(), cov.topLeftCorner<2, 2>(), cov(2, 2));
     ++stats_.closures;

@@ -213,15 +213,8 @@ void MagneticFieldMapERD::propose(TNodeID id, const magnetic::FieldParticleFilte
         }
     }
     const auto& m = m_graph->nodes.at(best);
-    const mrpt::poses::CPose2D mapPose(m.x(), m.y(), m.yaw()),
-        here(e.pose.x(), e.pose.y(), e.pose.z());
     // The cloud's covariance (map frame) in the map node's frame.
-    Eigen::Matrix3d J = Eigen::Matrix3d::Identity();
-    J.topLeftCorner<2, 2>() = Eigen::Rotation2Dd(-m.yaw()).toRotationMatrix();
-    Eigen::Matrix3d cov = J * e.covariance * J.transpose();
-    cov(0, 0) += params_.sigmaFloor * params_.sigmaFloor;
-    cov(1, 1) += params_.sigmaFloor * params_.sigmaFloor;
-    mrpt::poses::CPosePDFGaussian z(here - mapPose, mrpt::math::CMatrixDouble33(cov));
+    const auto z = closureFrom({m.x(), m.y(), m.yaw()}, e.pose, e.covariance, params_.sigmaFloor);
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> spread(e.covariance.topLeftCorner<2, 2>());
     // Strong - the relocalizer may merge on it alone - once the cloud has held one place over
     // `closure_every` of travel: the filter weighed the whole way, so a second closure of it

@@ -140,4 +140,16 @@ std::vector<magnetic::FieldStretch> fieldFitStretches(const std::vector<double>&
     return spread;
 }
 
+mrpt::poses::CPosePDFGaussian closureFrom(const Eigen::Vector3d& from, const Eigen::Vector3d& here,
+                                          const Eigen::Matrix3d& cov, double floor) {
+    Eigen::Matrix3d J = Eigen::Matrix3d::Identity();
+    J.topLeftCorner<2, 2>() = Eigen::Rotation2Dd(-from.z()).toRotationMatrix();
+    Eigen::Matrix3d local = J * cov * J.transpose();
+    local(0, 0) += floor * floor;
+    local(1, 1) += floor * floor;
+    return {mrpt::poses::CPose2D(here.x(), here.y(), here.z()) -
+                mrpt::poses::CPose2D(from.x(), from.y(), from.z()),
+            mrpt::math::CMatrixDouble33(local)};
+}
+
 }  // namespace lodestone::graphslam

@@ -5,6 +5,7 @@
 #include <lodestone/graphslam/ReportJson.h>
 #include <lodestone/graphslam/erd/magnetic/PathUncertainty.h>
 #include <lodestone/magnetic/HyperparameterFit.h>
+#include <mrpt/poses/CPosePDFGaussian.h>
 
 #include <Eigen/Core>
 #include <functional>
@@ -67,6 +68,12 @@ class MagneticPath {
 std::vector<magnetic::FieldStretch> fieldFitStretches(const std::vector<double>& travel,
                                                       const std::vector<int>& segment,
                                                       const std::vector<Eigen::Vector3d>& field);
+
+/** A closure from a node at `from` (map frame x, y, yaw) to a place found at `here` with
+ * covariance `cov` (map frame): the relative pose, the covariance turned into the node's frame
+ * plus `floor`^2 on each position axis. */
+mrpt::poses::CPosePDFGaussian closureFrom(const Eigen::Vector3d& from, const Eigen::Vector3d& here,
+                                          const Eigen::Matrix3d& cov, double floor);
 
 /** The covariance of a place on a path whose step is `step` (the step's own frame): variance
  * `along2` along it, `across2` across it (a sequence of the field places a node along the
