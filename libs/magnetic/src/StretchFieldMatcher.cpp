@@ -1,6 +1,7 @@
 #include <lodestone/magnetic/StretchFieldMatcher.h>
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <algorithm>
 #include <limits>
@@ -44,17 +45,16 @@ class Scorer {
                          s.field.z()};
             // The reading at a place of the map drawn at random: a mixture over its cells.
             double best = -std::numeric_limits<double>::infinity(), sum = 0;
-            std::vector<double>& terms = terms_;
-            terms.clear();
+            terms_.clear();
             for (const std::size_t k : null_places_) {
                 const double r2 =
                     (world_[i] - map_.cellPrediction(std::int64_t(k)).mean.cast<double>())
                         .squaredNorm();
-                terms.push_back(logDensity(r2, variance_[k], log_variance_[k]));
-                best = std::max(best, terms.back());
+                terms_.push_back(logDensity(r2, variance_[k], log_variance_[k]));
+                best = std::max(best, terms_.back());
             }
-            for (const double t : terms) sum += std::exp(t - best);
-            null_[i] = best + std::log(sum / double(terms.size()));
+            for (const double t : terms_) sum += std::exp(t - best);
+            null_[i] = best + std::log(sum / double(terms_.size()));
         }
     }
 
