@@ -15,8 +15,8 @@
 // first converges, how far off it is then (a relocation more than 1 m off is wrong), and the share
 // of the odometry samples after it whose estimate lies within 0.3 m of the reference (split, all
 // seeds pooled: where the map has the place - within 0.3 m of trial 1's path - and elsewhere).
-// Trials 6-9
-// were recorded after metal shelves were brought in: the map's field there is partly wrong.
+// Trials 6-9 were recorded after metal shelves were brought in: the map's field there is partly
+// wrong.
 #include <lodestone/datasets/MagneticRecording.h>
 #include <lodestone/datasets/SyntheticOdometry.h>
 #include <lodestone/magnetic/FieldParticleFilter.h>
