@@ -25,6 +25,7 @@ void MagneticWindowERD::rebuild() {
              .samplesPerSupernode();
     path_ = MagneticPath(params_.uncertainty);
     projected_targets_.clear();
+    projected_map_.clear();
     basis_ = std::make_shared<const magnetic::WindowDisplacementModel::Basis>(n_, params_.noise,
                                                                               params_.lengthScale);
     correlated_samples_ = 0;  // the kernel's correlations summed over a window's offsets
@@ -97,7 +98,10 @@ bool MagneticWindowERD::updateState(mrpt::obs::CActionCollection::Ptr,
 }
 
 void MagneticWindowERD::onNode(TNodeID id) {
-    if (id == map_nodes_ && map_nodes_ > 0) thinMap();  // the map's nodes are all in
+    if (id == map_nodes_ && map_nodes_ > 0) {  // the map's nodes are all in
+        thinMap();
+        projectMapTargets();
+    }
     const int segment = nodes_->at(id).segment;
     // (the graph's nodes are never erased: their addresses hold, their values follow the solves)
     poses_.push_back(&m_graph->nodes.at(id));
@@ -108,7 +112,7 @@ void MagneticWindowERD::onNode(TNodeID id) {
             auto& track = *sensors_.at(m.sensorLabel).track;
             const auto windows = track.add(s, b, id, segment);
             if (m.sensorLabel != params_.sensorLabel) return;  // the mirror's: stored only
-            if (id < map_nodes_) return;  // a loaded map's: stored only
+            if (id < map_nodes_) return;                       // a loaded map's: stored only
             for (const auto& w : windows) {
                 const double end = track.samples()[w.last - 1].s;
                 if (end - last_query_ + 1e-9 < params_.queryEvery) continue;
@@ -214,9 +218,8 @@ double MagneticWindowERD::nodeGateBound(const magnetic::TrackSample& sample, TNo
     // positionAtSample places the node's samples between node k - 1 and k (at node k when it
     // has no interval).
     const Eigen::Vector2d b(poses_[k]->x(), poses_[k]->y());
-    const Eigen::Vector2d a = intervalFraction(k, sample.s)
-                                  ? Eigen::Vector2d(poses_[k - 1]->x(), poses_[k - 1]->y())
-                                  : b;
+    const Eigen::Vector2d a =
+        intervalFraction(k, sample.s) ? Eigen::Vector2d(poses_[k - 1]->x(), poses_[k - 1]->y()) : b;
     return closure::PathUncertainty::segmentDistance2(S, a, b, here);
 }
 
@@ -456,20 +459,30 @@ Eigen::MatrixX3d MagneticWindowERD::projectedWindow(const magnetic::SupernodeTra
     return basis_->toEigenbasis.lazyProduct(w);
 }
 
+std::uint64_t MagneticWindowERD::projectionKey(const magnetic::SupernodeTrack& track,
+                                               std::size_t start, bool backward) const {
+    return (std::uint64_t(start) << 2) | (&track == &queried() ? 0u : 2u) | (backward ? 1u : 0u);
+}
+
 Eigen::MatrixX3d MagneticWindowERD::projectedResiduals(const Candidate& k, std::size_t start,
                                                        const Eigen::MatrixX3d& query) const {
     // A stored window is compared with many queries: its projection is kept (the stored
     // readings a candidate's window holds are final, min_travel_gap behind the robot).
     const bool backward = k.direction == WindowDirection::Backward;
-    const std::uint64_t key =
-        (std::uint64_t(start) << 2) | (k.track == &queried() ? 0u : 2u) | (backward ? 1u : 0u);
-    auto it = projected_targets_.find(key);
-    if (it == projected_targets_.end()) {
-        if (projected_targets_.size() >= kProjectionCache) projected_targets_.clear();
-        it = projected_targets_.emplace(key, projectedWindow(*k.track, start, backward)).first;
+    const std::uint64_t key = projectionKey(*k.track, start, backward);
+    const Eigen::MatrixX3d* projected = nullptr;
+    if (const auto m = projected_map_.find(key); m != projected_map_.end()) {
+        projected = &m->second;
+    } else {
+        auto it = projected_targets_.find(key);
+        if (it == projected_targets_.end()) {
+            if (projected_targets_.size() >= kProjectionCache) projected_targets_.clear();
+            it = projected_targets_.emplace(key, projectedWindow(*k.track, start, backward)).first;
+        }
+        projected = &it->second;
     }
     // The differences, as windowResiduals forms them, in the basis (a linear map).
-    const Eigen::MatrixX3d& t = it->second;
+    const Eigen::MatrixX3d& t = *projected;
     const double c = std::cos(k.fit.turn), s = std::sin(k.fit.turn);
     Eigen::MatrixX3d d(query.rows(), 3);
     d.col(0) = query.col(0) - (c * t.col(0) + s * t.col(1));

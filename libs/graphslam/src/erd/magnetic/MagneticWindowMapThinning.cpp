@@ -1,7 +1,9 @@
-// MagneticWindowERD's loaded map, thinned (closure::redundantReadings): a map reading whose
-// line an earlier pass of the map already holds is read as part of windows but is not a target
-// itself, so a map costs what the ground it covers costs, not what every session that drove it
-// again added.
+// MagneticWindowERD's loaded map, prepared once its nodes are all in. Thinned
+// (closure::redundantReadings): a map reading whose line an earlier pass of the map already
+// holds is read as part of windows but is not a target itself, so a map costs what the ground
+// it covers costs, not what every session that drove it again added. Projected: its target
+// windows put in the displacement model's basis at once, not at a run's first query, which
+// compares with every one of them while the run does not know where it is.
 #include <lodestone/graphslam/erd/magnetic/MagneticWindowERD.h>
 #include <lodestone/graphslam/erd/magnetic/PassThinning.h>
 
@@ -29,6 +31,30 @@ void MagneticWindowERD::thinTrack(Sensor& sensor) {
                 : i;
     stats_.mapReadings += readings.size();
     for (const char r : sensor.redundant) stats_.mapReadingsThinned += r;
+}
+
+void MagneticWindowERD::projectMapTargets() {
+    if (!params_.passDisplacement) return;  // (the basis serves the displacement model only)
+    // The windows a query's scan compares with (query()): forward windows ending at a target of
+    // the queried sensor's track, backward ones starting at a target of the mirror's (of the
+    // queried track when there is no mirror).
+    const auto project = [&](const Sensor& sensor, bool backward) {
+        const auto& track = *sensor.track;
+        const auto& samples = track.samples();
+        for (std::size_t c = 0; c < samples.size() && samples[c].node < map_nodes_; ++c) {
+            if (c < sensor.redundant.size() && sensor.redundant[c]) continue;
+            const std::size_t start = backward ? c : c + 1 - n_;
+            if (backward ? c + n_ > samples.size() : c + 1 < n_) continue;
+            if (samples[start].segment != samples[start + n_ - 1].segment ||
+                samples[start + n_ - 1].node >= map_nodes_)
+                continue;
+            projected_map_.emplace(projectionKey(track, start, backward),
+                                   projectedWindow(track, start, backward));
+        }
+    };
+    const Sensor& own = sensors_.at(params_.sensorLabel);
+    project(own, false);
+    project(mirror_.empty() ? own : sensors_.at(mirror_), true);
 }
 
 }  // namespace lodestone::graphslam

@@ -1,8 +1,8 @@
 #pragma once
 
 #include <lodestone/graphslam/EdgeDecider.h>
-#include <lodestone/graphslam/erd/magnetic/PathUncertainty.h>
 #include <lodestone/graphslam/erd/magnetic/MagneticPath.h>
+#include <lodestone/graphslam/erd/magnetic/PathUncertainty.h>
 #include <lodestone/magnetic/SupernodeTrack.h>
 #include <lodestone/magnetic/WindowComparison.h>
 #include <lodestone/magnetic/WindowDisplacement.h>
@@ -278,10 +278,11 @@ class MagneticWindowERD : public EdgeDecider {
     std::size_t n_{0};  // samples per window (rebuild)
     // what the displacement model keeps for every window of n_ samples (rebuild)
     std::shared_ptr<const magnetic::WindowDisplacementModel::Basis> basis_;
-    double correlated_samples_{0};  // sum of the field kernel's correlations over a window (rebuild)
+    double correlated_samples_{
+        0};  // sum of the field kernel's correlations over a window (rebuild)
     struct Sensor {
         std::unique_ptr<magnetic::SupernodeTrack> track;
-        Eigen::Vector3d position;  ///< on the robot [m]
+        Eigen::Vector3d position;       ///< on the robot [m]
         std::vector<char> redundant{};  ///< per sample of a loaded map: not a target (thinMap)
         /** Per sample of a loaded map: the first target from it on (the map's size: none), so
          * a query's scan costs the map's targets, not every reading it holds. */
@@ -291,6 +292,12 @@ class MagneticWindowERD : public EdgeDecider {
      * (MagneticWindowMapThinning.cpp). */
     void thinMap();
     void thinTrack(Sensor& sensor);
+    /** Every target window of a loaded map projected into the displacement model's basis,
+     * once its nodes are all in: a run's first queries, before it knows where it is, compare
+     * with every one (MagneticWindowMapThinning.cpp). */
+    void projectMapTargets();
+    std::uint64_t projectionKey(const magnetic::SupernodeTrack& track, std::size_t start,
+                                bool backward) const;
     std::map<std::string, Sensor> sensors_;           // the queried one and its mirror
     std::string mirror_;                              // the mirror's label ("": none)
     MagneticPath path_;                               // travel, segment, pose uncertainty per node
@@ -305,6 +312,8 @@ class MagneticWindowERD : public EdgeDecider {
     // whole when full (20 000 windows of 2 m: about 19 MB).
     static constexpr std::size_t kProjectionCache = 20000;
     mutable std::unordered_map<std::uint64_t, Eigen::MatrixX3d> projected_targets_;
+    // A loaded map's target windows in that basis, by the same key: never cleared.
+    std::unordered_map<std::uint64_t, Eigen::MatrixX3d> projected_map_;
 };
 
 }  // namespace lodestone::graphslam
