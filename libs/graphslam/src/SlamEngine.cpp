@@ -114,6 +114,8 @@ void SlamEngine::afterNodeDecider(bool /*newNode*/) {
     const auto t0 = Clock::now();
     for (; relocalizer_seen_ < nodes_.size(); ++relocalizer_seen_) {
         relocalizer_.addNode(graph_, nodes_, relocalizer_seen_);
+        if (const auto& up = nodes_.at(relocalizer_seen_).attitude)
+            gso_->addAttitudePrior(relocalizer_seen_, *up);
     }
     std::vector<LoopClosure> closures;
     for (auto& lc : erd_->takeNewLoopClosures()) {

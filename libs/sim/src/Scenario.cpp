@@ -176,6 +176,10 @@ void readGyro(IniSection& s, GyroSpec& g) {
     notNegative(s, "noise_std_deg", g.noiseStd);
     g.biasSigma = s.getDouble("bias_sigma_deg", g.biasSigma / kDeg) * kDeg;
     notNegative(s, "bias_sigma_deg", g.biasSigma);
+    g.accelNoiseStd = s.getDouble("accel_noise_std", g.accelNoiseStd);
+    notNegative(s, "accel_noise_std", g.accelNoiseStd);
+    g.accelBiasSigma = s.getDouble("accel_bias_sigma", g.accelBiasSigma);
+    notNegative(s, "accel_bias_sigma", g.accelBiasSigma);
 }
 
 void readField(IniSection& s, FieldSpec& f) {

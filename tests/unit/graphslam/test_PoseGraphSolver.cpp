@@ -169,3 +169,57 @@ TEST(PoseGraphSolver, SeveralWrongClosuresAreAllRejectedAndOnlyThem) {
         EXPECT_GT(lc.rejectionChi2, 16.27);
     }
 }
+
+namespace {
+/** A level straight walk of `n` nodes 0.5 m apart whose edges each claim a 1 deg pitch (a
+ * camera's drift), the nodes placed by chaining them: 10 m on, 1.6 m below. */
+Graph driftingChain(int n, double edgePitch) {
+    Graph g;
+    g.root = 0;
+    mrpt::poses::CPose3D pose;
+    g.nodes[0] = pose;
+    mrpt::math::CMatrixDouble66 info;
+    info.setZero();
+    for (int k = 0; k < 3; ++k) info(k, k) = 1 / (0.01 * 0.01);
+    for (int k = 3; k < 6; ++k) info(k, k) = 1 / std::pow(1.0 * M_PI / 180, 2);
+    for (int k = 1; k < n; ++k) {
+        Constraint c;
+        c.mean = mrpt::poses::CPose3D(0.5, 0, 0, 0, edgePitch, 0);
+        c.cov_inv = info;
+        g.insertEdge(k - 1, k, c);
+        pose = pose + c.mean;
+        g.nodes[k] = pose;
+    }
+    return g;
+}
+}  // namespace
+
+TEST(PoseGraphSolver, MeasuredUpsLevelAChainWhoseEdgesTilt) {
+    const int n = 21;
+    const double drift = 1.0 * M_PI / 180;
+    Graph g = driftingChain(n, drift);
+    ASSERT_LT(g.nodes.at(n - 1).z(), -1.0);
+    PoseGraphSolver::Options o;
+    o.planar = false;
+    std::vector<LoopClosure> none;
+    // Every node's up measured level to 0.1 deg (the root's too: the map frame is level).
+    AttitudePriors priors;
+    for (int k = 0; k < n; ++k) priors.nodes[k] = AttitudePrior{{0, 0, 1}, 0.1 * M_PI / 180};
+    Graph plain = g;
+    PoseGraphSolver(o).solve(plain, none);
+    EXPECT_LT(plain.nodes.at(n - 1).z(), -1.0) << "without them the chain is its own optimum";
+    PoseGraphSolver(o).solve(g, none, {}, true, &priors);
+    // Each node's pitch pulled to within the priors' reach of level (an edge's 1 deg sigma
+    // against a prior's 0.1: they share the drift about 1:100), the end within 0.1 m of level.
+    for (const auto& [id, p] : g.nodes) EXPECT_LT(std::abs(p.pitch()), 0.15 * M_PI / 180) << id;
+    EXPECT_LT(std::abs(g.nodes.at(n - 1).z()), 0.1);
+    EXPECT_LT(std::acos(priors.mapUp.z()), 0.05 * M_PI / 180) << "the map's up solved level";
+    // A local window holds the map's up: a tilted one tilts the window's nodes with it.
+    Graph w = driftingChain(n, 0);
+    AttitudePriors tilted = priors;
+    tilted.mapUp = Eigen::Vector3d(std::sin(0.1), 0, std::cos(0.1)).normalized();
+    PoseGraphSolver(o).solve(w, none, {10, 11, 12}, false, &tilted);
+    EXPECT_NEAR(tilted.mapUp.x(), std::sin(0.1), 1e-12) << "held";
+    EXPECT_GT(std::abs(w.nodes.at(11).pitch()), 0.01);
+    EXPECT_LT(std::abs(w.nodes.at(5).pitch()), 1e-12) << "outside the window";
+}

@@ -109,3 +109,52 @@ TEST(SimGyro, AddingItLeavesTheOtherSensorsAsTheyWere) {
     EXPECT_EQ(with, without);
     EXPECT_GT(imu, 100u);
 }
+
+TEST(SimGyro, ItsAccelerometerReadsGravitysReactionAndTheTurnsPull) {
+    Scenario sc = lodestone::test::boxScenario();
+    sc.motion.waypoints = {{0, 0}, {4, 0}, {4, 2}};
+    const MotionPlan plan = planOf(sc);
+    GyroSpec spec;
+    spec.accelBiasSigma = 0;
+    spec.accelNoiseStd = 0;
+    SimGyro centre(plan, nullptr, spec, 0, Random(2));
+    spec.pose.x = 0.2;  // 20 cm ahead of the wheels' axle
+    SimGyro ahead(plan, nullptr, spec, 0, Random(2));
+    // Driving straight at constant speed: 1 g up, nothing else.
+    double straight = -1, turning = -1;
+    for (double t = 0.5; t < plan.duration(); t += 0.05) {
+        const Eigen::Vector2d v = plan.velocityAt(t), v1 = plan.velocityAt(t - 0.05),
+                              v2 = plan.velocityAt(t + 0.05);
+        if (straight < 0 && v.x() > 0.1 && std::abs(v.y()) < 1e-9 && v1 == v && v2 == v) straight = t;
+        if (turning < 0 && std::abs(v.x()) < 1e-9 && std::abs(v.y()) > 0.1 && v1 == v && v2 == v)
+            turning = t;
+    }
+    ASSERT_GT(straight, 0);
+    ASSERT_GT(turning, 0) << "the path turns in place at its corner";
+    EXPECT_LT((centre.trueSpecificForce(straight) - Eigen::Vector3d(0, 0, 9.81)).norm(), 1e-6);
+    // Turning in place: the sensor on the axis feels nothing more, the one ahead of it is
+    // pulled towards the axis by w^2 r.
+    const double w = plan.velocityAt(turning).y();
+    EXPECT_LT((centre.trueSpecificForce(turning) - Eigen::Vector3d(0, 0, 9.81)).norm(), 1e-6);
+    const Eigen::Vector3d f = ahead.trueSpecificForce(turning);
+    EXPECT_NEAR(f.x(), -w * w * 0.2, 1e-4);
+    EXPECT_NEAR(f.z(), 9.81, 1e-6);
+    // Its samples: the spec's noise about the truth plus a bias drawn once.
+    spec.accelNoiseStd = 0.01;
+    spec.accelBiasSigma = 0.02;
+    SimGyro noisy(plan, nullptr, spec, 0, Random(5));
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    int n = 0;
+    while (noisy.nextTimeNs() < static_cast<std::int64_t>(straight * 1e9)) {
+        const double t = noisy.nextTimeNs() * 1e-9;
+        const auto obs = std::dynamic_pointer_cast<mrpt::obs::CObservationIMU>(noisy.produce());
+        ASSERT_TRUE(obs->has(mrpt::obs::IMU_X_ACC) && obs->has(mrpt::obs::IMU_Z_ACC));
+        const Eigen::Vector3d a(obs->get(mrpt::obs::IMU_X_ACC), obs->get(mrpt::obs::IMU_Y_ACC),
+                                obs->get(mrpt::obs::IMU_Z_ACC));
+        sum += a - noisy.trueSpecificForce(t);
+        ++n;
+    }
+    ASSERT_GT(n, 10);
+    EXPECT_LT((sum / n - noisy.accelBias()).norm(), 4 * 0.01 / std::sqrt(double(n)) * std::sqrt(3.0));
+    EXPECT_GT(noisy.accelBias().norm(), 0);
+}

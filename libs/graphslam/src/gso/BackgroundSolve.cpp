@@ -5,13 +5,21 @@
 namespace lodestone::graphslam {
 
 BackgroundSolve::BackgroundSolve(const PoseGraphSolver::Options& options, const Graph& graph,
-                                 const std::vector<LoopClosure>& closures, std::size_t mergeAtNodes)
-    : launched_at_(graph.nodes.size()), merge_at_(mergeAtNodes), closures_at_launch_(closures.size()) {
+                                 const std::vector<LoopClosure>& closures, std::size_t mergeAtNodes,
+                                 const AttitudePriors* attitude)
+    : launched_at_(graph.nodes.size()),
+      merge_at_(mergeAtNodes),
+      closures_at_launch_(closures.size()) {
     if (!graph.nodes.empty()) last_ = graph.nodes.rbegin()->first;
     // The snapshot is copied here, on the caller's thread; the worker owns its copy.
-    outcome_ = std::async(std::launch::async, [options, snapshot = graph, list = closures]() mutable {
+    std::optional<AttitudePriors> priors;
+    if (attitude) priors = *attitude;
+    outcome_ = std::async(std::launch::async, [options, snapshot = graph, list = closures,
+                                               priors = std::move(priors)]() mutable {
         Outcome o;
-        o.report = PoseGraphSolver(options).solve(snapshot, list);
+        o.report =
+            PoseGraphSolver(options).solve(snapshot, list, {}, true, priors ? &*priors : nullptr);
+        o.attitude = std::move(priors);
         o.solved = std::move(snapshot);
         o.closures = std::move(list);
         return o;
@@ -23,12 +31,15 @@ BackgroundSolve::~BackgroundSolve() {
 }
 
 PoseGraphSolver::Report BackgroundSolve::mergeInto(Graph& graph, std::vector<LoopClosure>& closures,
-                                                   double* waitedSeconds) {
+                                                   double* waitedSeconds,
+                                                   AttitudePriors* attitude) {
     const auto t0 = std::chrono::steady_clock::now();
     Outcome o = outcome_.get();
     if (waitedSeconds) {
-        *waitedSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        *waitedSeconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     }
+    if (attitude && o.attitude) attitude->mapUp = o.attitude->mapUp;
     // Nodes added since the snapshot keep their pose relative to its last node.
     const mrpt::poses::CPose3D lastBefore = graph.nodes.at(last_);
     const mrpt::poses::CPose3D lastAfter = o.solved.nodes.at(last_);

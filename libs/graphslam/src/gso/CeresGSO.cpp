@@ -25,7 +25,8 @@ void CeresGSO::configure(const mrpt::config::CConfigFileBase& ini) {
     p.localWindow = s.getInt("local_window", p.localWindow);
     p.fullSolveGrowth = s.getDouble("full_solve_growth", p.fullSolveGrowth);
     p.backgroundMergeNodes = s.getInt("background_merge_nodes", p.backgroundMergeNodes);
-    if (p.backgroundMergeNodes < 0) s.fail("background_merge_nodes", "must be >= 0 (0: in the frame loop)");
+    if (p.backgroundMergeNodes < 0)
+        s.fail("background_merge_nodes", "must be >= 0 (0: in the frame loop)");
     if (o.robustLoss != "none" && o.robustLoss != "huber" && o.robustLoss != "cauchy") {
         s.fail("robust_loss", "must be none, huber or cauchy");
     }
@@ -46,6 +47,15 @@ void CeresGSO::holdFixed(TNodeID count) {
     solver_ = std::make_unique<PoseGraphSolver>(params_.solver);
 }
 
+void CeresGSO::addAttitudePrior(TNodeID id, const AttitudePrior& prior) {
+    if (params_.solver.planar || !(prior.sigma > 0)) return;
+    // The map's up starts as the first prior's, turned into the map frame by its node's pose;
+    // full solves refine it.
+    if (attitude_.nodes.empty() && m_graph && m_graph->nodes.count(id))
+        attitude_.mapUp = m_graph->nodes.at(id).getRotationMatrix().asEigen() * prior.up;
+    attitude_.nodes[id] = prior;
+}
+
 void CeresGSO::addLoopClosures(const std::vector<LoopClosure>& closures) {
     for (const auto& lc : closures) {
         closures_.push_back(lc);
@@ -60,7 +70,7 @@ void CeresGSO::addRelocationClosures(const std::vector<LoopClosure>& closures,
     if (closures.empty() || movable.empty()) return;
     discardBackground();  // (its snapshot has the moved group where it was)
     closures_since_full_ = true;
-    absorb(solver_->solve(*m_graph, closures_, movable, false), false);
+    absorb(solver_->solve(*m_graph, closures_, movable, false, priors()), false);
 }
 
 bool CeresGSO::updateState(mrpt::obs::CActionCollection::Ptr, mrpt::obs::CSensoryFrame::Ptr,
@@ -79,7 +89,7 @@ bool CeresGSO::updateState(mrpt::obs::CActionCollection::Ptr, mrpt::obs::CSensor
         // locally below in the meantime.
         background_ = std::make_unique<BackgroundSolve>(
             params_.solver, *m_graph, closures_,
-            n + static_cast<std::size_t>(params_.backgroundMergeNodes));
+            n + static_cast<std::size_t>(params_.backgroundMergeNodes), priors());
         ++stats_.backgroundSolves;
         nodes_at_last_full_ = n;
         closures_since_full_ = false;
@@ -93,7 +103,7 @@ bool CeresGSO::updateState(mrpt::obs::CActionCollection::Ptr, mrpt::obs::CSensor
             }
         }
     }
-    absorb(solver_->solve(*m_graph, closures_, window, false), false);
+    absorb(solver_->solve(*m_graph, closures_, window, false, priors()), false);
     // A window cannot tell a wrong closure from a right one whose correction reaches beyond it:
     // if a new closure still disagrees, the full graph decides.
     for (const auto& lc : closures_) {
@@ -114,7 +124,7 @@ bool CeresGSO::updateState(mrpt::obs::CActionCollection::Ptr, mrpt::obs::CSensor
 void CeresGSO::mergeBackgroundIfDue() {
     if (!background_ || m_graph->nodes.size() < background_->mergeAtNodes()) return;
     double waited = 0;
-    absorb(background_->mergeInto(*m_graph, closures_, &waited), true);
+    absorb(background_->mergeInto(*m_graph, closures_, &waited, priors()), true);
     stats_.backgroundWaitSeconds += waited;
     // Closures that came after the snapshot: solved again around them, on the merged graph.
     for (std::size_t k = background_->closuresAtLaunch(); k < closures_.size(); ++k) {
@@ -134,7 +144,7 @@ void CeresGSO::discardBackground() {
 void CeresGSO::optimizeGraph() {
     discardBackground();
     pending_.clear();
-    absorb(solver_->solve(*m_graph, closures_), true);
+    absorb(solver_->solve(*m_graph, closures_, {}, true, priors()), true);
     nodes_at_last_full_ = m_graph->nodes.size();
     closures_since_full_ = false;
     just_full_ = true;
@@ -143,7 +153,8 @@ void CeresGSO::optimizeGraph() {
 void CeresGSO::finish() {
     // An odometry chain is already at its optimum; anything with closures (or re-anchored
     // segments) gets one last full solve.
-    if (!closures_.empty()) optimizeGraph();
+    // (so does one with measured ups: they level the chain)
+    if (!closures_.empty() || !attitude_.nodes.empty()) optimizeGraph();
 }
 
 void CeresGSO::absorb(const PoseGraphSolver::Report& r, bool full) {
@@ -189,6 +200,7 @@ JsonObject CeresGSO::describe() const {
         .set("background_discarded", stats_.backgroundDiscarded)
         .set("background_wait_seconds", stats_.backgroundWaitSeconds)
         .set("loop_closures", closures_.size())
+        .set("attitude_priors", attitude_.nodes.size())
         .set("rejected", stats_.rejected);
     return JsonObject()
         .set("class", getClassName())

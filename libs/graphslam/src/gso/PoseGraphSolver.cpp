@@ -1,20 +1,20 @@
-#include "RelativePoseCosts.h"
-
-#include <lodestone/graphslam/gso/PoseGraphSolver.h>
-
 #include <ceres/autodiff_cost_function.h>
 #include <ceres/loss_function.h>
 #include <ceres/manifold.h>
 #include <ceres/problem.h>
 #include <ceres/solver.h>
+#include <ceres/sphere_manifold.h>
+#include <lodestone/graphslam/gso/PoseGraphSolver.h>
 
 #include <algorithm>
-#include <unordered_set>
 #include <chrono>
 #include <limits>
 #include <map>
 #include <memory>
 #include <stdexcept>
+#include <unordered_set>
+
+#include "RelativePoseCosts.h"
 
 namespace lodestone::graphslam {
 
@@ -128,6 +128,8 @@ struct GraphProblem {
     std::vector<Closure> closures;
     std::size_t edges{0};
     TNodeID gauge{std::numeric_limits<TNodeID>::max()};  // held fixed when nothing else is
+    double mapUp[3] = {0, 0, 1};
+    bool mapUpFree{false};
 
     void setLoss(const std::string& name, double scale) {
         for (auto& c : closures) c.loss->Reset(makeLoss(name, scale), ceres::TAKE_OWNERSHIP);
@@ -184,13 +186,37 @@ std::vector<EdgeIt> edgesOf(const Graph& graph, const std::vector<LoopClosure>& 
     return unique;
 }
 
+/** Each node in the problem with a measured up: a prior on its roll and pitch against the
+ * map's up (a variable on the unit sphere when `solveMapUp`, else held). */
+void addAttitudePriors(GraphProblem& gp, const AttitudePriors& priors, bool solveMapUp) {
+    auto& problem = *gp.problem;
+    for (int k = 0; k < 3; ++k) gp.mapUp[k] = priors.mapUp[k];
+    bool any = false;
+    for (auto& [id, st] : gp.states) {
+        const auto p = priors.nodes.find(id);
+        if (p == priors.nodes.end() || !(p->second.sigma > 0)) continue;
+        if (problem.IsParameterBlockConstant(st.q) && !solveMapUp) continue;
+        problem.AddResidualBlock(
+            new ceres::AutoDiffCostFunction<detail::AttitudePriorCost, 3, 4, 3>(
+                new detail::AttitudePriorCost(p->second.up, p->second.sigma)),
+            nullptr, st.q, gp.mapUp);
+        any = true;
+    }
+    if (!any) return;
+    problem.SetManifold(gp.mapUp, new ceres::SphereManifold<3>);
+    gp.mapUpFree = solveMapUp;
+    if (!solveMapUp) problem.SetParameterBlockConstant(gp.mapUp);
+}
+
 template <typename Moves>
 GraphProblem buildProblem(const Graph& graph, const std::vector<LoopClosure>& loopClosures,
-                          const std::vector<EdgeIt>& edges, const Moves& moves, bool planar) {
+                          const std::vector<EdgeIt>& edges, const Moves& moves, bool planar,
+                          const AttitudePriors* attitude, bool solveMapUp) {
     std::map<std::pair<TNodeID, TNodeID>, std::vector<std::size_t>> closureIndex;
     for (std::size_t k = 0; k < loopClosures.size(); ++k) {
         const auto& lc = loopClosures[k];
-        if (!lc.rejected && (moves(lc.from) || moves(lc.to))) closureIndex[{lc.from, lc.to}].push_back(k);
+        if (!lc.rejected && (moves(lc.from) || moves(lc.to)))
+            closureIndex[{lc.from, lc.to}].push_back(k);
     }
     GraphProblem gp;
     ceres::Problem::Options po;
@@ -235,13 +261,15 @@ GraphProblem buildProblem(const Graph& graph, const std::vector<LoopClosure>& lo
         gp.gauge = gp.states.begin()->first;
         holdConstant(problem, gp.states.begin()->second, planar);
     }
+    if (attitude && !planar) addAttitudePriors(gp, *attitude, solveMapUp);
     return gp;
 }
 
 }  // namespace
 
 PoseGraphSolver::Report PoseGraphSolver::solve(Graph& graph, std::vector<LoopClosure>& loopClosures,
-                                               const std::set<TNodeID>& window, bool reject) const {
+                                               const std::set<TNodeID>& window, bool reject,
+                                               AttitudePriors* attitude) const {
     const auto t0 = std::chrono::steady_clock::now();
     Report report;
     const bool planar = options_.planar;
@@ -256,8 +284,10 @@ PoseGraphSolver::Report PoseGraphSolver::solve(Graph& graph, std::vector<LoopClo
     so.logging_type = ceres::SILENT;
 
     for (int round = 0;; ++round) {
-        GraphProblem gp =
-            buildProblem(graph, loopClosures, edgesOf(graph, loopClosures, window), moves, planar);
+        // The map's up is the whole graph's: only a full solve of a graph free to turn solves it.
+        const bool solveMapUp = window.empty() && options_.fixedBelow == 0;
+        GraphProblem gp = buildProblem(graph, loopClosures, edgesOf(graph, loopClosures, window),
+                                       moves, planar, attitude, solveMapUp);
         if (gp.edges == 0) break;
         // Least squares judges: at its optimum a closure's squared Mahalanobis residual is
         // chi-square distributed, so the gate means what it says. A robust solve points at the
@@ -273,6 +303,8 @@ PoseGraphSolver::Report PoseGraphSolver::solve(Graph& graph, std::vector<LoopClo
             ++report.solves;
             report.edges = gp.edges;
             report.variableNodes = report.fixedNodes = 0;
+            if (gp.mapUpFree)
+                attitude->mapUp = Eigen::Map<const Eigen::Vector3d>(gp.mapUp).normalized();
             for (const auto& [id, st] : gp.states) {
                 if (moves(id) && id != gp.gauge && id != graph.root) {
                     graph.nodes[id] = poseOf(st, graph.nodes.at(id), planar);
@@ -310,8 +342,7 @@ PoseGraphSolver::Report PoseGraphSolver::solve(Graph& graph, std::vector<LoopClo
         eraseEdge(graph, lc.from, lc.to, lc.constraint);
         report.rejected.push_back(lc);
     }
-    report.seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return report;
 }
 

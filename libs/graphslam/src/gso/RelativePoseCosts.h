@@ -78,6 +78,25 @@ struct Se3RelativePoseCost {
     Eigen::Matrix<double, 6, 6> sqrt_info_;
 };
 
+/** A node's measured up (in its own frame) against the map's up turned into it: the residual
+ * R^T u_map - u_measured, whitened by its per-axis sigma (the part along u is second order). */
+struct AttitudePriorCost {
+    AttitudePriorCost(const Eigen::Vector3d& up, double sigma) : up_(up), inv_sigma_(1 / sigma) {}
+
+    template <typename T>
+    bool operator()(const T* q, const T* mapUp, T* residual) const {
+        const Eigen::Map<const Eigen::Quaternion<T>> rot(q);
+        const Eigen::Map<const Eigen::Matrix<T, 3, 1>> u(mapUp);
+        Eigen::Map<Eigen::Matrix<T, 3, 1>> out(residual);
+        out = T(inv_sigma_) * (rot.conjugate() * u - up_.cast<T>());
+        return true;
+    }
+
+  private:
+    Eigen::Vector3d up_;
+    double inv_sigma_;
+};
+
 /** S with S^T S = info, for an information matrix that may be only semi-definite (a weak or
  * partly unobserved edge): eigenvalues below zero are treated as zero. */
 template <int N>

@@ -1,6 +1,6 @@
 #include <lodestone/config/IniSection.h>
-#include <lodestone/graphslam/nrd/KeyframeCloud.h>
 #include <lodestone/graphslam/Se3Pose.h>
+#include <lodestone/graphslam/nrd/KeyframeCloud.h>
 #include <lodestone/graphslam/nrd/VisualOdometryNRD.h>
 #include <lodestone/odometry/RgbdObservationFrame.h>
 #include <lodestone/vision/Se3Covariance.h>
@@ -27,11 +27,15 @@ double rotationAngle(const mrpt::poses::CPose3D& p) {
 
 /** An edge from a composed motion: its information, floored so a still camera's (zero)
  * covariance stays invertible. */
-Constraint edgeOf(const mrpt::poses::CPose3DPDFGaussian& pdf) {
+Constraint edgeOf(const mrpt::poses::CPose3DPDFGaussian& pdf, bool crossCovariance) {
     Constraint c;
     c.mean = pdf.mean;
     auto cov = pdf.cov;
     for (int k = 0; k < 6; ++k) cov(k, k) += 1e-10;
+    if (!crossCovariance) {  // (MRPT's order: x, y, z, then yaw, pitch, roll)
+        for (int a = 0; a < 3; ++a)
+            for (int b = 3; b < 6; ++b) cov(a, b) = cov(b, a) = 0;
+    }
     c.cov_inv = cov.inverse_LLt();
     return c;
 }
@@ -45,11 +49,13 @@ void VisualOdometryNRD::configure(const mrpt::config::CConfigFileBase& ini) {
     config::IniSection s(ini, "VisualOdometryNRD", config::sourceName(ini));
     p.read(s);  // NodeSpacing: node and keyframe intervals, map clouds
     p.lostEdgeSigma = s.getDouble("lost_edge_sigma", p.lostEdgeSigma);
+    p.edgeCrossCovariance = s.getBool("edge_cross_covariance", p.edgeCrossCovariance);
     p.relocalizeKeyframes = s.getInt("relocalize_keyframes", p.relocalizeKeyframes);
     if (p.relocalizeKeyframes < 0) s.fail("relocalize_keyframes", "must be >= 0");
     p.bridgeMaxSeconds = s.getDouble("bridge_max_seconds", p.bridgeMaxSeconds);
     p.bridgeAccelSigma = s.getDouble("bridge_accel_sigma", p.bridgeAccelSigma);
-    p.bridgeAngularAccelSigma = s.getDouble("bridge_angular_accel_sigma", p.bridgeAngularAccelSigma);
+    p.bridgeAngularAccelSigma =
+        s.getDouble("bridge_angular_accel_sigma", p.bridgeAngularAccelSigma);
     if (!(p.bridgeMaxSeconds >= 0)) s.fail("bridge_max_seconds", "must be >= 0");
     if (!(p.bridgeAccelSigma > 0) || !(p.bridgeAngularAccelSigma > 0))
         s.fail("bridge_accel_sigma", "acceleration sigmas must be > 0");
@@ -67,11 +73,25 @@ void VisualOdometryNRD::configure(const mrpt::config::CConfigFileBase& ini) {
     if (!(p.gyroBridgeMaxSeconds >= 0)) s.fail("gyro_bridge_max_seconds", "must be >= 0");
     if (!(fading.speedSigma > 0)) s.fail("bridge_speed_sigma", "must be > 0");
     if (!(fading.correlationSeconds > 0)) s.fail("bridge_velocity_seconds", "must be > 0");
+    p.useGravity = s.getBool("use_gravity", p.useGravity);
+    auto& g = p.gravity;
+    g.biasStd = s.getDouble("accel_bias", g.biasStd);
+    g.windowSeconds = s.getDouble("gravity_window_seconds", g.windowSeconds);
+    g.motionSeconds = s.getDouble("gravity_motion_seconds", g.motionSeconds);
+    if (!(g.biasStd > 0)) s.fail("accel_bias", "must be > 0");
+    if (!(g.windowSeconds > 0)) s.fail("gravity_window_seconds", "must be > 0");
+    if (!(g.motionSeconds > 0)) s.fail("gravity_motion_seconds", "must be > 0");
+    p.gravityVelocitySigma = s.getDouble("gravity_velocity_sigma", p.gravityVelocitySigma);
+    if (!(p.gravityVelocitySigma > 0)) s.fail("gravity_velocity_sigma", "must be > 0");
+    if (p.useGravity && !p.useGyro)
+        s.fail("use_gravity",
+               "needs use_gyro = true (the gyro turns the window's samples into one frame)");
     if (!(p.lostEdgeSigma > 0)) s.fail("lost_edge_sigma", "must be > 0");
     s.finish();
     params_ = p;
     vo_ = vision::RgbdVisualOdometry(params_.visual);
     gyro_ = odometry::GyroIntegrator(params_.gyro);
+    gravity_ = odometry::GravityEstimator(params_.gravity);
 }
 
 bool VisualOdometryNRD::updateState(mrpt::obs::CActionCollection::Ptr,
@@ -97,8 +117,11 @@ bool VisualOdometryNRD::updateState(mrpt::obs::CActionCollection::Ptr,
 }
 
 void VisualOdometryNRD::consumeGyro(const mrpt::obs::CObservationIMU& imu) {
-    if (params_.gyroLabel.empty() && imu.has(mrpt::obs::IMU_WZ)) params_.gyroLabel = imu.sensorLabel;
-    if (imu.sensorLabel == params_.gyroLabel) gyro_.add(imu);
+    if (params_.gyroLabel.empty() && imu.has(mrpt::obs::IMU_WZ))
+        params_.gyroLabel = imu.sensorLabel;
+    if (imu.sensorLabel != params_.gyroLabel) return;
+    gyro_.add(imu);
+    if (params_.useGravity) gravity_.add(imu);
 }
 
 std::optional<vision::RotationPrior> VisualOdometryNRD::gyroSinceReference(
@@ -138,6 +161,13 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
         double keep = since ? std::min(*since, t) : t;
         if (std::isfinite(last_tracked_.t) && t - last_tracked_.t <= params_.gyroBridgeMaxSeconds)
             keep = std::min(keep, last_tracked_.t);
+        if (params_.useGravity) {  // (and the window before this frame, for its up)
+            keep = std::min(keep, t - params_.gravity.windowSeconds - 0.1);
+            gravity_.dropBefore(t - params_.gravityVelocitySeconds);
+            const double old =
+                t - params_.gravity.windowSeconds - 2 * params_.gravityVelocitySeconds;
+            while (chained_.size() > 1 && chained_[1].first < old) chained_.pop_front();
+        }
         gyro_.dropBefore(keep);
     }
     const mrpt::poses::CPose3DPDFGaussian here;  // a frame at the new node: identity, certain
@@ -173,6 +203,8 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
         reference_ = {t, here};
         last_tracked_ = {t, here};
         last_tracked_features_ = r.frameFeatures;
+        chained_.clear();  // (VO starts again: its velocity is unknown until it has tracked)
+        chained_.emplace_back(t, mrpt::poses::CPose3D());
         return;
     }
     if (!r.success) {
@@ -189,9 +221,12 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
     cur += motion;
     last_step_ = cur.mean - last_tracked_.pdf.mean;  // (both relative to the same node)
     last_step_seconds_ = t - last_tracked_.t;
+    if (params_.useGravity && !chained_.empty())
+        chained_.emplace_back(t, chained_.back().second + last_step_);
     last_tracked_ = {t, cur};
     last_tracked_features_ = r.frameFeatures;
-    if (cur.mean.norm() < params_.nodeDistance && rotationAngle(cur.mean) < params_.nodeAngle) return;
+    if (cur.mean.norm() < params_.nodeDistance && rotationAngle(cur.mean) < params_.nodeAngle)
+        return;
     registerAt(*scan, t, r.frameFeatures, cur, false);
     // Seen from the new node, the reference lies where VO measured it - the motion inverted,
     // with the motion's own covariance (not the node's: that is the edge's).
@@ -270,7 +305,8 @@ std::optional<mrpt::poses::CPose3DPDFGaussian> VisualOdometryNRD::bridgeByGyro(d
         v0 = Eigen::Vector3d(d.x, d.y, d.z) / last_step_seconds_;
     }
     step.translation() = fading.meanDisplacement(v0, gap);
-    Eigen::Matrix<double, 6, 6> cov = Eigen::Matrix<double, 6, 6>::Zero();  // (rotation, translation)
+    Eigen::Matrix<double, 6, 6> cov =
+        Eigen::Matrix<double, 6, 6>::Zero();  // (rotation, translation)
     cov.topLeftCorner<3, 3>() = g->sigma * g->sigma * Eigen::Matrix3d::Identity();
     cov.bottomRightCorner<3, 3>() = fading.displacementVariance(gap) * Eigen::Matrix3d::Identity();
     mrpt::poses::CPose3DPDFGaussian edge = last_tracked_.pdf;
@@ -288,12 +324,13 @@ void VisualOdometryNRD::registerAt(const mrpt::obs::CObservation3DRangeScan& sca
         m_graph->nodes[m_graph->root] = mrpt::poses::CPose3D();  // the camera starts the map
         m_prev_registered_nodeID = m_graph->root;
     } else {
-        Constraint c = edgeOf(edge);
+        Constraint c = edgeOf(edge, params_.edgeCrossCovariance);
         if (restart) {
             // Across a VO gap: no idea where the camera went.
             c.mean = mrpt::poses::CPose3D();
             c.cov_inv.setZero();
-            for (int k = 0; k < 6; ++k) c.cov_inv(k, k) = 1 / (params_.lostEdgeSigma * params_.lostEdgeSigma);
+            for (int k = 0; k < 6; ++k)
+                c.cov_inv(k, k) = 1 / (params_.lostEdgeSigma * params_.lostEdgeSigma);
             ++segment_;
         }
         m_since_prev_node_PDF = c;
@@ -312,9 +349,13 @@ void VisualOdometryNRD::registerAt(const mrpt::obs::CObservation3DRangeScan& sca
         rec.timestamp = t;
         rec.segment = segment_;
         rec.keyframe = keyframe;
+        if (params_.useGravity) {
+            rec.attitude = measuredUp(t);
+            if (rec.attitude) ++attitude_priors_;
+        }
         if (restart) {
             rec.liftTime = lostAfter;  // tracking lost after this frame ...
-            rec.putDownTime = t;            // ... and found again at this one
+            rec.putDownTime = t;       // ... and found again at this one
         }
         if (keyframe) {
             rec.features = features;
@@ -356,13 +397,21 @@ JsonObject VisualOdometryNRD::describe() const {
     params_.describe(params);
     params.set("lost_edge_sigma", params_.lostEdgeSigma)
         .set("relocalize_keyframes", params_.relocalizeKeyframes)
+        .set("edge_cross_covariance", params_.edgeCrossCovariance)
         .set("bridge_max_seconds", params_.bridgeMaxSeconds)
         .set("camera_label", params_.cameraLabel);
     if (params_.useGyro) {
         params.set("gyro_label", params_.gyroLabel)
             .set("gyro_bridge_max_seconds", params_.gyroBridgeMaxSeconds)
             .set("bridge_speed_sigma", params_.bridgeVelocity.speedSigma)
-            .set("bridge_velocity_seconds", params_.bridgeVelocity.correlationSeconds);
+            .set("bridge_velocity_seconds", params_.bridgeVelocity.correlationSeconds)
+            .set("use_gravity", params_.useGravity);
+    }
+    if (params_.useGravity) {
+        params.set("accel_bias", params_.gravity.biasStd)
+            .set("gravity_window_seconds", params_.gravity.windowSeconds)
+            .set("gravity_motion_seconds", params_.gravity.motionSeconds)
+            .set("gravity_velocity_sigma", params_.gravityVelocitySigma);
     }
     JsonObject stats;
     stats.set("rgbd_frames", frames_)
@@ -377,6 +426,7 @@ JsonObject VisualOdometryNRD::describe() const {
         .set("segments", segment_ + 1)
         .set("vo_ms_per_frame", detail::voTimingJson(vo_.totals()));
     if (params_.useGyro) stats.set("frames_with_gyro_rotation", gyro_priors_);
+    if (params_.useGravity) stats.set("nodes_with_measured_up", attitude_priors_);
     JsonObject why;
     for (const auto& [reason, count] : failures_) why.set(reason, count);
     stats.set("failed_frames_by_reason", why);

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <lodestone/graphslam/AttitudePrior.h>
 #include <lodestone/graphslam/SlamComponent.h>
 #include <mrpt/graphslam/interfaces/CGraphSlamOptimizer.h>
 
@@ -30,6 +31,9 @@ class GraphOptimizer : public mrpt::graphslam::optimizers::CGraphSlamOptimizer<G
     /** The graph starts with a loaded map's `count` nodes, solved when the map was saved:
      * what the optimizer counts as solved already (the default: nothing to count). */
     virtual void adoptMap(TNodeID /*count*/) {}
+    /** A node's measured up (an accelerometer's): a prior on its roll and pitch in the solves
+     * that follow. The default ignores it (an optimizer without roll and pitch). */
+    virtual void addAttitudePrior(TNodeID /*id*/, const AttitudePrior& /*prior*/) {}
     /** Nodes solved in SE(3) (6 dof) rather than x, y, yaw: the relocalizer's space. */
     virtual bool spatial() const { return false; }
     /** Solves everything the run still needs (at the end of the data). */

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <lodestone/graphslam/AttitudePrior.h>
 #include <lodestone/graphslam/nrd/KeyframeCloud.h>
 #include <lodestone/graphslam/PoseGraph.h>
 #include <lodestone/vision/OrbFeatures.h>
@@ -9,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,6 +42,8 @@ struct NodeRecord {
     /** Magnetometer readings since the previous node, up to this node's time: what the
      * magnetic matcher builds its sequences from (none while the robot was carried). */
     std::vector<MagneticSample> magnetic;
+    /** The node's up as an accelerometer measured it, where one is recorded and used. */
+    std::optional<AttitudePrior> attitude;
 };
 
 /** Node records indexed by node ID (the NRD registers IDs 0, 1, 2, ... in order). */

@@ -60,7 +60,8 @@ struct MagnetometerSpec {
     Eigen::Vector3d bias{0, 0, 0};  ///< constant, sensor frame [uT]
 };
 
-/** A 3-axis rate gyro (an IMU's), on the robot at `pose` or rigid with a hand-held camera. */
+/** An IMU's 3-axis rate gyro and accelerometer, on the robot at `pose` or rigid with a
+ * hand-held camera. */
 struct GyroSpec {
     std::string label{"IMU"};
     double rate{100};  ///< [Hz]
@@ -71,6 +72,12 @@ struct GyroSpec {
     /** Each axis' constant bias, drawn per run from N(0, biasSigma) [rad/s]: 0.1 deg/s, an
      * uncalibrated MEMS gyro's turn-on bias. */
     double biasSigma{0.1 * M_PI / 180};
+    /** The accelerometer's per-axis white noise of each sample [m/s^2]: 0.01, a MEMS IMU's
+     * noise density (100 ug/sqrt(Hz), Xsens MTi-3 class) at 100 Hz. */
+    double accelNoiseStd{0.01};
+    /** Each axis' constant accelerometer bias, drawn per run from N(0, accelBiasSigma)
+     * [m/s^2]: 0.02 (2 mg), a factory-calibrated MEMS accelerometer's residual offset. */
+    double accelBiasSigma{0.02};
 };
 
 struct EncoderSpec {

@@ -7,10 +7,11 @@
 
 namespace lodestone::sim {
 
-/** A 3-axis rate gyro as stock MRPT's CObservationIMU (IMU_WX, IMU_WY, IMU_WZ [rad/s], in the
- * sensor frame): the carrier's true angular velocity - the robot's yaw rate, or a hand-held
- * camera's body rate (the gyro rigid with it) - plus a constant bias drawn per run and white
- * noise. */
+/** An IMU as stock MRPT's CObservationIMU, in the sensor frame: the rate gyro (IMU_WX..WZ
+ * [rad/s]) reads the carrier's true angular velocity - the robot's yaw rate, or a hand-held
+ * camera's body rate (the IMU rigid with it) - and the accelerometer (IMU_X_ACC..Z_ACC
+ * [m/s^2]) the specific force, the sensor's acceleration less gravity (at rest: 9.81 up);
+ * each plus a constant bias drawn per run and white noise. */
 class SimGyro : public SimSensor {
   public:
     /** With `handheld`, the gyro is the camera's (sensorPose identity, as the camera's). */
@@ -20,16 +21,22 @@ class SimGyro : public SimSensor {
     mrpt::obs::CObservation::Ptr produce() override;
     /** The true angular velocity at t [rad/s], sensor frame (for tests). */
     Eigen::Vector3d trueRate(double t) const;
+    /** The true specific force at t [m/s^2], sensor frame (for tests). */
+    Eigen::Vector3d trueSpecificForce(double t) const;
     const Eigen::Vector3d& bias() const { return bias_; }
+    const Eigen::Vector3d& accelBias() const { return accel_bias_; }
 
   private:
     const MotionPlan& plan_;
     const HandheldMotion* handheld_;
     GyroSpec spec_;
     double start_time_;
-    Random rng_;
+    /** World <- sensor at t. */
+    Eigen::Isometry3d sensorPoseAt(double t) const;
+
+    Random rng_, accel_rng_;  // (the accelerometer's own stream: the gyro's draws unchanged)
     SampleClock clock_;
-    Eigen::Vector3d bias_;
+    Eigen::Vector3d bias_, accel_bias_;
 };
 
 }  // namespace lodestone::sim

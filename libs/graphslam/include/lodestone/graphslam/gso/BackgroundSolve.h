@@ -4,6 +4,7 @@
 #include <lodestone/graphslam/gso/PoseGraphSolver.h>
 
 #include <future>
+#include <optional>
 #include <vector>
 
 namespace lodestone::graphslam {
@@ -20,8 +21,10 @@ namespace lodestone::graphslam {
  * them). */
 class BackgroundSolve {
   public:
+    /** `attitude`: the nodes' measured ups (copied; nullptr: none). */
     BackgroundSolve(const PoseGraphSolver::Options& options, const Graph& graph,
-                    const std::vector<LoopClosure>& closures, std::size_t mergeAtNodes);
+                    const std::vector<LoopClosure>& closures, std::size_t mergeAtNodes,
+                    const AttitudePriors* attitude = nullptr);
     ~BackgroundSolve();
     BackgroundSolve(const BackgroundSolve&) = delete;
     BackgroundSolve& operator=(const BackgroundSolve&) = delete;
@@ -30,15 +33,18 @@ class BackgroundSolve {
     std::size_t mergeAtNodes() const { return merge_at_; }
     std::size_t closuresAtLaunch() const { return closures_at_launch_; }
 
-    /** Waits for the solve (`waitedSeconds`: how long), then merges it; its report. */
+    /** Waits for the solve (`waitedSeconds`: how long), then merges it (the map's up it
+     * solved into `attitude`); its report. */
     PoseGraphSolver::Report mergeInto(Graph& graph, std::vector<LoopClosure>& closures,
-                                      double* waitedSeconds = nullptr);
+                                      double* waitedSeconds = nullptr,
+                                      AttitudePriors* attitude = nullptr);
 
   private:
     struct Outcome {
         Graph solved;
         std::vector<LoopClosure> closures;
         PoseGraphSolver::Report report;
+        std::optional<AttitudePriors> attitude;
     };
     std::size_t launched_at_, merge_at_, closures_at_launch_;
     TNodeID last_{0};  // the snapshot's last node

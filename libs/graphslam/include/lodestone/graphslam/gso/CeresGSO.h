@@ -46,6 +46,9 @@ class CeresGSO : public GraphOptimizer {
     void finish() override;
     bool justFullyOptimizedGraph() const override { return just_full_; }
     bool spatial() const override { return !params_.solver.planar; }
+    /** Kept in SE(3) mode (planar solves have no roll or pitch to hold). */
+    void addAttitudePrior(TNodeID id, const AttitudePrior& prior) override;
+    const AttitudePriors& attitudePriors() const { return attitude_; }
     void holdFixed(TNodeID count) override;
     /** A loaded map is the last full solve: the graph's growth (full_solve_growth) counts from
      * it, so the first closure of a run in a large map does not solve the whole map again. */
@@ -70,7 +73,11 @@ class CeresGSO : public GraphOptimizer {
     /** A solve of the live graph supersedes one running on an older snapshot. */
     void discardBackground();
 
+    /** The priors for a solve: none while there are none. */
+    AttitudePriors* priors() { return attitude_.nodes.empty() ? nullptr : &attitude_; }
+
     Params params_;
+    AttitudePriors attitude_;
     std::unique_ptr<PoseGraphSolver> solver_;
     std::unique_ptr<BackgroundSolve> background_;
     std::vector<std::pair<TNodeID, TNodeID>> pending_;  // ends of closures not solved yet

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <lodestone/graphslam/AttitudePrior.h>
 #include <lodestone/graphslam/PoseGraph.h>
 
 #include <set>
@@ -55,9 +56,13 @@ class PoseGraphSolver {
      * `window`: the nodes to move (all edges touching one of them take part; their other ends
      * stay fixed); empty = every node. The graph root is always held fixed (the gauge).
      * `reject` false: solve only, never remove a closure (a local window cannot judge a
-     * closure whose correction reaches beyond it). */
+     * closure whose correction reaches beyond it).
+     * `attitude` (SE(3) only): the nodes' measured up directions, each a prior on its node's
+     * roll and pitch; a full solve of a graph with no fixed map also solves the map's up
+     * (written back), other solves hold it. */
     Report solve(Graph& graph, std::vector<LoopClosure>& loopClosures,
-                 const std::set<TNodeID>& window = {}, bool reject = true) const;
+                 const std::set<TNodeID>& window = {}, bool reject = true,
+                 AttitudePriors* attitude = nullptr) const;
 
     /** Squared Mahalanobis residual of one edge at the graph's current node poses, in the
      * solver's parameterization. */

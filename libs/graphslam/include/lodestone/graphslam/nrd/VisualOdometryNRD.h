@@ -3,6 +3,7 @@
 #include <lodestone/graphslam/NodeDecider.h>
 #include <lodestone/graphslam/nrd/NodeSpacing.h>
 #include <lodestone/odometry/FadingVelocity.h>
+#include <lodestone/odometry/GravityEstimator.h>
 #include <lodestone/odometry/GyroIntegrator.h>
 #include <lodestone/vision/RgbdVisualOdometry.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
@@ -51,6 +52,9 @@ class VisualOdometryNRD : public NodeDecider {
             keyframeAngle = 15 * M_PI / 180;
         }
         double lostEdgeSigma{100.0};  ///< [m, rad] of the edge across a VO gap
+        /** An edge keeps the correlations of its translation with its rotation that VO's
+         * covariance holds (false: each block alone, `edge_cross_covariance`). */
+        bool edgeCrossCovariance{true};
         /** After a VO loss, the restart frame is aligned with the last tracked frame and this
          * many of the segment's latest keyframes before anything else (0: never). */
         int relocalizeKeyframes{8};
@@ -71,6 +75,17 @@ class VisualOdometryNRD : public NodeDecider {
          * (`bridge_velocity_seconds`, `bridge_speed_sigma`). */
         double gyroBridgeMaxSeconds{10.0};
         odometry::FadingVelocity bridgeVelocity;
+        /** With the gyro: the same IMU's accelerometer, averaged over the last second before
+         * each node, gives the node's up - a prior on its roll and pitch in the graph
+         * (odometry::GravityEstimator; `accel_bias`, `gravity_window_seconds`,
+         * `gravity_motion_seconds`). */
+        bool useGravity{false};
+        odometry::GravityEstimator::Params gravity;
+        /** The carrier's velocity change over the window, taken out of the mean, is VO's: its
+         * displacement over `gravityVelocitySeconds` at each end of the window, trusted to
+         * `gravityVelocitySigma` per axis [m/s] (`gravity_velocity_sigma`). */
+        double gravityVelocitySeconds{0.3};
+        double gravityVelocitySigma{0.03};
         vision::RgbdVisualOdometry::Params visual;  ///< [visual_odometry]
     };
 
@@ -103,6 +118,12 @@ class VisualOdometryNRD : public NodeDecider {
     /** The same across a gap from the last tracked frame to time t, by the gyro's rotation and
      * the fading velocity; nothing when the gyro does not cover the gap. */
     std::optional<mrpt::poses::CPose3DPDFGaussian> bridgeByGyro(double t) const;
+    /** The node's up at t from the accelerometer, the velocity change VO measured over the
+     * window taken out; nothing where VO did not track the whole window. */
+    std::optional<AttitudePrior> measuredUp(double t) const;
+    /** VO's tracked frame nearest to t (within a frame interval or two), in the frame
+     * VO's steps are chained in since the segment's last restart. */
+    const std::pair<double, mrpt::poses::CPose3D>* trackedNear(double t) const;
     /** The restart frame aligned with a recent frame of the segment: the edge from the last
      * node to it, if one aligns. */
     std::optional<mrpt::poses::CPose3DPDFGaussian> relocalize(
@@ -123,6 +144,8 @@ class VisualOdometryNRD : public NodeDecider {
     Params params_;
     vision::RgbdVisualOdometry vo_;
     odometry::GyroIntegrator gyro_;
+    odometry::GravityEstimator gravity_;
+    std::size_t attitude_priors_{0};  // nodes given the accelerometer's up
     std::size_t gyro_priors_{0};  // frames given the gyro's rotation
     Anchor reference_;    // VO's reference frame
     Anchor last_tracked_;  // the last frame VO tracked (it may become the reference)
@@ -133,6 +156,8 @@ class VisualOdometryNRD : public NodeDecider {
     std::size_t frames_{0}, failed_frames_{0}, keyframes_{0}, gaps_{0}, bridged_{0}, relocalized_{0};
     std::size_t bridged_by_gyro_{0};
     std::vector<double> unbridged_gap_seconds_;  // the gaps that opened a new segment
+    // VO's tracked frames chained (since the last restart), for the window's velocities
+    std::deque<std::pair<double, mrpt::poses::CPose3D>> chained_;
     mrpt::poses::CPose3D last_step_;  // the last motion between tracked frames ...
     double last_step_seconds_{0};      // ... and how long it took
     std::vector<double> gap_seconds_;  // from the last tracked frame to VO's restart
