@@ -193,7 +193,7 @@ TEST(CameraOnlySlam, VoLostWithNothingToRelocalizeOnStartsANewSegmentOrIsBridged
 // A hand-held recording with a gyro, run with rgbd_only.ini as shipped (use_gyro: a gyro where
 // one is recorded): the gyro's rotation reaches VO on every frame that has a reference, and the
 // run is as good as without it.
-TEST(CameraOnlySlam, AHandHeldGyroReachesTheOdometry) {
+TEST(CameraOnlySlam, AHandHeldImuReachesTheOdometryAndTheGraph) {
     lodestone::test::TempDir dir;
     const auto sim = lodestone::test::runCommand(kSim + " -c " + kConfigDir + "/scenarios/office.ini -o " +
                                                  dir.file("hand.rawlog") +
@@ -210,6 +210,14 @@ TEST(CameraOnlySlam, AHandHeldGyroReachesTheOdometry) {
         << report;
     EXPECT_GT(std::stoi(m[1]), 400) << "the office's 428 frames, all but VO's first";
     EXPECT_NE(report.find("\"gyro_label\": \"IMU\""), std::string::npos);
+    // The same IMU's accelerometer: an up for every node after VO's first 1.3 s (the window and
+    // the velocities at its ends), each a prior the optimizer holds.
+    std::smatch ups, priors, nodes;
+    ASSERT_TRUE(std::regex_search(report, ups, std::regex("\"nodes_with_measured_up\": ([0-9]+)")));
+    ASSERT_TRUE(std::regex_search(report, priors, std::regex("\"attitude_priors\": ([0-9]+)")));
+    ASSERT_TRUE(std::regex_search(run.output, nodes, std::regex("([0-9]+) nodes")));
+    EXPECT_GT(std::stoi(ups[1]), 0.8 * std::stoi(nodes[1])) << report;
+    EXPECT_EQ(ups[1], priors[1]);
     const double ate = ateOf(run.output);
     EXPECT_GT(ate, 0) << run.output;
     EXPECT_LT(ate, 0.03) << run.output;
