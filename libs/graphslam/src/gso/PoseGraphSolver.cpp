@@ -128,7 +128,8 @@ struct GraphProblem {
     std::vector<Closure> closures;
     std::size_t edges{0};
     TNodeID gauge{std::numeric_limits<TNodeID>::max()};  // held fixed when nothing else is
-    double mapUp[3] = {0, 0, 1};
+    // (on the heap: Ceres keeps its address, and the problem is moved out of buildProblem)
+    std::unique_ptr<double[]> mapUp{new double[3]{0, 0, 1}};
     bool mapUpFree{false};
 
     void setLoss(const std::string& name, double scale) {
@@ -199,13 +200,13 @@ void addAttitudePriors(GraphProblem& gp, const AttitudePriors& priors, bool solv
         problem.AddResidualBlock(
             new ceres::AutoDiffCostFunction<detail::AttitudePriorCost, 3, 4, 3>(
                 new detail::AttitudePriorCost(p->second.up, p->second.sigma)),
-            nullptr, st.q, gp.mapUp);
+            nullptr, st.q, gp.mapUp.get());
         any = true;
     }
     if (!any) return;
-    problem.SetManifold(gp.mapUp, new ceres::SphereManifold<3>);
+    problem.SetManifold(gp.mapUp.get(), new ceres::SphereManifold<3>);
     gp.mapUpFree = solveMapUp;
-    if (!solveMapUp) problem.SetParameterBlockConstant(gp.mapUp);
+    if (!solveMapUp) problem.SetParameterBlockConstant(gp.mapUp.get());
 }
 
 template <typename Moves>
@@ -304,7 +305,7 @@ PoseGraphSolver::Report PoseGraphSolver::solve(Graph& graph, std::vector<LoopClo
             report.edges = gp.edges;
             report.variableNodes = report.fixedNodes = 0;
             if (gp.mapUpFree)
-                attitude->mapUp = Eigen::Map<const Eigen::Vector3d>(gp.mapUp).normalized();
+                attitude->mapUp = Eigen::Map<const Eigen::Vector3d>(gp.mapUp.get()).normalized();
             for (const auto& [id, st] : gp.states) {
                 if (moves(id) && id != gp.gauge && id != graph.root) {
                     graph.nodes[id] = poseOf(st, graph.nodes.at(id), planar);
