@@ -6,7 +6,7 @@
 # each without and with the measured ups (use_gravity). One table: the ATE of each run, the
 # nodes given an up, and the worst over the seeds.
 # Usage: scripts/bench/gravity.sh [SEEDS] [SCENARIO.ini]
-#        (default 1 seed of paper_loop.ini, 640x480 at 30 Hz: about 35 minutes a seed on 2 cores)
+#        (default 1 seed of paper_loop.ini, 640x480 at 30 Hz: about 40 minutes a seed on 2 cores)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 "$root/scripts/build.sh" > /dev/null
