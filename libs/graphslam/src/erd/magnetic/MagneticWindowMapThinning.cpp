@@ -52,9 +52,11 @@ void MagneticWindowERD::projectMapTargets() {
                                    projectedWindow(track, start, backward));
         }
     };
-    const Sensor& own = sensors_.at(params_.sensorLabel);
-    project(own, false);
-    project(mirror_.empty() ? own : sensors_.at(mirror_), true);
+    const auto own = sensors_.find(params_.sensorLabel);
+    if (own == sensors_.end()) return;  // (a map without the sensor's readings: nothing to project)
+    project(own->second, false);
+    const auto mirror = mirror_.empty() ? own : sensors_.find(mirror_);
+    if (mirror != sensors_.end()) project(mirror->second, true);
 }
 
 }  // namespace lodestone::graphslam
