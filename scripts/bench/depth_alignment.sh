@@ -28,15 +28,7 @@ scenario=${1:-$root/config_ini/scenarios/paper_loop_qvga.ini}
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 base="$root/config_ini/slam/rgbd_only.ini"
-variant() {  # NAME KEY=VALUE...: rgbd_only.ini with those keys' values replaced
-    local name=$1
-    shift
-    cp "$base" "$out/$name.ini"
-    for kv in "$@"; do
-        grep -q "^${kv%%=*} *=" "$out/$name.ini" || { echo "no key ${kv%%=*} in $base" >&2; exit 1; }
-        sed -i "s|^${kv%%=*} *=[^;]*|${kv%%=*} = ${kv#*=} |" "$out/$name.ini"
-    done
-}
+source "$root/scripts/bench/ini_variant.bash"
 variant features depth_alignment=false
 variant depth5 depth_alignment=true depth_with_features=false depth_min_observed=5
 variant depth4 depth_alignment=true depth_with_features=false depth_min_observed=4
@@ -48,7 +40,6 @@ variant joined4+gyro depth_alignment=true depth_with_features=true depth_min_obs
 variant joined5+gyro-nobridge depth_alignment=true depth_with_features=true depth_min_observed=5 use_gyro=true gyro_bridge_max_seconds=0
 variant joined5+gyro-depth4 depth_alignment=true depth_with_features=true depth_min_observed=5 use_gyro=true gyro_depth_min_observed=4
 variant joined5+gyro-depth3 depth_alignment=true depth_with_features=true depth_min_observed=5 use_gyro=true gyro_depth_min_observed=3
-field() { { grep -o "\"$2\": [0-9.e+-]*" "$1" || true; } | head -1 | awk '{print $2}'; }
 segmentAte() {  # RUN_DIR GT: each VO segment aligned on its own, pooled (lodestone-eval segments)
     "$root/build/apps/lodestone-eval/lodestone-eval" segments "$1" --ground-truth "$2" |
         grep -o "on its own: ATE RMSE [0-9.]*" | awk '{printf "%.3f", $NF}'

@@ -17,21 +17,12 @@ scenario=${2:-$root/config_ini/scenarios/paper_loop.ini}
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 base="$root/config_ini/slam/rgbd_only.ini"
-variant() {  # NAME KEY=VALUE...: rgbd_only.ini with those keys' values replaced
-    local name=$1
-    shift
-    cp "$base" "$out/$name.ini"
-    for kv in "$@"; do
-        grep -q "^${kv%%=*} *=" "$out/$name.ini" || { echo "no key ${kv%%=*} in $base" >&2; exit 1; }
-        sed -i "s|^${kv%%=*} *=[^;]*|${kv%%=*} = ${kv#*=} |" "$out/$name.ini"
-    done
-}
+source "$root/scripts/bench/ini_variant.bash"
 variants=(cross cross+gravity block block+gravity)
 variant cross edge_cross_covariance=true use_gravity=false
 variant cross+gravity edge_cross_covariance=true use_gravity=true
 variant block edge_cross_covariance=false use_gravity=false
 variant block+gravity edge_cross_covariance=false use_gravity=true
-field() { { grep -o "\"$2\": [0-9.e+-]*" "$1" || true; } | head -1 | awk '{print $2}'; }
 echo "| carrier | seed | VO edges | measured ups | nodes given an up | ATE [m] |"
 echo "|---|---|---|---|---|---|"
 results="$out/results.txt"
