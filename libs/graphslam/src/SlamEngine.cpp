@@ -114,8 +114,11 @@ void SlamEngine::afterNodeDecider(bool /*newNode*/) {
     const auto t0 = Clock::now();
     for (; relocalizer_seen_ < nodes_.size(); ++relocalizer_seen_) {
         relocalizer_.addNode(graph_, nodes_, relocalizer_seen_);
-        if (const auto& up = nodes_.at(relocalizer_seen_).attitude)
-            gso_->addAttitudePrior(relocalizer_seen_, *up);
+        const NodeRecord& record = nodes_.at(relocalizer_seen_);
+        if (record.attitude) gso_->addAttitudePrior(relocalizer_seen_, *record.attitude);
+        if (record.wheelScale && relocalizer_seen_ > 0)
+            gso_->addWheelScaleJacobian(relocalizer_seen_ - 1, relocalizer_seen_,
+                                        *record.wheelScale);
     }
     std::vector<LoopClosure> closures;
     for (auto& lc : erd_->takeNewLoopClosures()) {

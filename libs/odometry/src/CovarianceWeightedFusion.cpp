@@ -27,6 +27,12 @@ mrpt::poses::CPosePDFGaussian CovarianceWeightedFusion::combine(
 
 const mrpt::poses::CPosePDFGaussian& CovarianceWeightedFusion::step(const OdometryStep& s) {
     increment_ = s.visual ? combine(s.wheel, *s.visual) : s.wheel;
+    // combine()'s mean is C (I_w w + I_v v): its gain on the wheels' step is C I_w.
+    wheel_gain_ = Eigen::Matrix3d::Identity();
+    if (s.visual) {
+        const Eigen::Matrix3d floor = 1e-12 * Eigen::Matrix3d::Identity();
+        wheel_gain_ = increment_.cov.asEigen() * (s.wheel.cov.asEigen() + floor).inverse();
+    }
     pose_ += increment_;
     return pose_;
 }

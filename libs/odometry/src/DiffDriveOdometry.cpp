@@ -56,6 +56,31 @@ mrpt::poses::CPosePDFGaussian DiffDriveOdometry::stepFromOrigin(double dl, doubl
     return step;
 }
 
+Eigen::Matrix<double, 3, 2> DiffDriveOdometry::scaleJacobian(double dl, double dr,
+                                                             const Params& p) {
+    const double b = p.wheelBase;
+    const double ds = 0.5 * (dr + dl), mid = 0.5 * (dr - dl) / b;
+    const double c = std::cos(mid), s = std::sin(mid);
+    // d(x, y, phi)/d(Δs_l) and d/d(Δs_r) of eq. (1), each times its wheel's travel.
+    Eigen::Matrix<double, 3, 2> J;
+    J << (0.5 * c + ds * s / (2 * b)) * dl, (0.5 * c - ds * s / (2 * b)) * dr,  //
+        (0.5 * s - ds * c / (2 * b)) * dl, (0.5 * s + ds * c / (2 * b)) * dr,   //
+        -dl / b, dr / b;
+    return J;
+}
+
+Eigen::Matrix<double, 3, 2> DiffDriveOdometry::composeScaleJacobian(
+    const mrpt::poses::CPose2D& before, const Eigen::Matrix<double, 3, 2>& beforeJacobian,
+    const mrpt::poses::CPose2D& step, const Eigen::Matrix<double, 3, 2>& stepJacobian) {
+    const double c = std::cos(before.phi()), s = std::sin(before.phi());
+    Eigen::Matrix3d A = Eigen::Matrix3d::Identity();  // d(before + step) / d(before)
+    A(0, 2) = -s * step.x() - c * step.y();
+    A(1, 2) = c * step.x() - s * step.y();
+    Eigen::Matrix3d B = Eigen::Matrix3d::Identity();  // ... / d(step)
+    B.topLeftCorner<2, 2>() << c, -s, s, c;
+    return A * beforeJacobian + B * stepJacobian;
+}
+
 DiffDriveOdometry::Increment DiffDriveOdometry::addTravel(double leftTravel, double rightTravel) {
     Increment inc;
     inc.leftTravel = leftTravel;

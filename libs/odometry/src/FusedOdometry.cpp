@@ -208,6 +208,7 @@ FusedOdometry::Estimate FusedOdometry::fromPoseSample(double t, const mrpt::pose
     // No fusion: the source is already an odometry; every method reports it.
     e.poses.assign(fusions_.size(), pose_estimate_);
     e.increments.assign(fusions_.size(), increment);
+    e.wheelScale.assign(fusions_.size(), Eigen::Matrix<double, 3, 2>::Zero());
     e.wheel = increment;  // the base's own odometry plays the encoders' part
     return e;
 }
@@ -221,6 +222,7 @@ FusedOdometry::Estimate FusedOdometry::resolve(const Pending& p) {
     oldest_reference_ = p.vo.referenceTimestamp > 0 ? p.vo.referenceTimestamp : p.t;
     const Eigen::Vector2d travel = travelAt(p.t);
     const bool first = !last_frame_time_;
+    Eigen::Matrix<double, 3, 2> scale = Eigen::Matrix<double, 3, 2>::Zero();
     if (first) {
         for (auto& f : fusions_) f->reset({});
     } else {
@@ -228,6 +230,7 @@ FusedOdometry::Estimate FusedOdometry::resolve(const Pending& p) {
         step.dt = p.t - *last_frame_time_;
         const Eigen::Vector2d d = travel - last_frame_travel_;
         step.wheel = DiffDriveOdometry::stepFromOrigin(d[0], d[1], params_.wheels);
+        scale = DiffDriveOdometry::scaleJacobian(d[0], d[1], params_.wheels);
         const bool visualMotion = p.vo.success;
         const auto robotMotion = visualMotion
                                      ? visualOnRobot(p, &e.visualRise, &e.visualRiseVariance)
@@ -254,6 +257,8 @@ FusedOdometry::Estimate FusedOdometry::resolve(const Pending& p) {
         e.poses.push_back(fusions_[m]->pose());
         e.increments.push_back(first ? mrpt::poses::CPosePDFGaussian()
                                      : fusions_[m]->lastIncrement());
+        e.wheelScale.push_back(first ? scale : Eigen::Matrix<double, 3, 2>(
+                                                   fusions_[m]->lastWheelGain() * scale));
         recent_[m][p.t] = fusions_[m]->pose().mean;
         // Only frames VO may still use as its reference are kept.
         while (!recent_[m].empty() && recent_[m].begin()->first < oldest_reference_) {

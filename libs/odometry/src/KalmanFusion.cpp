@@ -67,6 +67,9 @@ const mrpt::poses::CPosePDFGaussian& KalmanFusion::step(const OdometryStep& s) {
     // (the blend leans on them, weight C).
     increment_.mean = pose_.mean - before;
     increment_.cov = s.wheel.cov;
+    // Eq. (2) blends the tracks' positions with weight C on the wheels' (the visual track
+    // follows the wheels where VO has nothing).
+    wheel_gain_ = (s.visual ? c_ : 1.0) * Eigen::Matrix3d::Identity();
     pose_.cov.setZero();
     for (int a = 0; a < 3; ++a) pose_.cov(a, a) = cov_(0, 2 * a);
     return pose_;

@@ -14,6 +14,7 @@ class SingleSourceFusion : public PlanarFusion {
   public:
     explicit SingleSourceFusion(bool visual) : visual_(visual) {}
     const mrpt::poses::CPosePDFGaussian& step(const OdometryStep& s) override {
+        wheel_gain_ = (visual_ ? 0.0 : 1.0) * Eigen::Matrix3d::Identity();
         if (!visual_) {
             increment_ = s.wheel;
         } else if (s.visual) {

@@ -94,6 +94,21 @@ TEST(FusedOdometryNRD, NodesSitOnTheFusedOdometryAtTheirTimes) {
             EXPECT_FALSE(rec.cloud);
             EXPECT_FALSE(rec.features);
         }
+        // Every edge the wheels measured says how it moves with their scales: along by at
+        // most half a wheel's travel (the edge's length and half the wheel base's arc), its
+        // heading by at most a wheel's travel over the base (less where VO shares the motion).
+        EXPECT_EQ(rec.wheelScale.has_value(), id > 0) << id;
+        if (id > 0) {
+            const auto d = got - engine->graph().nodes.at(id - 1);
+            const double wheelTravel = std::hypot(d.x(), d.y()) + 0.5 * sc.motion.wheelBase *
+                                                                   std::abs(d.yaw());
+            for (int w = 0; w < 2; ++w) {
+                EXPECT_LE(std::abs((*rec.wheelScale)(0, w)), 0.5 * wheelTravel + 2e-3) << id;
+                EXPECT_LE(std::abs((*rec.wheelScale)(2, w)),
+                          wheelTravel / sc.motion.wheelBase + 0.01)
+                    << id;
+            }
+        }
         // Magnetometer readings: the ones since the previous node, two sensors at 100 Hz.
         if (id > 0) {
             const double from = nodes.at(id - 1).timestamp;
@@ -158,6 +173,8 @@ TEST(FusedOdometryNRD, AKidnapStartsASegmentOnAWeakEdge) {
     const auto& across = engine->graph().edges.find({firstOfSegment - 1, firstOfSegment})->second;
     EXPECT_NEAR(across.cov_inv(0, 0), 1e-4, 1e-12);
     EXPECT_NEAR(across.cov_inv(3, 3), 1e-4, 1e-12);
+    EXPECT_FALSE(nodes.at(firstOfSegment).wheelScale) << "no wheel measured the carry";
+    EXPECT_TRUE(nodes.at(firstOfSegment - 1).wheelScale);
     // The edge before it is ordinary odometry: confident.
     const auto& before = engine->graph().edges.find({firstOfSegment - 2, firstOfSegment - 1})->second;
     EXPECT_GT(before.cov_inv(0, 0), 1e2);

@@ -4,6 +4,8 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 using lodestone::odometry::DiffDriveOdometry;
 
@@ -60,6 +62,46 @@ TEST(DiffDriveOdometry, CovarianceJacobianMatchesNumericalDerivatives) {
     for (int i = 0; i < 3; ++i) {
         for (int j = 0; j < 3; ++j) EXPECT_NEAR(step.cov(i, j), expected(i, j), 1e-12) << i << j;
     }
+}
+
+TEST(DiffDriveOdometry, ScaleJacobiansMatchNumericalDerivatives) {
+    const auto p = params();
+    const double h = 1e-7;
+    const auto pose = [](const mrpt::poses::CPose2D& m) {
+        return Eigen::Vector3d(m.x(), m.y(), m.phi());
+    };
+    // One step: its motion with the left and right travels scaled by 1 + e.
+    const double dl = 0.21, dr = 0.27;
+    const auto step = [&](double el, double er) {
+        return pose(DiffDriveOdometry::stepFromOrigin(dl * (1 + el), dr * (1 + er), p).mean);
+    };
+    Eigen::Matrix<double, 3, 2> numeric;
+    numeric.col(0) = (step(h, 0) - step(-h, 0)) / (2 * h);
+    numeric.col(1) = (step(0, h) - step(0, -h)) / (2 * h);
+    EXPECT_LT((DiffDriveOdometry::scaleJacobian(dl, dr, p) - numeric).cwiseAbs().maxCoeff(), 1e-7);
+
+    // A turning chain of steps: the composed Jacobian against the chain re-run with the
+    // scales applied to every step (an edge's worth of frames).
+    const std::vector<std::pair<double, double>> steps{
+        {0.01, 0.012}, {0.011, 0.009}, {-0.02, 0.02}, {0.015, 0.015}, {0.013, 0.016}};
+    const auto chain = [&](double el, double er) {
+        mrpt::poses::CPose2D m;
+        for (const auto& [l, r] : steps)
+            m = m + DiffDriveOdometry::stepFromOrigin(l * (1 + el), r * (1 + er), p).mean;
+        return pose(m);
+    };
+    mrpt::poses::CPose2D composed;
+    Eigen::Matrix<double, 3, 2> J = Eigen::Matrix<double, 3, 2>::Zero();
+    for (const auto& [l, r] : steps) {
+        const auto m = DiffDriveOdometry::stepFromOrigin(l, r, p).mean;
+        J = DiffDriveOdometry::composeScaleJacobian(composed, J, m,
+                                                    DiffDriveOdometry::scaleJacobian(l, r, p));
+        composed = composed + m;
+    }
+    numeric.col(0) = (chain(h, 0) - chain(-h, 0)) / (2 * h);
+    numeric.col(1) = (chain(0, h) - chain(0, -h)) / (2 * h);
+    EXPECT_LT((J - numeric).cwiseAbs().maxCoeff(), 1e-7);
+    EXPECT_GT(J.cwiseAbs().maxCoeff(), 1e-3) << "a chain that turns responds to its scales";
 }
 
 TEST(DiffDriveOdometry, UncertaintyGrowsWithDistance) {

@@ -6,7 +6,7 @@ namespace lodestone::graphslam {
 
 BackgroundSolve::BackgroundSolve(const PoseGraphSolver::Options& options, const Graph& graph,
                                  const std::vector<LoopClosure>& closures, std::size_t mergeAtNodes,
-                                 const AttitudePriors* attitude)
+                                 const AttitudePriors* attitude, const WheelScale* wheels)
     : launched_at_(graph.nodes.size()),
       merge_at_(mergeAtNodes),
       closures_at_launch_(closures.size()) {
@@ -14,12 +14,17 @@ BackgroundSolve::BackgroundSolve(const PoseGraphSolver::Options& options, const 
     // The snapshot is copied here, on the caller's thread; the worker owns its copy.
     std::optional<AttitudePriors> priors;
     if (attitude) priors = *attitude;
+    std::optional<WheelScale> scales;
+    if (wheels) scales = *wheels;
     outcome_ = std::async(std::launch::async, [options, snapshot = graph, list = closures,
-                                               priors = std::move(priors)]() mutable {
+                                               priors = std::move(priors),
+                                               scales = std::move(scales)]() mutable {
         Outcome o;
-        o.report =
-            PoseGraphSolver(options).solve(snapshot, list, {}, true, priors ? &*priors : nullptr);
+        o.report = PoseGraphSolver(options).solve(snapshot, list, {}, true,
+                                                  priors ? &*priors : nullptr,
+                                                  scales ? &*scales : nullptr);
         o.attitude = std::move(priors);
+        o.wheels = std::move(scales);
         o.solved = std::move(snapshot);
         o.closures = std::move(list);
         return o;
@@ -32,7 +37,8 @@ BackgroundSolve::~BackgroundSolve() {
 
 PoseGraphSolver::Report BackgroundSolve::mergeInto(Graph& graph, std::vector<LoopClosure>& closures,
                                                    double* waitedSeconds,
-                                                   AttitudePriors* attitude) {
+                                                   AttitudePriors* attitude,
+                                                   WheelScale* wheels) {
     const auto t0 = std::chrono::steady_clock::now();
     Outcome o = outcome_.get();
     if (waitedSeconds) {
@@ -40,6 +46,7 @@ PoseGraphSolver::Report BackgroundSolve::mergeInto(Graph& graph, std::vector<Loo
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     }
     if (attitude && o.attitude) attitude->mapUp = o.attitude->mapUp;
+    if (wheels && o.wheels) wheels->scale = o.wheels->scale;
     // Nodes added since the snapshot keep their pose relative to its last node.
     const mrpt::poses::CPose3D lastBefore = graph.nodes.at(last_);
     const mrpt::poses::CPose3D lastAfter = o.solved.nodes.at(last_);

@@ -25,6 +25,8 @@ void CeresGSO::configure(const mrpt::config::CConfigFileBase& ini) {
     p.localWindow = s.getInt("local_window", p.localWindow);
     p.fullSolveGrowth = s.getDouble("full_solve_growth", p.fullSolveGrowth);
     p.backgroundMergeNodes = s.getInt("background_merge_nodes", p.backgroundMergeNodes);
+    p.wheelScaleSigma = s.getDouble("wheel_scale_sigma", p.wheelScaleSigma);
+    if (!(p.wheelScaleSigma >= 0)) s.fail("wheel_scale_sigma", "must be >= 0 (0: not estimated)");
     if (p.backgroundMergeNodes < 0)
         s.fail("background_merge_nodes", "must be >= 0 (0: in the frame loop)");
     if (o.robustLoss != "none" && o.robustLoss != "huber" && o.robustLoss != "cauchy") {
@@ -37,6 +39,7 @@ void CeresGSO::configure(const mrpt::config::CConfigFileBase& ini) {
     if (!(p.fullSolveGrowth > 0)) s.fail("full_solve_growth", "must be > 0");
     s.finish();
     params_ = p;
+    wheels_.sigma = p.wheelScaleSigma;
     solver_ = std::make_unique<PoseGraphSolver>(o);
 }
 
@@ -56,6 +59,11 @@ void CeresGSO::addAttitudePrior(TNodeID id, const AttitudePrior& prior) {
     attitude_.nodes[id] = prior;
 }
 
+void CeresGSO::addWheelScaleJacobian(TNodeID from, TNodeID to,
+                                     const Eigen::Matrix<double, 3, 2>& jacobian) {
+    if (wheels_.sigma > 0) wheels_.edges[{from, to}] = jacobian;
+}
+
 void CeresGSO::addLoopClosures(const std::vector<LoopClosure>& closures) {
     for (const auto& lc : closures) {
         closures_.push_back(lc);
@@ -70,7 +78,7 @@ void CeresGSO::addRelocationClosures(const std::vector<LoopClosure>& closures,
     if (closures.empty() || movable.empty()) return;
     discardBackground();  // (its snapshot has the moved group where it was)
     closures_since_full_ = true;
-    absorb(solver_->solve(*m_graph, closures_, movable, false, priors()), false);
+    absorb(solver_->solve(*m_graph, closures_, movable, false, priors(), wheels()), false);
 }
 
 bool CeresGSO::updateState(mrpt::obs::CActionCollection::Ptr, mrpt::obs::CSensoryFrame::Ptr,
@@ -89,7 +97,7 @@ bool CeresGSO::updateState(mrpt::obs::CActionCollection::Ptr, mrpt::obs::CSensor
         // locally below in the meantime.
         background_ = std::make_unique<BackgroundSolve>(
             params_.solver, *m_graph, closures_,
-            n + static_cast<std::size_t>(params_.backgroundMergeNodes), priors());
+            n + static_cast<std::size_t>(params_.backgroundMergeNodes), priors(), wheels());
         ++stats_.backgroundSolves;
         nodes_at_last_full_ = n;
         closures_since_full_ = false;
@@ -103,7 +111,7 @@ bool CeresGSO::updateState(mrpt::obs::CActionCollection::Ptr, mrpt::obs::CSensor
             }
         }
     }
-    absorb(solver_->solve(*m_graph, closures_, window, false, priors()), false);
+    absorb(solver_->solve(*m_graph, closures_, window, false, priors(), wheels()), false);
     // A window cannot tell a wrong closure from a right one whose correction reaches beyond it:
     // if a new closure still disagrees, the full graph decides.
     for (const auto& lc : closures_) {
@@ -124,7 +132,7 @@ bool CeresGSO::updateState(mrpt::obs::CActionCollection::Ptr, mrpt::obs::CSensor
 void CeresGSO::mergeBackgroundIfDue() {
     if (!background_ || m_graph->nodes.size() < background_->mergeAtNodes()) return;
     double waited = 0;
-    absorb(background_->mergeInto(*m_graph, closures_, &waited, priors()), true);
+    absorb(background_->mergeInto(*m_graph, closures_, &waited, priors(), wheels()), true);
     stats_.backgroundWaitSeconds += waited;
     // Closures that came after the snapshot: solved again around them, on the merged graph.
     for (std::size_t k = background_->closuresAtLaunch(); k < closures_.size(); ++k) {
@@ -144,7 +152,7 @@ void CeresGSO::discardBackground() {
 void CeresGSO::optimizeGraph() {
     discardBackground();
     pending_.clear();
-    absorb(solver_->solve(*m_graph, closures_, {}, true, priors()), true);
+    absorb(solver_->solve(*m_graph, closures_, {}, true, priors(), wheels()), true);
     nodes_at_last_full_ = m_graph->nodes.size();
     closures_since_full_ = false;
     just_full_ = true;
@@ -179,7 +187,8 @@ JsonObject CeresGSO::describe() const {
         .set("max_iterations", o.maxIterations)
         .set("local_window", params_.localWindow)
         .set("full_solve_growth", params_.fullSolveGrowth)
-        .set("background_merge_nodes", params_.backgroundMergeNodes);
+        .set("background_merge_nodes", params_.backgroundMergeNodes)
+        .set("wheel_scale_sigma", params_.wheelScaleSigma);
     std::vector<JsonObject> rejected;
     for (const auto& lc : closures_) {
         if (!lc.rejected) continue;
@@ -201,6 +210,9 @@ JsonObject CeresGSO::describe() const {
         .set("background_wait_seconds", stats_.backgroundWaitSeconds)
         .set("loop_closures", closures_.size())
         .set("attitude_priors", attitude_.nodes.size())
+        .set("wheel_scale_edges", wheels_.edges.size())
+        .set("wheel_scale_left", wheels_.scale[0])
+        .set("wheel_scale_right", wheels_.scale[1])
         .set("rejected", stats_.rejected);
     return JsonObject()
         .set("class", getClassName())

@@ -62,13 +62,19 @@ mrpt::poses::CPose3D poseOf(const NodeState& s, const mrpt::poses::CPose3D& befo
 constexpr int kSe3FromMrpt[6] = {0, 1, 2, 5, 4, 3};
 constexpr int kPlanarFromMrpt[3] = {0, 1, 3};
 
-ceres::CostFunction* makeCost(const Constraint& c, bool planar) {
+ceres::CostFunction* makeCost(const Constraint& c, bool planar,
+                              const Eigen::Matrix<double, 3, 2>* scaleJacobian = nullptr) {
     const auto& info = c.cov_inv;
     if (planar) {
         Eigen::Matrix3d I;
         for (int r = 0; r < 3; ++r)
             for (int k = 0; k < 3; ++k) I(r, k) = info(kPlanarFromMrpt[r], kPlanarFromMrpt[k]);
         const Eigen::Vector3d z(c.mean.x(), c.mean.y(), c.mean.yaw());
+        if (scaleJacobian) {
+            return new ceres::AutoDiffCostFunction<detail::ScaledPlanarRelativePoseCost, 3, 3, 3,
+                                                   2>(new detail::ScaledPlanarRelativePoseCost(
+                z, *scaleJacobian, informationSqrt<3>(I)));
+        }
         return new ceres::AutoDiffCostFunction<detail::PlanarRelativePoseCost, 3, 3, 3>(
             new detail::PlanarRelativePoseCost(z, informationSqrt<3>(I)));
     }
@@ -77,6 +83,11 @@ ceres::CostFunction* makeCost(const Constraint& c, bool planar) {
         for (int k = 0; k < 6; ++k) I(r, k) = info(kSe3FromMrpt[r], kSe3FromMrpt[k]);
     const Eigen::Vector3d zt(c.mean.x(), c.mean.y(), c.mean.z());
     const Eigen::Quaterniond zq(c.mean.getRotationMatrix().asEigen());
+    if (scaleJacobian) {
+        return new ceres::AutoDiffCostFunction<detail::ScaledSe3RelativePoseCost, 6, 3, 4, 3, 4,
+                                               2>(
+            new detail::ScaledSe3RelativePoseCost(zt, zq, *scaleJacobian, informationSqrt<6>(I)));
+    }
     return new ceres::AutoDiffCostFunction<detail::Se3RelativePoseCost, 6, 3, 4, 3, 4>(
         new detail::Se3RelativePoseCost(zt, zq, informationSqrt<6>(I)));
 }
@@ -131,6 +142,8 @@ struct GraphProblem {
     // (on the heap: Ceres keeps its address, and the problem is moved out of buildProblem)
     std::unique_ptr<double[]> mapUp{new double[3]{0, 0, 1}};
     bool mapUpFree{false};
+    std::unique_ptr<double[]> wheelScale{new double[2]{0, 0}};  // (left, right)
+    bool wheelScaleUsed{false}, wheelScaleFree{false};
 
     void setLoss(const std::string& name, double scale) {
         for (auto& c : closures) c.loss->Reset(makeLoss(name, scale), ceres::TAKE_OWNERSHIP);
@@ -212,7 +225,8 @@ void addAttitudePriors(GraphProblem& gp, const AttitudePriors& priors, bool solv
 template <typename Moves>
 GraphProblem buildProblem(const Graph& graph, const std::vector<LoopClosure>& loopClosures,
                           const std::vector<EdgeIt>& edges, const Moves& moves, bool planar,
-                          const AttitudePriors* attitude, bool solveMapUp) {
+                          const AttitudePriors* attitude, bool solveMapUp,
+                          const WheelScale* wheels, bool solveWheelScale) {
     std::map<std::pair<TNodeID, TNodeID>, std::vector<std::size_t>> closureIndex;
     for (std::size_t k = 0; k < loopClosures.size(); ++k) {
         const auto& lc = loopClosures[k];
@@ -224,6 +238,11 @@ GraphProblem buildProblem(const Graph& graph, const std::vector<LoopClosure>& lo
     po.manifold_ownership = ceres::TAKE_OWNERSHIP;
     gp.problem = std::make_unique<ceres::Problem>(po);
     auto& problem = *gp.problem;
+    const bool scaled = wheels && wheels->active();
+    if (scaled) {
+        gp.wheelScale[0] = wheels->scale[0];
+        gp.wheelScale[1] = wheels->scale[1];
+    }
     for (const EdgeIt& e : edges) {
         const auto& [ends, c] = *e;
         const auto [from, to] = ends;
@@ -246,9 +265,33 @@ GraphProblem buildProblem(const Graph& graph, const std::vector<LoopClosure>& lo
             loss = new ceres::LossFunctionWrapper(nullptr, ceres::TAKE_OWNERSHIP);
             gp.closures.push_back({closure, loss});
         }
-        problem.AddResidualBlock(makeCost(c, planar), loss,
-                                 blocksOf(gp.states[from], gp.states[to], planar));
+        // An odometry edge the wheels measured: corrected by their scales.
+        const Eigen::Matrix<double, 3, 2>* jacobian = nullptr;
+        if (scaled && closure == std::string::npos) {
+            const auto found = wheels->edges.find(ends);
+            if (found != wheels->edges.end()) jacobian = &found->second;
+        }
+        auto blocks = blocksOf(gp.states[from], gp.states[to], planar);
+        if (jacobian) {
+            blocks.push_back(gp.wheelScale.get());
+            problem.AddResidualBlock(makeCost(c, planar, jacobian), nullptr, blocks);
+            gp.wheelScaleUsed = true;
+        } else {
+            problem.AddResidualBlock(makeCost(c, planar), loss, blocks);
+        }
         ++gp.edges;
+    }
+    // The scales are the run's: only a full solve sees enough of it to move them.
+    if (gp.wheelScaleUsed) {
+        gp.wheelScaleFree = solveWheelScale;
+        if (solveWheelScale) {
+            problem.AddResidualBlock(
+                new ceres::AutoDiffCostFunction<detail::WheelScalePriorCost, 2, 2>(
+                    new detail::WheelScalePriorCost(wheels->sigma)),
+                nullptr, gp.wheelScale.get());
+        } else {
+            problem.SetParameterBlockConstant(gp.wheelScale.get());
+        }
     }
     // Fixed: nodes outside the window and the graph's root (the gauge: the map frame is where
     // the run started); without the root, the lowest node ID.
@@ -270,7 +313,8 @@ GraphProblem buildProblem(const Graph& graph, const std::vector<LoopClosure>& lo
 
 PoseGraphSolver::Report PoseGraphSolver::solve(Graph& graph, std::vector<LoopClosure>& loopClosures,
                                                const std::set<TNodeID>& window, bool reject,
-                                               AttitudePriors* attitude) const {
+                                               AttitudePriors* attitude,
+                                               WheelScale* wheels) const {
     const auto t0 = std::chrono::steady_clock::now();
     Report report;
     const bool planar = options_.planar;
@@ -288,7 +332,8 @@ PoseGraphSolver::Report PoseGraphSolver::solve(Graph& graph, std::vector<LoopClo
         // The map's up is the whole graph's: only a full solve of a graph free to turn solves it.
         const bool solveMapUp = window.empty() && options_.fixedBelow == 0;
         GraphProblem gp = buildProblem(graph, loopClosures, edgesOf(graph, loopClosures, window),
-                                       moves, planar, attitude, solveMapUp);
+                                       moves, planar, attitude, solveMapUp, wheels,
+                                       window.empty());
         if (gp.edges == 0) break;
         // Least squares judges: at its optimum a closure's squared Mahalanobis residual is
         // chi-square distributed, so the gate means what it says. A robust solve points at the
@@ -306,6 +351,8 @@ PoseGraphSolver::Report PoseGraphSolver::solve(Graph& graph, std::vector<LoopClo
             report.variableNodes = report.fixedNodes = 0;
             if (gp.mapUpFree)
                 attitude->mapUp = Eigen::Map<const Eigen::Vector3d>(gp.mapUp.get()).normalized();
+            if (gp.wheelScaleFree)
+                wheels->scale = Eigen::Map<const Eigen::Vector2d>(gp.wheelScale.get());
             for (const auto& [id, st] : gp.states) {
                 if (moves(id) && id != gp.gauge && id != graph.root) {
                     graph.nodes[id] = poseOf(st, graph.nodes.at(id), planar);

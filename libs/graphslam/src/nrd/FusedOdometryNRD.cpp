@@ -158,6 +158,7 @@ void FusedOdometryNRD::take(const odometry::FusedOdometry::Estimate& e) {
         segment_closed_ = false;
         restart_ = true;
         since_node_ = mrpt::poses::CPosePDFGaussian();
+        since_node_scale_.setZero();
         last_time_ = e.timestamp;
         return;
     }
@@ -170,6 +171,7 @@ void FusedOdometryNRD::take(const odometry::FusedOdometry::Estimate& e) {
         restart_ = true;
         restart_lift_ = restart_down_ = NAN;
         since_node_ = mrpt::poses::CPosePDFGaussian();
+        since_node_scale_.setZero();
         return;
     }
     if (first) {
@@ -181,6 +183,8 @@ void FusedOdometryNRD::take(const odometry::FusedOdometry::Estimate& e) {
         just_registered_ = m_graph->root;
         return;
     }
+    since_node_scale_ = odometry::DiffDriveOdometry::composeScaleJacobian(
+        since_node_.mean, since_node_scale_, e.increments.front().mean, e.wheelScale.front());
     since_node_ += e.increments.front();
     since_keyframe_ = since_keyframe_ + e.increments.front().mean;
 }
@@ -236,6 +240,8 @@ bool FusedOdometryNRD::registerPending() {
         if (restart) {
             rec.liftTime = restart_lift_;
             rec.putDownTime = restart_down_;
+        } else {
+            rec.wheelScale = since_node_scale_;
         }
         nodes_->add(id, std::move(rec));
     }
@@ -244,6 +250,7 @@ bool FusedOdometryNRD::registerPending() {
         ++keyframes_;
     }
     since_node_ = mrpt::poses::CPosePDFGaussian();
+    since_node_scale_.setZero();
     just_registered_ = id;
     return true;
 }

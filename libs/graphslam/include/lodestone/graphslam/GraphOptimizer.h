@@ -34,6 +34,10 @@ class GraphOptimizer : public mrpt::graphslam::optimizers::CGraphSlamOptimizer<G
     /** A node's measured up (an accelerometer's): a prior on its roll and pitch in the solves
      * that follow. The default ignores it (an optimizer without roll and pitch). */
     virtual void addAttitudePrior(TNodeID /*id*/, const AttitudePrior& /*prior*/) {}
+    /** The odometry edge from -> to as the wheels measured it: its (x, y, yaw) by the wheels'
+     * (left, right) scale errors (WheelScale). The default ignores it (scales not estimated). */
+    virtual void addWheelScaleJacobian(TNodeID /*from*/, TNodeID /*to*/,
+                                       const Eigen::Matrix<double, 3, 2>& /*jacobian*/) {}
     /** Nodes solved in SE(3) (6 dof) rather than x, y, yaw: the relocalizer's space. */
     virtual bool spatial() const { return false; }
     /** Solves everything the run still needs (at the end of the data). */

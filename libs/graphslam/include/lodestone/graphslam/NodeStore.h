@@ -44,6 +44,10 @@ struct NodeRecord {
     std::vector<MagneticSample> magnetic;
     /** The node's up as an accelerometer measured it, where one is recorded and used. */
     std::optional<AttitudePrior> attitude;
+    /** The odometry edge from the node before into this one: how its (x, y, yaw) moves with
+     * each wheel's scale error (left, right; DiffDriveOdometry::scaleJacobian). None across a
+     * kidnap, or without encoders. */
+    std::optional<Eigen::Matrix<double, 3, 2>> wheelScale;
 };
 
 /** Node records indexed by node ID (the NRD registers IDs 0, 1, 2, ... in order). */

@@ -3,6 +3,8 @@
 #include <mrpt/config/CLoadableOptions.h>
 #include <mrpt/poses/CPosePDFGaussian.h>
 
+#include <Eigen/Core>
+
 #include <cstdint>
 #include <optional>
 
@@ -54,6 +56,19 @@ class DiffDriveOdometry {
     /** Eq. (1) and its covariance for one step from the origin, for tests and fusion. */
     static mrpt::poses::CPosePDFGaussian stepFromOrigin(double leftTravel, double rightTravel,
                                                         const Params& params);
+
+    /** How that step's (x, y, phi) moves with each wheel's scale: the derivative with respect
+     * to (e_l, e_r) where the true travels are Δs_l (1 + e_l), Δs_r (1 + e_r), at e = 0. An
+     * uncalibrated wheel radius is such a scale: the same every step, so its heading error
+     * grows with distance instead of averaging out (what a graph can estimate, not absorb). */
+    static Eigen::Matrix<double, 3, 2> scaleJacobian(double leftTravel, double rightTravel,
+                                                     const Params& params);
+
+    /** The scale Jacobian of a composed motion `before` (+) `step`, from those of its parts
+     * (each in its own (x, y, phi)): first-order propagation through the composition. */
+    static Eigen::Matrix<double, 3, 2> composeScaleJacobian(
+        const mrpt::poses::CPose2D& before, const Eigen::Matrix<double, 3, 2>& beforeJacobian,
+        const mrpt::poses::CPose2D& step, const Eigen::Matrix<double, 3, 2>& stepJacobian);
 
   private:
     Params params_;

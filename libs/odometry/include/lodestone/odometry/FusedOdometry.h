@@ -63,6 +63,10 @@ class FusedOdometry {
         /** Per method: the motion since the previous frame with its covariance (zero on the
          * first frame). Composing them gives `poses`; a pose graph takes these. */
         std::vector<mrpt::poses::CPosePDFGaussian> increments;
+        /** Per method: how each increment moves with the wheels' scales (x, y, phi by left,
+         * right: DiffDriveOdometry::scaleJacobian through the fusion's gain on the wheels;
+         * zero without encoders). */
+        std::vector<Eigen::Matrix<double, 3, 2>> wheelScale;
         vision::VoResult visual;
         /** The frame's own wheel step (encoders alone; zero on the first frame). */
         mrpt::poses::CPosePDFGaussian wheel;

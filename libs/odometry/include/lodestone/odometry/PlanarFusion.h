@@ -2,6 +2,8 @@
 
 #include <mrpt/poses/CPosePDFGaussian.h>
 
+#include <Eigen/Core>
+
 #include <memory>
 #include <optional>
 #include <string>
@@ -29,9 +31,13 @@ class PlanarFusion {
     /** The motion the last step() applied, in the frame of the pose before it, with its
      * covariance: what a pose graph takes as the odometry between two of its nodes. */
     const mrpt::poses::CPosePDFGaussian& lastIncrement() const { return increment_; }
+    /** How the last increment moves with its step's wheel motion, to first order (x, y, phi
+     * by x, y, phi): the identity where the wheels alone moved it, less where VO shared. */
+    const Eigen::Matrix3d& lastWheelGain() const { return wheel_gain_; }
 
   protected:
     mrpt::poses::CPosePDFGaussian increment_;
+    Eigen::Matrix3d wheel_gain_{Eigen::Matrix3d::Identity()};
 };
 
 /** Creates a fusion by name: "wheel" (wheels only), "visual" (VO only: no motion while it

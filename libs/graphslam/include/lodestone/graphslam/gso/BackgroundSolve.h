@@ -21,10 +21,11 @@ namespace lodestone::graphslam {
  * them). */
 class BackgroundSolve {
   public:
-    /** `attitude`: the nodes' measured ups (copied; nullptr: none). */
+    /** `attitude`: the nodes' measured ups; `wheels`: the odometry edges' wheel-scale
+     * Jacobians (both copied; nullptr: none). */
     BackgroundSolve(const PoseGraphSolver::Options& options, const Graph& graph,
                     const std::vector<LoopClosure>& closures, std::size_t mergeAtNodes,
-                    const AttitudePriors* attitude = nullptr);
+                    const AttitudePriors* attitude = nullptr, const WheelScale* wheels = nullptr);
     ~BackgroundSolve();
     BackgroundSolve(const BackgroundSolve&) = delete;
     BackgroundSolve& operator=(const BackgroundSolve&) = delete;
@@ -34,10 +35,11 @@ class BackgroundSolve {
     std::size_t closuresAtLaunch() const { return closures_at_launch_; }
 
     /** Waits for the solve (`waitedSeconds`: how long), then merges it (the map's up it
-     * solved into `attitude`); its report. */
+     * solved into `attitude`, the wheels' scales into `wheels`); its report. */
     PoseGraphSolver::Report mergeInto(Graph& graph, std::vector<LoopClosure>& closures,
                                       double* waitedSeconds = nullptr,
-                                      AttitudePriors* attitude = nullptr);
+                                      AttitudePriors* attitude = nullptr,
+                                      WheelScale* wheels = nullptr);
 
   private:
     struct Outcome {
@@ -45,6 +47,7 @@ class BackgroundSolve {
         std::vector<LoopClosure> closures;
         PoseGraphSolver::Report report;
         std::optional<AttitudePriors> attitude;
+        std::optional<WheelScale> wheels;
     };
     std::size_t launched_at_, merge_at_, closures_at_launch_;
     TNodeID last_{0};  // the snapshot's last node

@@ -18,7 +18,8 @@ namespace lodestone::graphslam {
  *    always at the end.
  * INI [CeresGSO]: mode = planar | se3, robust_loss, robust_scale, rejection_chi2 (0: the
  * chi-square 99.9 % quantile for the mode's degrees of freedom), max_iterations, local_window,
- * full_solve_growth. */
+ * full_solve_growth, wheel_scale_sigma (> 0: the wheels' scale errors estimated by full
+ * solves, this prior sigma each; WheelScale). */
 class CeresGSO : public GraphOptimizer {
   public:
     struct Params {
@@ -29,6 +30,8 @@ class CeresGSO : public GraphOptimizer {
          * this many nodes later (BackgroundSolve); 0: it runs in the frame loop. Escalations
          * and the last solve stay in the frame loop. */
         int backgroundMergeNodes{0};
+        /** Prior sigma of each wheel's scale error [fraction]; 0: not estimated. */
+        double wheelScaleSigma{0};
     };
 
     CeresGSO();
@@ -49,6 +52,10 @@ class CeresGSO : public GraphOptimizer {
     /** Kept in SE(3) mode (planar solves have no roll or pitch to hold). */
     void addAttitudePrior(TNodeID id, const AttitudePrior& prior) override;
     const AttitudePriors& attitudePriors() const { return attitude_; }
+    /** Kept when wheel_scale_sigma > 0. */
+    void addWheelScaleJacobian(TNodeID from, TNodeID to,
+                               const Eigen::Matrix<double, 3, 2>& jacobian) override;
+    const WheelScale& wheelScale() const { return wheels_; }
     void holdFixed(TNodeID count) override;
     /** A loaded map is the last full solve: the graph's growth (full_solve_growth) counts from
      * it, so the first closure of a run in a large map does not solve the whole map again. */
@@ -75,9 +82,12 @@ class CeresGSO : public GraphOptimizer {
 
     /** The priors for a solve: none while there are none. */
     AttitudePriors* priors() { return attitude_.nodes.empty() ? nullptr : &attitude_; }
+    /** The wheels' scales for a solve: none while they are not estimated. */
+    WheelScale* wheels() { return wheels_.active() ? &wheels_ : nullptr; }
 
     Params params_;
     AttitudePriors attitude_;
+    WheelScale wheels_;
     std::unique_ptr<PoseGraphSolver> solver_;
     std::unique_ptr<BackgroundSolve> background_;
     std::vector<std::pair<TNodeID, TNodeID>> pending_;  // ends of closures not solved yet

@@ -2,6 +2,7 @@
 
 #include <lodestone/graphslam/AttitudePrior.h>
 #include <lodestone/graphslam/PoseGraph.h>
+#include <lodestone/graphslam/WheelScale.h>
 
 #include <set>
 #include <string>
@@ -59,10 +60,12 @@ class PoseGraphSolver {
      * closure whose correction reaches beyond it).
      * `attitude` (SE(3) only): the nodes' measured up directions, each a prior on its node's
      * roll and pitch; a full solve of a graph with no fixed map also solves the map's up
-     * (written back), other solves hold it. */
+     * (written back), other solves hold it.
+     * `wheels`: the odometry edges' scale Jacobians; each such edge is corrected by the wheels'
+     * scale errors, which a full solve estimates (written back) and other solves hold. */
     Report solve(Graph& graph, std::vector<LoopClosure>& loopClosures,
                  const std::set<TNodeID>& window = {}, bool reject = true,
-                 AttitudePriors* attitude = nullptr) const;
+                 AttitudePriors* attitude = nullptr, WheelScale* wheels = nullptr) const;
 
     /** Squared Mahalanobis residual of one edge at the graph's current node poses, in the
      * solver's parameterization. */

@@ -70,6 +70,8 @@ class FusedOdometryNRD : public NodeDecider {
     Params params_;
     std::unique_ptr<odometry::FusedOdometry> odometry_;
     mrpt::poses::CPosePDFGaussian since_node_;  // fused motion since the last node
+    // ... and how it moves with the wheels' scales (x, y, phi by left, right)
+    Eigen::Matrix<double, 3, 2> since_node_scale_{Eigen::Matrix<double, 3, 2>::Zero()};
     mrpt::poses::CPose2D since_keyframe_;
     double last_time_{0};
     bool have_estimate_{false};
