@@ -85,8 +85,12 @@ graphslam::JsonObject saveMap(const RunInputs& in, const SlamRunOptions& options
     try {
         const std::string createdBy = std::string("lodestone-slam ") + LODESTONE_VERSION;
         maps::SavedMap map;
+        // The odometry edges as the solves used them: a map reloaded and solved again (extend)
+        // keeps its shape without this run's estimates.
+        graphslam::Graph graph = engine.graph();
+        engine.optimizer().calibrateEdges(graph);
         if (engine.mapNodes() == 0) {
-            map = maps::mapOf(engine.graph(), engine.nodes(), configText(options), createdBy);
+            map = maps::mapOf(graph, engine.nodes(), configText(options), createdBy);
         } else {
             // The map, and the run's nodes that joined it (a segment that never found itself
             // on the map adds nothing), the run as a session of its own.
@@ -95,7 +99,7 @@ graphslam::JsonObject saveMap(const RunInputs& in, const SlamRunOptions& options
                 sessions.empty() ? 1 : *std::max_element(sessions.begin(), sessions.end()) + 1;
             sessions.resize(engine.nodes().size(), run);
             const auto mapNodes = engine.mapNodes();
-            map = maps::mapOf(engine.graph(), engine.nodes(), sessions,
+            map = maps::mapOf(graph, engine.nodes(), sessions,
                               [&](graphslam::TNodeID id) {
                                   return id < mapNodes || engine.relocalizer().groupOf(id) == 0;
                               },

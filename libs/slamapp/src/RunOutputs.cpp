@@ -162,7 +162,11 @@ void writeOutputs(const RunInputs& in, const LoopOutcome& loop, const SlamRunOpt
     // a segment of its own: no pose in the map's frame to report).
     const auto trajectory = engine.mapNodes() > 0 ? runOnMap(engine) : nodeTrajectory(graph, engine.nodes());
     writeTrajectory(path(RunFile::Trajectory), trajectory);
-    graph.saveToTextFile(path(RunFile::Graph));
+    {
+        Graph solved = graph;  // its odometry edges as the solves used them
+        engine.optimizer().calibrateEdges(solved);
+        solved.saveToTextFile(path(RunFile::Graph));
+    }
     outputs::writeClosureTable(path(RunFile::Closures), closureRows(engine));
     outputs::writeNodeTable(path(RunFile::Nodes),
                             nodeRows(engine.nodes(), engine.stats().nodeMs, engine.mapNodes()));

@@ -1,5 +1,6 @@
 #include <lodestone/config/IniSection.h>
 #include <lodestone/graphslam/gso/CeresGSO.h>
+#include <ScaledLoop.h>
 #include <SyntheticGraph.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
@@ -122,5 +123,33 @@ TEST(CeresGSO, ALoadedMapCountsAsTheLastFullSolve) {
         EXPECT_TRUE(addClosure(g, gso, solved.last));
         EXPECT_EQ(gso.stats().fullSolves, adopted ? 0u : 1u) << adopted;
         EXPECT_EQ(gso.justFullyOptimizedGraph(), !adopted) << adopted;
+    }
+}
+
+TEST(CeresGSO, AGraphWrittenWithItsWheelScalesKeepsItsShapeWhenSolvedAgain) {
+    ScaledLoop s = scaledLoop({0.002, -0.001});
+    CeresGSO gso;
+    mrpt::config::CConfigFileMemory ini("[CeresGSO]\nwheel_scale_sigma = 0.01\n");
+    gso.configure(ini);
+    gso.setGraphPtr(&s.graph);
+    for (const auto& [ends, jacobian] : s.wheels.edges)
+        gso.addWheelScaleJacobian(ends.first, ends.second, jacobian);
+    gso.addLoopClosures(s.closures);
+    gso.finish();
+    ASSERT_LT(worstError(s.graph, s.truth), 0.02);
+    // As a map or graph.graph is written (the edges corrected), then solved by a solver that
+    // knows nothing of the scales (a map reloaded to extend, MRPT's graph tools): the same
+    // shape. Written raw, the same solve bends it back.
+    Graph written = s.graph, raw = s.graph;
+    gso.calibrateEdges(written);
+    std::vector<LoopClosure> closures = s.closures;
+    PoseGraphSolver::Options o;
+    PoseGraphSolver(o).solve(written, closures, {}, false);
+    PoseGraphSolver(o).solve(raw, closures, {}, false);
+    EXPECT_LT(worstError(written, s.truth), 0.02);
+    EXPECT_GT(worstError(raw, s.truth), 0.1);
+    // The closures are not the wheels': left as they were.
+    for (const auto& lc : s.closures) {
+        EXPECT_EQ(written.edges.find({lc.from, lc.to})->second.mean, lc.constraint.mean);
     }
 }

@@ -64,6 +64,23 @@ void CeresGSO::addWheelScaleJacobian(TNodeID from, TNodeID to,
     if (wheels_.sigma > 0) wheels_.edges[{from, to}] = jacobian;
 }
 
+void CeresGSO::calibrateEdges(Graph& graph) const {
+    if (!wheels_.active()) return;
+    for (const auto& [ends, jacobian] : wheels_.edges) {
+        const Eigen::Vector3d d = jacobian * wheels_.scale;
+        const auto range = graph.edges.equal_range(ends);
+        for (auto it = range.first; it != range.second; ++it) {
+            auto& m = it->second.mean;
+            const bool closure = std::any_of(closures_.begin(), closures_.end(), [&](const auto& lc) {
+                return lc.from == ends.first && lc.to == ends.second && lc.constraint.mean == m;
+            });
+            if (closure) continue;  // (as the solves: a closure is not the wheels')
+            m = mrpt::poses::CPose3D(m.x() + d.x(), m.y() + d.y(), m.z(), m.yaw() + d.z(),
+                                     m.pitch(), m.roll());
+        }
+    }
+}
+
 void CeresGSO::addLoopClosures(const std::vector<LoopClosure>& closures) {
     for (const auto& lc : closures) {
         closures_.push_back(lc);

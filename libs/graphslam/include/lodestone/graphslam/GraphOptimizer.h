@@ -38,6 +38,10 @@ class GraphOptimizer : public mrpt::graphslam::optimizers::CGraphSlamOptimizer<G
      * (left, right) scale errors (WheelScale). The default ignores it (scales not estimated). */
     virtual void addWheelScaleJacobian(TNodeID /*from*/, TNodeID /*to*/,
                                        const Eigen::Matrix<double, 3, 2>& /*jacobian*/) {}
+    /** Writes into `graph` (a copy of the one solved) the odometry edges as the solves used
+     * them: corrected by what was estimated about the odometry (the wheels' scales), so a graph
+     * or map written out holds the shape it was solved into. The default changes nothing. */
+    virtual void calibrateEdges(Graph& /*graph*/) const {}
     /** Nodes solved in SE(3) (6 dof) rather than x, y, yaw: the relocalizer's space. */
     virtual bool spatial() const { return false; }
     /** Solves everything the run still needs (at the end of the data). */

@@ -56,6 +56,7 @@ class CeresGSO : public GraphOptimizer {
     void addWheelScaleJacobian(TNodeID from, TNodeID to,
                                const Eigen::Matrix<double, 3, 2>& jacobian) override;
     const WheelScale& wheelScale() const { return wheels_; }
+    void calibrateEdges(Graph& graph) const override;
     void holdFixed(TNodeID count) override;
     /** A loaded map is the last full solve: the graph's growth (full_solve_growth) counts from
      * it, so the first closure of a run in a large map does not solve the whole map again. */
