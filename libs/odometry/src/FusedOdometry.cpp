@@ -257,8 +257,7 @@ FusedOdometry::Estimate FusedOdometry::resolve(const Pending& p) {
         e.poses.push_back(fusions_[m]->pose());
         e.increments.push_back(first ? mrpt::poses::CPosePDFGaussian()
                                      : fusions_[m]->lastIncrement());
-        e.wheelScale.push_back(first ? scale : Eigen::Matrix<double, 3, 2>(
-                                                   fusions_[m]->lastWheelGain() * scale));
+        e.wheelScale.push_back(fusions_[m]->lastWheelGain() * scale);  // (zero on the first)
         recent_[m][p.t] = fusions_[m]->pose().mean;
         // Only frames VO may still use as its reference are kept.
         while (!recent_[m].empty() && recent_[m].begin()->first < oldest_reference_) {

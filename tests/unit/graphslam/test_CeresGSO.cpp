@@ -15,15 +15,16 @@ TEST(CeresGSO, ReadsItsSectionStrictly) {
     EXPECT_FALSE(gso.params().solver.planar);
     EXPECT_NEAR(gso.params().solver.rejectionChi2, 22.46, 0.01);  // 6 degrees of freedom
     EXPECT_EQ(gso.params().solver.robustLoss, "huber");
-    EXPECT_EQ(gso.params().wheelScaleSigma, 0) << "the wheels' scales: not estimated unless asked";
-    // Asked: kept for the solves; without it, a wheel-scale Jacobian is not even stored.
-    gso.addWheelScaleJacobian(0, 1, Eigen::Matrix<double, 3, 2>::Ones());
-    EXPECT_TRUE(gso.wheelScale().edges.empty());
-    mrpt::config::CConfigFileMemory scaled("[CeresGSO]\nwheel_scale_sigma = 0.01\n");
-    gso.configure(scaled);
+    EXPECT_EQ(gso.params().wheelScaleSigma, 0.01) << "the wheels' scales: estimated";
     gso.addWheelScaleJacobian(0, 1, Eigen::Matrix<double, 3, 2>::Ones());
     EXPECT_EQ(gso.wheelScale().edges.size(), 1u);
     EXPECT_EQ(gso.wheelScale().sigma, 0.01);
+    // Switched off: a wheel-scale Jacobian is not even stored.
+    CeresGSO off;
+    mrpt::config::CConfigFileMemory unscaled("[CeresGSO]\nwheel_scale_sigma = 0\n");
+    off.configure(unscaled);
+    off.addWheelScaleJacobian(0, 1, Eigen::Matrix<double, 3, 2>::Ones());
+    EXPECT_TRUE(off.wheelScale().edges.empty());
     for (const char* bad : {"[CeresGSO]\nmode = 2d\n", "[CeresGSO]\nrobust_loss = tukey\n",
                             "[CeresGSO]\nlocal_windw = 3\n", "[CeresGSO]\nlocal_window = 0\n",
                             "[CeresGSO]\nfull_solve_growth = abc\n",

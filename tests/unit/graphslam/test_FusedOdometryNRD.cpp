@@ -98,7 +98,7 @@ TEST(FusedOdometryNRD, NodesSitOnTheFusedOdometryAtTheirTimes) {
         // most half a wheel's travel (the edge's length and half the wheel base's arc), its
         // heading by at most a wheel's travel over the base (less where VO shares the motion).
         EXPECT_EQ(rec.wheelScale.has_value(), id > 0) << id;
-        if (id > 0) {
+        if (id > 0 && rec.wheelScale) {
             const auto d = got - engine->graph().nodes.at(id - 1);
             const double wheelTravel = std::hypot(d.x(), d.y()) + 0.5 * sc.motion.wheelBase *
                                                                    std::abs(d.yaw());

@@ -2,11 +2,13 @@
 #include <lodestone/graphslam/gso/CeresGSO.h>
 
 #include <algorithm>
+#include <map>
 
 namespace lodestone::graphslam {
 
 CeresGSO::CeresGSO() {
     setClassName("CeresGSO");
+    wheels_.sigma = params_.wheelScaleSigma;
     solver_ = std::make_unique<PoseGraphSolver>(params_.solver);
 }
 
@@ -66,15 +68,19 @@ void CeresGSO::addWheelScaleJacobian(TNodeID from, TNodeID to,
 
 void CeresGSO::calibrateEdges(Graph& graph) const {
     if (!wheels_.active()) return;
+    // (as the solves: a closure between the same two nodes is not the wheels')
+    std::multimap<std::pair<TNodeID, TNodeID>, const Constraint*> closures;
+    for (const auto& lc : closures_)
+        closures.emplace(std::make_pair(lc.from, lc.to), &lc.constraint);
     for (const auto& [ends, jacobian] : wheels_.edges) {
         const Eigen::Vector3d d = jacobian * wheels_.scale;
         const auto range = graph.edges.equal_range(ends);
+        const auto sameEnds = closures.equal_range(ends);
         for (auto it = range.first; it != range.second; ++it) {
             auto& m = it->second.mean;
-            const bool closure = std::any_of(closures_.begin(), closures_.end(), [&](const auto& lc) {
-                return lc.from == ends.first && lc.to == ends.second && lc.constraint.mean == m;
-            });
-            if (closure) continue;  // (as the solves: a closure is not the wheels')
+            if (std::any_of(sameEnds.first, sameEnds.second,
+                            [&](const auto& c) { return c.second->mean == m; }))
+                continue;
             m = mrpt::poses::CPose3D(m.x() + d.x(), m.y() + d.y(), m.z(), m.yaw() + d.z(),
                                      m.pitch(), m.roll());
         }

@@ -240,7 +240,7 @@ bool FusedOdometryNRD::registerPending() {
         if (restart) {
             rec.liftTime = restart_lift_;
             rec.putDownTime = restart_down_;
-        } else {
+        } else if (!since_node_scale_.isZero()) {  // (none where no wheel moved it)
             rec.wheelScale = since_node_scale_;
         }
         nodes_->add(id, std::move(rec));

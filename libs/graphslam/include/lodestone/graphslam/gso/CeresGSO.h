@@ -31,7 +31,7 @@ class CeresGSO : public GraphOptimizer {
          * and the last solve stay in the frame loop. */
         int backgroundMergeNodes{0};
         /** Prior sigma of each wheel's scale error [fraction]; 0: not estimated. */
-        double wheelScaleSigma{0};
+        double wheelScaleSigma{0.01};
     };
 
     CeresGSO();
