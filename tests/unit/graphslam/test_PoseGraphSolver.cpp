@@ -227,7 +227,7 @@ TEST(PoseGraphSolver, MeasuredUpsLevelAChainWhoseEdgesTilt) {
 }
 
 TEST(PoseGraphSolver, WheelScalesAreEstimatedAndTheirArcTakenOutOfALoop) {
-    // Right wheel 0.3 % short of the left: 1.5 deg of heading per metre, the same every lap.
+    // The wheels 0.3 % apart in scale: 0.75 deg of heading per metre, the same every lap.
     const Eigen::Vector2d scale(0.002, -0.001);
     for (const bool planar : {true, false}) {
         SCOPED_TRACE(planar ? "planar" : "se3");
