@@ -1,5 +1,6 @@
 #include <lodestone/config/IniSection.h>
 #include <lodestone/odometry/DiffDriveOdometry.h>
+#include <mrpt/poses/CPosePDF.h>
 
 #include <Eigen/Core>
 #include <cmath>
@@ -72,13 +73,10 @@ Eigen::Matrix<double, 3, 2> DiffDriveOdometry::scaleJacobian(double dl, double d
 Eigen::Matrix<double, 3, 2> DiffDriveOdometry::composeScaleJacobian(
     const mrpt::poses::CPose2D& before, const Eigen::Matrix<double, 3, 2>& beforeJacobian,
     const mrpt::poses::CPose2D& step, const Eigen::Matrix<double, 3, 2>& stepJacobian) {
-    const double c = std::cos(before.phi()), s = std::sin(before.phi());
-    Eigen::Matrix3d A = Eigen::Matrix3d::Identity();  // d(before + step) / d(before)
-    A(0, 2) = -s * step.x() - c * step.y();
-    A(1, 2) = c * step.x() - s * step.y();
-    Eigen::Matrix3d B = Eigen::Matrix3d::Identity();  // ... / d(step)
-    B.topLeftCorner<2, 2>() << c, -s, s, c;
-    return A * beforeJacobian + B * stepJacobian;
+    // d(before + step) / d(before) and / d(step): MRPT's Jacobians of the composition.
+    mrpt::math::CMatrixDouble33 A, B;
+    mrpt::poses::CPosePDF::jacobiansPoseComposition(before, step, A, B);
+    return A.asEigen() * beforeJacobian + B.asEigen() * stepJacobian;
 }
 
 DiffDriveOdometry::Increment DiffDriveOdometry::addTravel(double leftTravel, double rightTravel) {
