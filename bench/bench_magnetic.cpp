@@ -2,12 +2,12 @@
 //   bench_magnetic recordings DATA_DIR OUT_DIR [SEEDS [INI [ONLY]]]   Aalto trials 1-9 and Kok's
 //   walks:
 //       each imported with the drift model for seeds 1..SEEDS, run through lodestone-slam's code
-//       path with odometry_only.ini and magnetic_only.ini; median ATEs, closures, and how far
+//       path with odometry_only.ini and magnetic_gp.ini; median ATEs, closures, and how far
 //       the accepted closures are from the ground truth, and how much of each path comes back
 //       near an earlier pass (same direction / reversed / crossing) - what any loop closer
 //       has to work with; then a synthetic long walk (two laps of 120 m, the first revisit
 //       after 120 m: the situation of long real walks). INI (a config_ini/ name, or a path)
-//       replaces magnetic_only.ini; ONLY keeps the recordings whose name contains it.
+//       replaces magnetic_gp.ini; ONLY keeps the recordings whose name contains it.
 //   bench_magnetic timing                                 time per new supernode (KD-tree
 //       search + costs + bundle + GP alignment) with 1 000 and 10 000 supernodes stored, and
 //       of one field-map search.
@@ -311,7 +311,7 @@ int timing() {
 
 /** The ERD's own time per new supernode (search + matching + alignment, as report.json's
  * query_ms) on a walk long enough to store 10 000 supernodes: 21 laps of the long walk's
- * rectangle (2 530 m), through lodestone-slam's code path with magnetic_only.ini. */
+ * rectangle (2 530 m), through lodestone-slam's code path with magnetic_gp.ini. */
 int timingRun(const std::string& out, const std::string& magneticIni) {
     registerAllClasses();
     datasets::OdometryDriftModel model;
@@ -353,10 +353,10 @@ int main(int argc, char** argv) {
     const std::string mode = argc > 1 ? argv[1] : "";
     if (mode == "recordings" && argc >= 4) {
         return recordings(argv[2], argv[3], argc > 4 ? std::atoi(argv[4]) : 5,
-                          argc > 5 ? argv[5] : "magnetic_only.ini", argc > 6 ? argv[6] : "");
+                          argc > 5 ? argv[5] : "magnetic_gp.ini", argc > 6 ? argv[6] : "");
     }
     if (mode == "timing") return timing();
-    if (mode == "timing-run" && argc >= 3) return timingRun(argv[2], argc > 3 ? argv[3] : "magnetic_only.ini");
+    if (mode == "timing-run" && argc >= 3) return timingRun(argv[2], argc > 3 ? argv[3] : "magnetic_gp.ini");
     std::cerr << "usage: bench_magnetic recordings DATA_DIR OUT_DIR [SEEDS] | timing | timing-run OUT_DIR [INI]\n";
     return 2;
 }

@@ -7,23 +7,23 @@
 // (eval::evaluateClosures: 2 m revisit passes, a pass found when a closure placing its later node
 // within 0.5 m of the truth ends in it), passes counted apart by direction. Table 1, a row per
 // recording and INI: passes found over all seeds, the worst seed's recall each way, precision,
-// wrong closures (> 0.5 m), ATE median / worst, real-time factor. Table 2, for deciders that
-// report a truth funnel (MagneticWindowERD): every pass missed, by the furthest stage its true
-// place reached in any query inside it; how often the truth lay inside the position gate.
+// wrong closures (> 0.5 m), ATE median / worst, real-time factor. Table 2, a row per closer
+// with a truth funnel (both magnetic ones): every pass it missed, by the furthest stage its
+// true place reached in any query inside it; how often the truth lay inside its position gate.
 // --drift-scale F scales the drift model's heading bias and noise (0: odometry without error,
 // so what is left of the ATE is what the closures themselves do to the reference trajectory).
-#include <lodestone/outputs/ClosureTable.h>
-#include <lodestone/outputs/RunFiles.h>
+#include <lodestone/datasets/MagneticRecordingImport.h>
 #include <lodestone/eval/ClosureEval.h>
 #include <lodestone/eval/ClosureFunnel.h>
-#include <lodestone/datasets/MagneticRecordingImport.h>
 #include <lodestone/io/TumTrajectory.h>
 #include <lodestone/obs/registerAllClasses.h>
+#include <lodestone/outputs/ClosureTable.h>
+#include <lodestone/outputs/RunFiles.h>
 #include <lodestone/slamapp/SlamRun.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -52,9 +52,14 @@ struct Row {
     std::size_t passes[2]{0, 0}, found[2]{0, 0}, right{0}, judged{0}, wrong{0}, closures{0};
     double worst[2]{INFINITY, INFINITY};  // the worst seed's recall, each direction
     std::vector<double> ate, realtime;
-    bool funnel{false};
-    eval::ClosureFunnel missed;      // over all seeds: passes missed by furthest stage
-    std::vector<double> insideGate;  // per seed: share of true places inside the gate
+    /** Each closer's funnel over all seeds: the passes it missed by furthest stage, and per
+     * seed the share of true places inside its gate (a closer beside another may miss a pass
+     * the other found). */
+    struct Funnel {
+        eval::ClosureFunnel missed;
+        std::vector<double> insideGate;
+    };
+    std::map<std::string, Funnel> funnels;  // by decider
 };
 
 /** One seed's run judged into `row`; false (with the message on stderr) if it failed. */
@@ -62,8 +67,9 @@ bool judgeRun(const slamapp::SlamRunOptions& o, Row& row) {
     const auto truth = io::readTumTrajectory(o.groundTruth);
     const auto nodes = io::readTumTrajectory(o.outDir + "/trajectory.tum");
     const auto passes = eval::revisitPasses(nodes, truth);
-    const auto qs =
-        eval::evaluateClosures(outputs::readClosureTable(outputs::pathIn(o.outDir, outputs::RunFile::Closures)), nodes, truth);
+    const auto qs = eval::evaluateClosures(
+        outputs::readClosureTable(outputs::pathIn(o.outDir, outputs::RunFile::Closures)), nodes,
+        truth);
     std::vector<bool> found(passes.size(), false);
     for (const auto& q : qs) {
         row.closures += q.proposals;
@@ -78,15 +84,13 @@ bool judgeRun(const slamapp::SlamRunOptions& o, Row& row) {
         ++all[d];
         hit[d] += found[p];
     }
-    // The closer's recall funnel (the first in report.json: these runs have one closer).
-    const auto funnels = eval::readClosureFunnels(o.outDir + "/report.json", passes, qs);
-    if (!funnels.empty()) {
-        const auto& f = funnels.front();
-        row.funnel = true;
-        row.missed.stageNames = f.stageNames;
-        row.insideGate.push_back(f.truthInsideGate);
+    for (const auto& f : eval::readClosureFunnels(o.outDir + "/report.json", passes, qs)) {
+        auto& mine = row.funnels[f.decider];
+        mine.missed.stageNames = f.stageNames;
+        mine.insideGate.push_back(f.truthInsideGate);
         for (int d = 0; d < 2; ++d)
-            for (const auto& [stage, count] : f.missedBy[d]) row.missed.missedBy[d][stage] += count;
+            for (const auto& [stage, count] : f.missedBy[d])
+                mine.missed.missedBy[d][stage] += count;
     }
     for (int d = 0; d < 2; ++d) {
         row.passes[d] += all[d];
@@ -141,7 +145,8 @@ int main(int argc, char** argv) {
             for (int seed = 1; seed <= seeds; ++seed) {
                 std::string stem = rec.name + "_s" + std::to_string(seed);
                 std::replace(stem.begin(), stem.end(), ' ', '_');
-                const auto imported = importSeed(recording, out + "/" + stem + ".rawlog", seed, driftScale);
+                const auto imported =
+                    importSeed(recording, out + "/" + stem + ".rawlog", seed, driftScale);
                 const auto run = runImported(imported, ini, out + "/" + stem + "_run");
                 if (!run.ok()) {
                     std::cerr << rec.name << " " << ini << ": " << run.errors;
@@ -164,23 +169,24 @@ int main(int argc, char** argv) {
         }
     }
     std::printf(
-        "\nPasses missed, by the furthest stage their true place reached in the decider "
+        "\nPasses each closer missed, by the furthest stage their true place reached in it "
         "(same / opposite direction, all seeds; stages with none left out):\n\n"
-        "| recording | INI | passes missed, by stage | truth inside the gate: mean / worst "
-        "seed |\n|---|---|---|---|\n");
-    for (const auto& [name, row] : rows) {
-        if (!row.funnel) continue;
-        std::printf("| %s | %s |", name.c_str(), eval::missedByStage(row.missed).c_str());
-        double sum = 0, worst = INFINITY;
-        std::size_t n = 0;
-        for (double v : row.insideGate) {
-            if (!std::isfinite(v)) continue;
-            sum += v;
-            worst = std::min(worst, v);
-            ++n;
+        "| recording | INI | closer | passes missed, by stage | truth inside the gate: mean / "
+        "worst seed |\n|---|---|---|---|---|\n");
+    for (const auto& [name, row] : rows)
+        for (const auto& [decider, funnel] : row.funnels) {
+            std::printf("| %s | %s | %s |", name.c_str(), decider.c_str(),
+                        eval::missedByStage(funnel.missed).c_str());
+            double sum = 0, worst = INFINITY;
+            std::size_t n = 0;
+            for (double v : funnel.insideGate) {
+                if (!std::isfinite(v)) continue;
+                sum += v;
+                worst = std::min(worst, v);
+                ++n;
+            }
+            std::printf(" %s / %s |\n", n ? worstOf(sum / double(n)).c_str() : "-",
+                        worstOf(worst).c_str());
         }
-        std::printf(" %s / %s |\n", n ? worstOf(sum / double(n)).c_str() : "-",
-                    worstOf(worst).c_str());
-    }
     return 0;
 }

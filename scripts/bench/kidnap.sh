@@ -20,7 +20,7 @@
 #   --jobs J         runs at once (each pinned to a core of its own when taskset exists)
 #   --no-wheel-drop  no wheel-drop sensor: the kidnap detectors of [kidnap_detection] instead
 #   --config INI     the SLAM configuration (default config_ini/slam/slam.ini; scripts/bench/
-#                    window_inis.sh writes slam.ini with the window closer, or both closers)
+#                    window_inis.sh writes slam.ini with one magnetic closer, either)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 qvga=0 variants=0 jobs=1 nowheel=0 config="$root/config_ini/slam/slam.ini"

@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# Magnetic loop closure benchmarks (MagneticGpERD, config_ini/slam/magnetic_only.ini), printed as
+# Magnetic loop closure benchmarks (MagneticGpERD, config_ini/slam/magnetic_gp.ini), printed as
 # markdown tables:
 #   1. Aalto invensense trials 1-9 and Kok & Solin's walks, read in place from
 #      ../shared/data/magnetic, each imported with the drift model for seeds 1..N (10) and run through
-#      lodestone-slam's code path with odometry_only.ini and magnetic_only.ini: median ATEs,
+#      lodestone-slam's code path with odometry_only.ini and magnetic_gp.ini: median ATEs,
 #      closures and their errors against the ground truth, and how much of each path comes back
 #      near an earlier pass; then Kok's walks with the plane alignment, the vector field feature,
 #      and the pre-fit hyperparameters instead; then every recording with the field map on;
@@ -26,17 +26,17 @@ if [ -d "$data" ]; then
     # (the optimizer logs its rejections on stdout: kept out of the table)
     "${pin[@]}" "$bin/bench_magnetic" recordings "$data" "$out" "$seeds" 2> /dev/null | grep -v "^\["
     echo
-    # One key or more changed in magnetic_only.ini: "key=value ..." [ONLY]
+    # One key or more changed in magnetic_gp.ini: "key=value ..." [ONLY]
     variant() {
         local ini="$out/variant.ini"
-        cp "$root/config_ini/slam/magnetic_only.ini" "$ini"
+        cp "$root/config_ini/slam/magnetic_gp.ini" "$ini"
         for kv in $1; do sed -i "s|^${kv%%=*} *=[^;]*|${kv%%=*} = ${kv#*=} |" "$ini"; done
         echo "$1:"
         echo
         "${pin[@]}" "$bin/bench_magnetic" recordings "$data" "$out" "$seeds" "$ini" "${2:-}" 2> /dev/null | grep -v "^\["
         echo
     }
-    echo "#### Kok walks: the alignment and the field feature compared (magnetic_only.ini with one key changed)"
+    echo "#### Kok walks: the alignment and the field feature compared (magnetic_gp.ini with one key changed)"
     echo
     for v in "alignment=plane" "field_mode=vector" "gp_sigma_f=4.0 gp_length_scale=0.3 gp_sigma_n=0.5"; do
         variant "$v" kok
@@ -51,6 +51,6 @@ echo "#### Time per new supernode (synthetic field, one core)"
 echo
 "${pin[@]}" "$bin/bench_magnetic" timing
 echo
-echo "#### The ERD's own time per new supernode over a 2 530 m walk (magnetic_only.ini; one core)"
+echo "#### The ERD's own time per new supernode over a 2 530 m walk (magnetic_gp.ini; one core)"
 echo
 "${pin[@]}" "$bin/bench_magnetic" timing-run "$out" 2> /dev/null | grep -v "^\["

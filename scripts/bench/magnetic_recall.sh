@@ -6,15 +6,15 @@
 # the drift model for seeds 1..N and run with each INI; a markdown table, a row per recording
 # and INI (bench/bench_magnetic_recall.cpp says what each column counts).
 # Usage: scripts/bench/magnetic_recall.sh [SEEDS] [INI ...]   (SIM_SEEDS=N: corridor_shuttle seeds, 3; 0: none)
-#   (default: 10 seeds; magnetic_only.ini, the sequence matcher with GP correction, against
-#   magnetic_window.ini, the window method; a few minutes)
+#   (default: 10 seeds; magnetic_gp.ini, the sequence matcher with GP correction, against
+#   magnetic_window.ini, the window method, and magnetic_only.ini, both; about ten minutes)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 "$root/scripts/build.sh" > /dev/null
 seeds=${1:-10}
 shift || true
 inis=("$@")
-[ ${#inis[@]} -gt 0 ] || inis=(magnetic_only.ini magnetic_window.ini)
+[ ${#inis[@]} -gt 0 ] || inis=(magnetic_gp.ini magnetic_window.ini magnetic_only.ini)
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 pin=()
@@ -25,8 +25,8 @@ command -v taskset > /dev/null && pin=(taskset -c 0)
 
 # A simulated robot (two magnetometers 0.12 m either side of its centre line, wheels, RGB-D at
 # 320x240 / 15 Hz) driving corridor_shuttle.ini's plain corridor back and forth, each seed
-# simulated to disk and run with slam.ini (its magnetic closer: MagneticGpERD), with slam.ini's
-# magnetic closer replaced by MagneticWindowERD (magnetic_window.ini's section), and with both;
+# simulated to disk and run with slam.ini's magnetic closers one at a time (MagneticGpERD, then
+# MagneticWindowERD: scripts/bench/window_inis.sh) and with slam.ini itself (both);
 # lodestone-eval closures counts the passes by direction.
 sim_seeds=${SIM_SEEDS:-3}
 [ "$sim_seeds" -gt 0 ] || exit 0
@@ -42,7 +42,7 @@ echo "|---|---|---|---|---|---|"
 for seed in $(seq 1 "$sim_seeds"); do
     "$sim" -c "$root/config_ini/scenarios/corridor_shuttle.ini" --camera 320x240@15 -s "$seed" \
         -o "$out/shuttle_$seed.rawlog" > /dev/null
-    for ini in "$root/config_ini/slam/slam.ini" "$out/slam_window.ini" "$out/slam_both.ini"; do
+    for ini in "$out/slam_gp.ini" "$out/slam_window.ini" "$root/config_ini/slam/slam.ini"; do
         name=$(basename "$ini")
         run="$out/shuttle_${seed}_$name"
         ate=$("$slam" --rawlog "$out/shuttle_$seed.rawlog" --ground-truth "$out/shuttle_$seed.gt.tum" \

@@ -6,8 +6,8 @@
 # run's nodes in the map's frame (no re-alignment), how far the map's nodes moved. One table
 # per SLAM INI; then a map extended through a room it never saw, and localized in there.
 # Usage: scripts/bench/maps.sh [SCENARIO.ini] [SLAM.ini ...]
-#   (default: paper_loop.ini at 320x240 / 15 Hz with slam.ini, and slam.ini with both magnetic
-#    closers (scripts/bench/window_inis.sh): a few minutes each)
+#   (default: paper_loop.ini at 320x240 / 15 Hz with slam.ini, and slam.ini with the GP
+#    magnetic closer alone (scripts/bench/window_inis.sh): a few minutes each)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 "$root/scripts/build.sh" > /dev/null
@@ -18,7 +18,7 @@ trap 'rm -rf "$out"' EXIT
 inis=("$@")
 if [ ${#inis[@]} -eq 0 ]; then
     "$root/scripts/bench/window_inis.sh" "$out" > /dev/null
-    inis=("$root/config_ini/slam/slam.ini" "$out/slam_both.ini")
+    inis=("$root/config_ini/slam/slam.ini" "$out/slam_gp.ini")
 fi
 for ini in "${inis[@]}"; do
     echo

@@ -1,26 +1,20 @@
 #!/usr/bin/env bash
-# Writes two variants of config_ini/slam/slam.ini into DIR for the magnetic benches:
-#   slam_window.ini - its magnetic closer (MagneticGpERD) replaced by MagneticWindowERD with
-#                     magnetic_window.ini's [MagneticWindowERD] section;
-#   slam_both.ini   - both closers side by side.
+# Writes the variants of config_ini/slam/slam.ini with one magnetic loop closer into DIR, for the
+# benches that compare the closers (slam.ini itself runs both):
+#   slam_gp.ini     - the GP sequence matcher alone (MagneticGpERD; slam.ini before 2026-11-26);
+#   slam_window.ini - the window method alone (MagneticWindowERD).
 # Usage: scripts/bench/window_inis.sh DIR
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 dir=${1:?usage: window_inis.sh DIR}
 mkdir -p "$dir"
-section="$dir/window_section.ini"
-awk '/^\[MagneticWindowERD\]/{on=1} /^\[/{if(!/^\[MagneticWindowERD\]/)on=0} on' \
-    "$root/config_ini/slam/magnetic_window.ini" > "$section"
-grep -q '^\[MagneticWindowERD\]' "$section" ||
-    { echo "window_inis.sh: magnetic_window.ini has no [MagneticWindowERD] section" >&2; exit 1; }
-children='^children = OrbSubmapERD MagneticGpERD '
+children='^children = OrbSubmapERD MagneticGpERD MagneticWindowERD '
 grep -q "$children" "$root/config_ini/slam/slam.ini" ||
     { echo "window_inis.sh: slam.ini's [CompositeERD] children line changed" >&2; exit 1; }
-sed "s/$children/children = OrbSubmapERD MagneticWindowERD /" "$root/config_ini/slam/slam.ini" |
-    awk -v sec="$section" '
-    /^\[MagneticGpERD\]/{skip=1; while ((getline line < sec) > 0) print line; next}
-    /^\[/{skip=0} !skip' > "$dir/slam_window.ini"
-sed "s/$children/children = OrbSubmapERD MagneticGpERD MagneticWindowERD /" \
-    "$root/config_ini/slam/slam.ini" | awk -v sec="$section" '
-    /^\[CeresGSO\]/{while ((getline line < sec) > 0) print line}
-    {print}' > "$dir/slam_both.ini"
+# without CLOSER: its name off the children line, its section left out
+without() {
+    sed "s/$children/children = OrbSubmapERD $2 /" "$root/config_ini/slam/slam.ini" |
+        awk -v drop="[$1]" '/^\[/{skip = ($0 == drop)} !skip'
+}
+without MagneticWindowERD MagneticGpERD > "$dir/slam_gp.ini"
+without MagneticGpERD MagneticWindowERD > "$dir/slam_window.ini"

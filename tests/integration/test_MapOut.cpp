@@ -257,7 +257,7 @@ TEST(MapIn, AForeignOrDamagedMapIsRefusedBeforeAnyWork) {
                                           dir.file("first") + " --map-out " + dir.file("map"))
                   .exitCode,
               0);
-    // Made with the window closer; this INI hosts the GP matcher.
+    // Made with the window closer alone; this INI hosts the GP matcher beside it.
     const std::string gp = std::string(LODESTONE_CONFIG_INI_DIR) + "/slam/magnetic_only.ini";
     const auto foreign = lodestone::test::runCommand(kSlam + rawlog + " --config " + gp +
                                                      " --out " + dir.file("gp") + " --map-in " +

@@ -50,7 +50,7 @@ TEST(DeciderRegistry, ShippedConfigsLoadAndMatchTheDefaults) {
     // (one source of truth, a test to keep it).
     const std::vector<std::pair<std::string, std::vector<std::string>>> shipped = {
         {"odometry_only.ini", {}},
-        {"slam.ini", {"OrbSubmapERD", "MagneticGpERD"}},
+        {"slam.ini", {"OrbSubmapERD", "MagneticGpERD", "MagneticWindowERD"}},
         {"visual_only.ini", {"OrbSubmapERD"}}};
     const auto& reg = DeciderRegistry::instance();
     for (const auto& [name, children] : shipped) {

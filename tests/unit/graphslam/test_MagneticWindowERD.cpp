@@ -144,6 +144,28 @@ TEST(MagneticWindowERD, APassBesideIsWeighedByItsDistance) {
     EXPECT_EQ(beside(0.7, "pass_displacement = false\n").stats.edges, 0u);
 }
 
+TEST(MagneticWindowERD, ASecondLapIsPlacedBetweenTheFirstLapsSamples) {
+    // A loop of 46.02 m: the second lap's readings are resampled on a grid 0.02 m (0.4 of
+    // resample_step) off the first's. Placed at the best sample alone, every closure along the
+    // straight would carry that same fraction of a step; placed at the fit's minimum between
+    // samples, none does.
+    const FloorField field(16);
+    const auto w = walk({{0, 0}, {20, 0}, {20, 3.01}, {0, 3.01}, {0, 0}, {20, 0}}, field);
+    double sum = 0;
+    std::size_t n = 0;
+    for (const auto& p : w.engine->proposals()) {
+        const auto& c = p.closure;
+        const auto& m = c.constraint.mean;
+        const auto implied = w.truth[c.from] + mrpt::poses::CPose2D(m.x(), m.y(), m.yaw());
+        const auto& to = w.truth[c.to];
+        if (std::abs(to.phi()) > 0.1 || to.x() < 3 || to.x() > 19) continue;  // the straight
+        sum += (implied.x() - to.x()) * std::cos(to.phi());                   // along it
+        ++n;
+    }
+    ASSERT_GT(n, 10u);
+    EXPECT_LT(std::abs(sum / double(n)), 0.008) << n << " closures";
+}
+
 TEST(MagneticWindowERD, ConfirmedClosuresWaitForASecondIndependentWindow) {
     const FloorField field(11);
     const auto now = walk({{0, 0}, {20, 0}, {0, 0}}, field);

@@ -231,7 +231,11 @@ void MagneticWindowERD::query(std::size_t first) {
     const double dof = 3.0 * double(n_);
     Outcome out;
     const double excitation = magnetic::windowExcitation(samples, first, n_, params_.noise.sigma);
-    out.flat = excitation < magnetic::chiSquareQuantile(dof - 3, params_.quantile);
+    // Flat in either frame is flat: in the robot's the earth's field turns with every turn of
+    // the carrier - heading, not place: a rectangle's corners in an even field all look alike.
+    // (The map frame's own artefact, the graph's heading through a corner, only adds.)
+    out.flat = std::min(excitation, mapFrameExcitation(first)) <
+               magnetic::chiSquareQuantile(dof - 3, params_.quantile);
     std::vector<Candidate> candidates;
     if (out.flat) {
         ++stats_.flat;  // a flat field matches anywhere
@@ -370,6 +374,33 @@ double MagneticWindowERD::fineAmplitude(std::size_t first) const {
         robot[k] = queried().samples()[first + k].value.head<3>().cast<double>();
     const double d2 = std::min(meanSquareStep(robot), meanSquareStep(mapFrameWindow(first)));
     return std::sqrt(std::max(d2 / (2 * -std::expm1(-0.5 * h * h)), 1e-6));
+}
+
+double MagneticWindowERD::mapFrameExcitation(std::size_t first) const {
+    // A sample's heading is interpolated over its node's interval, but its readings may lie in
+    // the interval before (a bin is closed by the first reading past it): where the carrier
+    // turned by dpsi over the two, the heading is known to dpsi / sqrt(12) (uniform), and the
+    // horizontal field's direction no better - a turn's readings weigh less, not more.
+    const auto b = mapFrameWindow(first);
+    const auto& samples = queried().samples();
+    const double n2 = params_.noise.sigma * params_.noise.sigma;
+    std::vector<double> variance(n_);
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    double weights = 0;
+    for (std::size_t k = 0; k < n_; ++k) {
+        const auto node = static_cast<TNodeID>(samples[first + k].node);
+        TNodeID from = node;  // the interval's start: up to two nodes back, in its segment
+        while (from + 2 > node && from > 0 && path_.segment[from - 1] == path_.segment[node])
+            --from;
+        const double turn = std::remainder(poses_[node]->yaw() - poses_[from]->yaw(), 2 * M_PI);
+        variance[k] = n2 + b[k].head<2>().squaredNorm() * turn * turn / 12;
+        mean += b[k] / variance[k];
+        weights += 1 / variance[k];
+    }
+    mean /= weights;
+    double sum = 0;
+    for (std::size_t k = 0; k < n_; ++k) sum += (b[k] - mean).squaredNorm() / variance[k];
+    return sum;
 }
 
 double MagneticWindowERD::mapFrameSpread(std::size_t first) const {

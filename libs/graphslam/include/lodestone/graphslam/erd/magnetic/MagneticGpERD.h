@@ -76,7 +76,7 @@ class MagneticGpERD : public EdgeDecider {
          * edges stay loose); plane: then moved in the plane against a 2-D GP of every earlier
          * pass the bundles found there (PlanarAlignment), which also corrects across and pins
          * the heading - what a relocation needs; measured, its sideways correction is also
-         * wrong too often on walks beside earlier passes, so magnetic_only.ini uses path
+         * wrong too often on walks beside earlier passes, so the magnetic-only INIs use path
          * (README: the magnetic results). */
         enum class Alignment { Path, Plane } alignment{Alignment::Plane};
         magnetic::PlanarAlignmentParams plane;

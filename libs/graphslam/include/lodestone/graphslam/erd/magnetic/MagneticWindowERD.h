@@ -207,6 +207,10 @@ class MagneticWindowERD : public EdgeDecider {
      * heading there): the field's own variation over the window, without the turning of the
      * robot-frame components that a turn in a uniform field shows. */
     double mapFrameSpread(std::size_t first) const;
+    /** The query window's excitation in the map's frame (squared deviations from its mean over
+     * the reading noise and the heading's interpolation within a node interval), as
+     * magnetic::windowExcitation in the robot's. */
+    double mapFrameExcitation(std::size_t first) const;
     /** A stored reading a query at `queryTravel` may be compared with: min_travel_gap behind
      * it, or a loaded map's. */
     bool leftBehind(const magnetic::TrackSample& stored, double queryTravel) const;
