@@ -233,7 +233,7 @@ void MagneticWindowERD::query(std::size_t first) {
     const double excitation = magnetic::windowExcitation(samples, first, n_, params_.noise.sigma);
     // Flat in either frame is flat: in the robot's the earth's field turns with every turn of
     // the carrier - heading, not place: a rectangle's corners in an even field all look alike.
-    // (The map frame's own artefact, the graph's heading through a corner, only adds.)
+    // (The map frame's own artefact, the graph's heading through a turn, is weighed down.)
     out.flat = std::min(excitation, mapFrameExcitation(first)) <
                magnetic::chiSquareQuantile(dof - 3, params_.quantile);
     std::vector<Candidate> candidates;
