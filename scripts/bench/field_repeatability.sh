@@ -21,4 +21,4 @@ echo
 echo "#### The closures alone: odometry without error (--drift-scale 0)"
 echo
 "$root/build/bench/bench_magnetic_recall" "$data" "$out" 1 magnetic_gp.ini magnetic_window.ini \
-    --only kok --drift-scale 0 2> /dev/null | grep -v "^\[" | sed '/^Passes missed/,$d'
+    --only kok --drift-scale 0 2> /dev/null | grep -v "^\[" | sed '/^Passes each closer missed/,$d'
