@@ -166,6 +166,29 @@ TEST(MagneticWindowERD, ASecondLapIsPlacedBetweenTheFirstLapsSamples) {
     EXPECT_LT(std::abs(sum / double(n)), 0.008) << n << " closures";
 }
 
+TEST(MagneticWindowERD, AnInsetLapIsPlacedWithinReachThroughItsCorners) {
+    // A rectangle, then a lap 0.3 m inside it. Round a corner the inner lap is shorter by
+    // twice that: a window whose newest reading has just turned is placed off along the path by
+    // the distance times the turn since the window's middle (0.47 m at 0.3 m and 90 deg), on
+    // top of the 0.3 m across. Such a window is either judged near enough or left open.
+    const FloorField field(17);
+    const double d = 0.3;
+    const auto w = walk({{0, 0},
+                         {20, 0},
+                         {20, 5},
+                         {0, 5},
+                         {0, 0},
+                         {d, d},
+                         {20 - d, d},
+                         {20 - d, 5 - d},
+                         {d, 5 - d},
+                         {d, d}},
+                        field);
+    const auto e = errors(w);
+    EXPECT_GT(e.size(), 10u);
+    for (const auto& c : e) EXPECT_LT(c.position, 0.5);
+}
+
 TEST(MagneticWindowERD, ConfirmedClosuresWaitForASecondIndependentWindow) {
     const FloorField field(11);
     const auto now = walk({{0, 0}, {20, 0}, {0, 0}}, field);
