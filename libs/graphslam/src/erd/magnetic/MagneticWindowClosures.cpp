@@ -46,16 +46,16 @@ std::optional<MagneticWindowERD::Closure> MagneticWindowERD::measureClosure(
         // Two passes beside each other place the robot off along the path too, in proportion
         // to their distance (which the closure does not estimate: its across sigma stays the
         // platform's sigma_cross - the field's own posterior of the distance, about 0.03 m,
-        // held 0.13-0.24 m RMS of across error on Kok's walks; README). The fit aligns the
-        // windows' middles; beyond a turn the passes' paths differ in length by the distance
-        // times the turn, so the query node is off along by the distance times the turn from
-        // the query window's middle to it (nearRadius). Anywhere, the stretch that best aligns
-        // two lines of an isotropic field moves by the distance times the ratio of its cross- to
-        // along-path gradients summed over the window: to first order of variance (sum of the
-        // kernel's correlations) / (3 n) per unit distance squared.
-        const double turn =
-            std::remainder(poses_[qNode]->yaw() - yawAtSample(queried(), first + n_ / 2), 2 * M_PI);
-        sigmaAlong2 += sigmaCross2 * (turn * turn + correlated_samples_ / (3.0 * double(n_)));
+        // held 0.13-0.24 m RMS of across error on Kok's walks; README). In a turn the arcs differ
+        // in length by the distance times the turn, and the fit, aligning the windows' middles, is
+        // off by half of that (nearRadius). Anywhere, the stretch that best aligns two lines of an
+        // isotropic field moves by the distance times the ratio of its cross- to along-path
+        // gradients summed over the window: to first order of variance (sum of the kernel's
+        // correlations) / (3 n) per unit distance squared.
+        const std::size_t start =
+            best.direction == WindowDirection::Forward ? best.sample + 1 - n_ : best.sample;
+        const double turn = windowTurn(*best.track, start);
+        sigmaAlong2 += sigmaCross2 * (turn * turn / 4 + correlated_samples_ / (3.0 * double(n_)));
     }
     // The query node's place on the target's path: its travel past the newest reading, the
     // same way along (forward) or back (backward).

@@ -423,15 +423,15 @@ double MagneticWindowERD::logPriorNormalizer(const std::vector<Candidate>& all) 
     return logZ;
 }
 
-double MagneticWindowERD::turnToNewest(const magnetic::SupernodeTrack& track, std::size_t start,
-                                       WindowDirection direction) const {
-    const std::size_t newest = direction == WindowDirection::Forward ? start + n_ - 1 : start;
-    return std::remainder(yawAtSample(track, newest) - yawAtSample(track, start + n_ / 2),
-                          2 * M_PI);
+double MagneticWindowERD::windowTurn(const magnetic::SupernodeTrack& track,
+                                     std::size_t start) const {
+    const auto& samples = track.samples();
+    return std::remainder(
+        poses_[samples[start + n_ - 1].node]->yaw() - poses_[samples[start].node]->yaw(), 2 * M_PI);
 }
 
 double MagneticWindowERD::nearRadius(double turn) const {
-    return params_.distinctRadius / std::sqrt(1 + turn * turn);
+    return params_.distinctRadius / std::sqrt(1 + turn * turn / 4);
 }
 
 Eigen::MatrixX3d MagneticWindowERD::residuals(const Candidate& k, std::size_t first) const {
@@ -469,9 +469,8 @@ void MagneticWindowERD::weighDisplaced(std::vector<Candidate>& all, std::size_t 
         if (k.fitStat > hopeless) continue;
         const std::size_t start =
             k.direction == WindowDirection::Forward ? k.sample + 1 - n_ : k.sample;
-        const auto e =
-            model.evidenceProjected(projectedResiduals(k, start, queryProjected),
-                                    nearRadius(turnToNewest(*k.track, start, k.direction)));
+        const auto e = model.evidenceProjected(projectedResiduals(k, start, queryProjected),
+                                               nearRadius(windowTurn(*k.track, start)));
         const double prior = -0.5 * (k.gate2 + k.fit.turnPriorChi2) - logZ;
         k.logWeight = e.logNear + prior;
         k.logFar = e.logFar + prior;

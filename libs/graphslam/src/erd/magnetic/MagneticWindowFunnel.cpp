@@ -76,7 +76,7 @@ std::optional<std::size_t> MagneticWindowERD::diagnose(std::size_t first, const 
                         ? out.displacement
                               ->evidence(magnetic::windowResiduals(samples, first, stored, start,
                                                                    n_, direction, fit),
-                                         nearRadius(turnToNewest(track, start, direction)))
+                                         nearRadius(windowTurn(track, start)))
                               .chi2AtRadius
                         : fit.chi2;
     }

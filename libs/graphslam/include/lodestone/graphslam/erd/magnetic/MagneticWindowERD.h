@@ -225,15 +225,11 @@ class MagneticWindowERD : public EdgeDecider {
     /** With pass_displacement: every candidate's weight near and far, its total and fitStat. */
     void weighDisplaced(std::vector<Candidate>& all, std::size_t first,
                         const magnetic::WindowDisplacementModel& model) const;
-    /** [rad] how far the robot turned between the middle of a window of `track` from `start`
-     * and the reading matched with the query's newest - its last (forward) or first (backward)
-     * - by the graph's heading at the samples. */
-    double turnToNewest(const magnetic::SupernodeTrack& track, std::size_t start,
-                        magnetic::WindowDirection direction) const;
-    /** The passes' distance that places the robot within distinct_radius: the fit aligns the
-     * windows' middles, and beyond a turn a pass beside the earlier one has travelled a path of
-     * another length by the distance times the turn - so the newest reading lies off along the
-     * path by the distance times `turn` (turnToNewest), and across by the distance. */
+    /** [rad] how far the robot turned over a window of `track` from `start` (graph poses). */
+    double windowTurn(const magnetic::SupernodeTrack& track, std::size_t start) const;
+    /** The passes' distance that places the robot within distinct_radius: in a turn `turn` the
+     * passes' arcs differ in length by the distance times the turn, and the fit, aligning the
+     * windows' middles, places the newest reading off along the path by half of that. */
     double nearRadius(double turn) const;
     /** A window of `track` from `start` (read backward if `reversed`) in the displacement
      * model's basis. */
