@@ -168,9 +168,10 @@ TEST(MagneticWindowERD, ASecondLapIsPlacedBetweenTheFirstLapsSamples) {
 
 TEST(MagneticWindowERD, AnInsetLapIsPlacedWithinReachThroughItsCorners) {
     // A rectangle, then a lap 0.3 m inside it. Round a corner the inner lap is shorter by
-    // twice that: a window whose newest reading has just turned is placed off along the path by
-    // the distance times the turn since the window's middle (0.47 m at 0.3 m and 90 deg), on
-    // top of the 0.3 m across. Such a window is either judged near enough or left open.
+    // twice that, so a window that has just turned lies off along the path as well as 0.3 m
+    // across: it is either judged near enough or left open. (The field's anomalies are as wide
+    // as the INI's length scale says; where a field is smoother than that, the model takes
+    // such a pass for a nearer one: docs/results/magnetic-recall.md.)
     const FloorField field(17);
     const double d = 0.3;
     const auto w = walk({{0, 0},

@@ -27,9 +27,9 @@ struct RelocalizerParams {
     std::size_t maxHypotheses{400};   ///< pending per pair of groups (oldest dropped)
     /** The agreeing closures must pin the moved group's latest pose down this well (1 sigma of
      * the fitted move): closures along one straight line may agree and still leave the heading
-     * free (magnetic ones claim 10 deg), and a heading error swings the whole segment. */
-    /** A merge right (0.5 m, 10 deg) at the 99.73 % quantile of its own fit: 0.5 / sqrt(11.83)
-     * (chi-square, 2 dof) and 10 deg / sqrt(9.0) (1 dof). */
+     * free (magnetic ones claim 10 deg), and a heading error swings the whole segment. The
+     * defaults make a merge right (0.5 m, 10 deg) at the 99.73 % quantile of its own fit:
+     * 0.5 / sqrt(11.83) (chi-square, 2 dof) and 10 deg / sqrt(9.0) (1 dof). */
     double maxSigmaXY{0.145};              ///< [m] (SE(3): in any direction)
     double maxSigmaYaw{3.3 * M_PI / 180};  ///< [rad] (SE(3): about any axis)
 };
