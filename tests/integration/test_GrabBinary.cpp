@@ -34,6 +34,15 @@ std::string writeGrabIni(const lodestone::test::TempDir& dir, const std::string&
     return path;
 }
 
+// Starts the grabber in the background and signals it 3 s after it began writing: its start-up
+// (the scenario loaded, the sensors started) takes 0.7 s on an idle machine and several seconds
+// on a loaded one, which a fixed sleep would count as grabbing time.
+std::string grabThenSignal(const std::string& ini, const std::string& rawlogPartial,
+                           const char* signal) {
+    return kGrab + " " + ini + " -q & pid=$!; for i in $(seq 300); do [ -s " + rawlogPartial +
+           " ] && break; sleep 0.1; done; sleep 3; kill -" + signal + " $pid; wait $pid";
+}
+
 long numberIn(const std::string& text, const std::string& pattern) {
     std::smatch m;
     return std::regex_search(text, m, std::regex(pattern)) ? std::stol(m[1]) : -1;
@@ -83,7 +92,7 @@ TEST(GrabBinary, TheSimulatedRobotGrabbedAtTimeScale4RunsThroughSlam) {
 TEST(GrabBinary, SigintWritesEveryObservationProducedAndExitsZero) {
     lodestone::test::TempDir dir;
     const auto ini = writeGrabIni(dir, "time_scale = 1");
-    const auto r = runCommand(kGrab + " " + ini + " -q & pid=$!; sleep 3; kill -INT $pid; wait $pid");
+    const auto r = runCommand(grabThenSignal(ini, dir.file("run.rawlog.gz.partial"), "INT"));
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("stopped by signal"), std::string::npos) << r.output;
     const long produced = numberIn(r.output, "SIM \\(CSimulatedRobot\\): ([0-9]+) observations");
@@ -97,7 +106,7 @@ TEST(GrabBinary, SigintWritesEveryObservationProducedAndExitsZero) {
 TEST(GrabBinary, SigkillLeavesAReadableRawlogMissingAtMostOneSecond) {
     lodestone::test::TempDir dir;
     const auto ini = writeGrabIni(dir, "time_scale = 1");
-    runCommand(kGrab + " " + ini + " -q & pid=$!; sleep 3; kill -KILL $pid; wait $pid");
+    runCommand(grabThenSignal(ini, dir.file("run.rawlog.gz.partial"), "KILL"));
     // Killed: no rename, the .partial files hold what was flushed.
     const std::string rawlog = dir.file("run.rawlog.gz.partial");
     ASSERT_TRUE(fs::exists(rawlog));
