@@ -122,6 +122,9 @@ TEST(CameraOnlySlam, VoLostWithNoWheelsRelocalizesOnTheViewThatCameBack) {
     const std::string report = reportOf(dir.file("out"));
     EXPECT_NE(report.find("\"vo_gaps\": 1"), std::string::npos) << report;
     EXPECT_NE(report.find("\"vo_gaps_relocalized\": 1"), std::string::npos) << report;
+    // (the right view is not refused: it agrees with where the last velocity carried the camera)
+    EXPECT_NE(report.find("\"vo_relocalizations_against_the_motion_model\": 0"), std::string::npos)
+        << report;
     EXPECT_NE(report.find("\"segments\": 1"), std::string::npos) << report;
     // ... and rightly: the trajectory stays as good as without the gap (< 0.03 m).
     const double ate = ateOf(run.output);

@@ -1,4 +1,5 @@
 #include <lodestone/graphslam/Se3Pose.h>
+#include <mrpt/math/wrap2pi.h>
 
 namespace lodestone::graphslam {
 
@@ -20,6 +21,16 @@ mrpt::math::CMatrixDouble66 mrptCovarianceOf(const Eigen::Matrix<double, 6, 6>& 
     for (int r = 0; r < 6; ++r)
         for (int k = 0; k < 6; ++k) c(r, k) = cov(kFromTwist[r], kFromTwist[k]);
     return c;
+}
+
+double squaredMahalanobis(const mrpt::poses::CPose3DPDFGaussian& a,
+                          const mrpt::poses::CPose3DPDFGaussian& b) {
+    Eigen::Matrix<double, 6, 1> d;
+    for (int k = 0; k < 6; ++k) d[k] = b.mean[k] - a.mean[k];
+    for (int k = 3; k < 6; ++k) d[k] = mrpt::math::wrapToPi(d[k]);
+    Eigen::Matrix<double, 6, 6> S = a.cov.asEigen() + b.cov.asEigen();
+    S.diagonal().array() += 1e-12;  // (two certain poses: any difference is far)
+    return d.dot(S.ldlt().solve(d));
 }
 
 }  // namespace lodestone::graphslam

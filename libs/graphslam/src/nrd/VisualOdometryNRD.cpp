@@ -1,5 +1,6 @@
 #include <lodestone/config/IniSection.h>
 #include <lodestone/graphslam/Se3Pose.h>
+#include <lodestone/graphslam/gso/PoseGraphSolver.h>
 #include <lodestone/graphslam/nrd/KeyframeCloud.h>
 #include <lodestone/graphslam/nrd/VisualOdometryNRD.h>
 #include <lodestone/odometry/RgbdObservationFrame.h>
@@ -179,10 +180,18 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
             ++gaps_;
             gap_seconds_.push_back(gap);
         }
-        std::optional<mrpt::poses::CPose3DPDFGaussian> found, byGyro;
-        if (!first && r.frameFeatures) found = relocalize(*r.frameFeatures, T_robot_optical);
-        if (!first && !found && params_.useGyro && gap <= params_.gyroBridgeMaxSeconds)
+        std::optional<mrpt::poses::CPose3DPDFGaussian> found, byGyro, expected;
+        if (!first && params_.useGyro && gap <= params_.gyroBridgeMaxSeconds)
             byGyro = bridgeByGyro(t);
+        // Where the carrier can have gone meanwhile, as far as a motion model knows: what a
+        // view found again must agree with (features along one edge - a door frame, a corner -
+        // align at any turn about it).
+        if (byGyro)
+            expected = byGyro;
+        else if (!first && last_step_seconds_ > 0)
+            expected = bridge(gap);
+        if (!first && r.frameFeatures)
+            found = relocalize(*r.frameFeatures, T_robot_optical, expected ? &*expected : nullptr);
         if (found) {
             // The view came back: the graph goes on from where it was seen before.
             ++relocalized_;
@@ -248,7 +257,8 @@ mrpt::poses::CPose3DPDFGaussian VisualOdometryNRD::relativeToLastNode(TNodeID fr
 }
 
 std::optional<mrpt::poses::CPose3DPDFGaussian> VisualOdometryNRD::relocalize(
-    const vision::FrameFeatures& current, const Eigen::Isometry3d& A) {
+    const vision::FrameFeatures& current, const Eigen::Isometry3d& A,
+    const mrpt::poses::CPose3DPDFGaussian* expected) {
     if (params_.relocalizeKeyframes == 0) return std::nullopt;
     // Newest first: the last tracked frame, then the keyframes.
     std::vector<std::pair<mrpt::poses::CPose3DPDFGaussian, const vision::FrameFeatures*>> tries;
@@ -265,6 +275,10 @@ std::optional<mrpt::poses::CPose3DPDFGaussian> VisualOdometryNRD::relocalize(
         motion.covariance = a.estimate.covariance;
         mrpt::poses::CPose3DPDFGaussian edge = where;
         edge += robotMotion(motion, A);
+        if (expected && squaredMahalanobis(*expected, edge) > kChi2Se3999) {
+            ++relocalizations_rejected_;
+            continue;
+        }
         return edge;
     }
     return std::nullopt;
@@ -423,6 +437,7 @@ JsonObject VisualOdometryNRD::describe() const {
         .set("vo_gaps_bridged_by_gyro", bridged_by_gyro_)
         .set("vo_unbridged_gap_seconds", unbridged_gap_seconds_)
         .set("vo_gaps_relocalized", relocalized_)
+        .set("vo_relocalizations_against_the_motion_model", relocalizations_rejected_)
         .set("segments", segment_ + 1)
         .set("vo_ms_per_frame", detail::voTimingJson(vo_.totals()));
     if (params_.useGyro) stats.set("frames_with_gyro_rotation", gyro_priors_);

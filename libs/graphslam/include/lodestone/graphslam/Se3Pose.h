@@ -2,6 +2,7 @@
 
 #include <mrpt/math/CMatrixFixed.h>
 #include <mrpt/poses/CPose3D.h>
+#include <mrpt/poses/CPose3DPDFGaussian.h>
 
 #include <Eigen/Geometry>
 
@@ -15,5 +16,11 @@ mrpt::poses::CPose3D poseOf3D(const Eigen::Isometry3d& T);
  * the vision library's RANSAC and VO report - in MRPT's order x, y, z, yaw, pitch, roll (yaw
  * about z = w_z, pitch = w_y, roll = w_x: first order). */
 mrpt::math::CMatrixDouble66 mrptCovarianceOf(const Eigen::Matrix<double, 6, 6>& twistCovariance);
+
+/** How far apart two independent estimates of one pose are: the squared Mahalanobis distance
+ * of their means' difference in MRPT's (x, y, z, yaw, pitch, roll), angles wrapped, under the
+ * sum of their covariances (first order: for a gate, not for a fit). */
+double squaredMahalanobis(const mrpt::poses::CPose3DPDFGaussian& a,
+                          const mrpt::poses::CPose3DPDFGaussian& b);
 
 }  // namespace lodestone::graphslam

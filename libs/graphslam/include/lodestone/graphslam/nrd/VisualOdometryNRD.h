@@ -30,7 +30,10 @@ namespace lodestone::graphslam {
  * restarts from is first aligned (VO's matching and RANSAC) with the last tracked frame and
  * the segment's latest keyframes (`relocalize_keyframes`, newest first): a view that came back
  * after a blank wall or a blur joins the graph there, with an edge from that frame composed
- * with VO's, and no gap is left. With a gyro (`use_gyro`) that covers the gap, a gap of up to
+ * with VO's, and no gap is left - if that edge agrees with where the gap's motion model (the
+ * gyro's bridge below, else the last velocity's) puts the frame, at chi-square 99.9 %: features
+ * along one edge, a door frame or a corner, align at any turn about it. With a gyro
+ * (`use_gyro`) that covers the gap, a gap of up to
  * `gyro_bridge_max_seconds` is bridged by it: the gyro's rotation over the gap, and a
  * translation from the carrier's last velocity fading as a velocity does that nothing measures
  * (a first-order Gauss-Markov process: `bridge_speed_sigma`, `bridge_velocity_seconds`), its
@@ -125,9 +128,11 @@ class VisualOdometryNRD : public NodeDecider {
      * VO's steps are chained in since the segment's last restart. */
     const std::pair<double, mrpt::poses::CPose3D>* trackedNear(double t) const;
     /** The restart frame aligned with a recent frame of the segment: the edge from the last
-     * node to it, if one aligns. */
+     * node to it, if one aligns and agrees with `expected` (the gap's motion model, when one
+     * knows the carrier's motion: chi-square 99.9 %, 6 dof). */
     std::optional<mrpt::poses::CPose3DPDFGaussian> relocalize(
-        const vision::FrameFeatures& current, const Eigen::Isometry3d& T_robot_camera);
+        const vision::FrameFeatures& current, const Eigen::Isometry3d& T_robot_camera,
+        const mrpt::poses::CPose3DPDFGaussian* expected);
     /** Node `from`'s pose relative to the last node, with covariance (the segment's edges). */
     mrpt::poses::CPose3DPDFGaussian relativeToLastNode(TNodeID from) const;
     /** A node at this frame: `edge` from the last node (or the root when there is none). */
@@ -155,6 +160,7 @@ class VisualOdometryNRD : public NodeDecider {
     int segment_{0};
     std::size_t frames_{0}, failed_frames_{0}, keyframes_{0}, gaps_{0}, bridged_{0}, relocalized_{0};
     std::size_t bridged_by_gyro_{0};
+    std::size_t relocalizations_rejected_{0};  // alignments the gap's motion model ruled out
     std::vector<double> unbridged_gap_seconds_;  // the gaps that opened a new segment
     // VO's tracked frames chained (since the last restart), for the window's velocities
     std::deque<std::pair<double, mrpt::poses::CPose3D>> chained_;
