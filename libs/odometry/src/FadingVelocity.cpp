@@ -10,12 +10,13 @@ Eigen::Vector3d FadingVelocity::meanDisplacement(const Eigen::Vector3d& v0, doub
     return v0 * (tau * -std::expm1(-T / tau));
 }
 
-double FadingVelocity::displacementVariance(double seconds) const {
+double FadingVelocity::displacementVariance(double seconds, double v0Sigma) const {
     const double tau = correlationSeconds, u = std::max(0.0, seconds) / tau;
     // For small u the bracket cancels to 2 u^3 / 3: take the series there (no cancellation).
     const double bracket =
         u < 1e-3 ? 2.0 * u * u * u / 3.0 : 2 * u - 3 + 4 * std::exp(-u) - std::exp(-2 * u);
-    return speedSigma * speedSigma * tau * tau * bracket;
+    const double carried = tau * -std::expm1(-u) * v0Sigma;  // (the start velocity's own error)
+    return speedSigma * speedSigma * tau * tau * bracket + carried * carried;
 }
 
 }  // namespace lodestone::odometry

@@ -30,7 +30,7 @@ std::optional<GyroIntegrator::Rotation> GyroIntegrator::between(double t0, doubl
         const double a = std::max(samples_[i].t, t0), b = std::min(next, t1);
         if (b <= a) continue;
         if (next - samples_[i].t > params_.maxGap) return std::nullopt;
-        const Eigen::Vector3d& w = samples_[i].w;  // held over its interval
+        const Eigen::Vector3d w = samples_[i].w - bias_;  // held over its interval
         const double dt = b - a;
         if (w.norm() > 0) r.R = r.R * Eigen::AngleAxisd(w.norm() * dt, w.normalized()).toRotationMatrix();
         // White rate noise of a sample held for its interval h: variance noise^2 dt h.
@@ -39,6 +39,11 @@ std::optional<GyroIntegrator::Rotation> GyroIntegrator::between(double t0, doubl
     const double T = t1 - t0;
     r.sigma = std::sqrt(noiseVar + params_.biasStd * params_.biasStd * T * T);
     return r;
+}
+
+void GyroIntegrator::setBias(const Eigen::Vector3d& bias, double biasStd) {
+    bias_ = bias;
+    params_.biasStd = biasStd;
 }
 
 void GyroIntegrator::dropBefore(double t) {

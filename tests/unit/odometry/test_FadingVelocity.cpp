@@ -54,3 +54,17 @@ TEST(FadingVelocity, ShortGapsAreConstantVelocityLongOnesARandomWalk) {
     EXPECT_EQ(model.displacementVariance(0), 0.0);
     EXPECT_EQ(model.meanDisplacement(v0, 0).norm(), 0.0);
 }
+
+// A start velocity known only to v0Sigma adds its own spread carried over the gap; not known at
+// all (the stationary spread) the displacement is the stationary process's: 2 s^2 tau^2 (u - 1
+// + e^-u).
+TEST(FadingVelocity, AnUncertainStartVelocityWidensTheDisplacement) {
+    const FadingVelocity model{0.5, 1.0};
+    for (const double T : {0.2, 1.0, 4.0}) {
+        const double u = T / model.correlationSeconds, carried = 1 - std::exp(-u);
+        EXPECT_NEAR(model.displacementVariance(T, 0.03) - model.displacementVariance(T),
+                    carried * carried * 0.03 * 0.03, 1e-12);
+        EXPECT_NEAR(model.displacementVariance(T, model.speedSigma),
+                    2 * 0.25 * (u - 1 + std::exp(-u)), 1e-12);
+    }
+}

@@ -52,3 +52,17 @@ TEST(GyroIntegrator, AGapIsNotIntegratedOverAndBadSamplesAreSkipped) {
     EXPECT_FALSE(g.between(10.5, 10.56)) << "dropped";
     EXPECT_TRUE(g.between(10.55, 10.58));
 }
+
+TEST(GyroIntegrator, ASetBiasIsTakenOutOfEverySample) {
+    GyroIntegrator g;
+    const Eigen::Vector3d w(0.0, 0.0, 0.3), bias(0.002, -0.001, 0.003);
+    for (int k = 0; k <= 100; ++k) ASSERT_TRUE(g.add(sample(1000 + 0.01 * k, w + bias)));
+    const auto raw = g.between(1000.0, 1001.0);
+    g.setBias(bias, 0.0001);
+    const auto corrected = g.between(1000.0, 1001.0);
+    ASSERT_TRUE(raw && corrected);
+    const Eigen::Matrix3d truth = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    EXPECT_GT(Eigen::AngleAxisd(truth.transpose() * raw->R).angle(), 0.003);
+    EXPECT_LT(Eigen::AngleAxisd(truth.transpose() * corrected->R).angle(), 1e-9);
+    EXPECT_LT(corrected->sigma, raw->sigma) << "the bias known better: a smaller sigma";
+}

@@ -92,6 +92,7 @@ void VisualOdometryNRD::configure(const mrpt::config::CConfigFileBase& ini) {
     params_ = p;
     vo_ = vision::RgbdVisualOdometry(params_.visual);
     gyro_ = odometry::GyroIntegrator(params_.gyro);
+    gyro_bias_ = odometry::GyroBiasEstimator(params_.gyro.biasStd);
     gravity_ = odometry::GravityEstimator(params_.gravity);
 }
 
@@ -165,12 +166,12 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
         if (params_.useGravity) {  // (and the window before this frame, for its up)
             keep = std::min(keep, t - params_.gravity.windowSeconds - 0.1);
             gravity_.dropBefore(t - params_.gravityVelocitySeconds);
-            const double old =
-                t - params_.gravity.windowSeconds - 2 * params_.gravityVelocitySeconds;
-            while (chained_.size() > 1 && chained_[1].first < old) chained_.pop_front();
         }
         gyro_.dropBefore(keep);
     }
+    // (from the features' steps only: where the depth alone aligned, the gyro started it)
+    if (params_.useGyro && r.success && !r.depthAligned && vo_.referenceTimestamp() == t)
+        learnGyroBias(r, t, T_robot_optical);
     const mrpt::poses::CPose3DPDFGaussian here;  // a frame at the new node: identity, certain
     if (r.failure == vision::VoFailure::NoReference) {
         // VO (re)starts on this frame: the root, or after a loss a new segment.
@@ -230,8 +231,13 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
     cur += motion;
     last_step_ = cur.mean - last_tracked_.pdf.mean;  // (both relative to the same node)
     last_step_seconds_ = t - last_tracked_.t;
-    if (params_.useGravity && !chained_.empty())
+    if (!chained_.empty()) {
         chained_.emplace_back(t, chained_.back().second + last_step_);
+        // (kept: VO's velocity before a gap; with the accelerometer, the window before a node)
+        double old = t - 2 * params_.gravityVelocitySeconds;
+        if (params_.useGravity) old -= params_.gravity.windowSeconds;
+        while (chained_.size() > 1 && chained_[1].first < old) chained_.pop_front();
+    }
     last_tracked_ = {t, cur};
     last_tracked_features_ = r.frameFeatures;
     if (cur.mean.norm() < params_.nodeDistance && rotationAngle(cur.mean) < params_.nodeAngle)
@@ -243,6 +249,18 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
     motion.inverse(back);
     reference_.pdf = back;
     last_tracked_.pdf = here;
+}
+
+void VisualOdometryNRD::learnGyroBias(const vision::VoResult& r, double t,
+                                      const Eigen::Isometry3d& T_robot_optical) {
+    const auto g = gyro_.between(r.referenceTimestamp, t);
+    if (!g) return;
+    // VO's rotation in the gyro's body frame: C R C^T, C the optical frame's rotation in it.
+    const Eigen::Matrix3d C = gyro_.sensorOnRobot().linear().transpose() * T_robot_optical.linear();
+    const Eigen::Matrix3d measured = C * r.T_ref_cur.linear() * C.transpose();
+    const double sigma = std::sqrt(r.covariance.topLeftCorner<3, 3>().trace() / 3);
+    if (gyro_bias_.update(g->R, measured, sigma, t - r.referenceTimestamp))
+        gyro_.setBias(gyro_bias_.bias(), gyro_bias_.sigma());
 }
 
 mrpt::poses::CPose3DPDFGaussian VisualOdometryNRD::relativeToLastNode(TNodeID from) const {
@@ -303,6 +321,28 @@ mrpt::poses::CPose3DPDFGaussian VisualOdometryNRD::bridge(double gap) const {
     return edge;
 }
 
+std::pair<Eigen::Vector3d, double> VisualOdometryNRD::velocityAtLastTracked() const {
+    // Over VO's last gravityVelocitySeconds of tracked frames, not its last step: a step's few
+    // millimetres of error in a frame interval are a tenth of a metre per second.
+    const std::pair<double, mrpt::poses::CPose3D>* start = nullptr;
+    if (!chained_.empty()) {
+        const double end = chained_.back().first;
+        for (auto c = chained_.rbegin(); c != chained_.rend(); ++c) {
+            start = &*c;
+            if (end - c->first >= params_.gravityVelocitySeconds) break;
+        }
+    }
+    if (!start || !(chained_.back().first > start->first)) {
+        // (VO has not tracked since it restarted: the carrier's velocity is its spread)
+        return {Eigen::Vector3d::Zero(), params_.bridgeVelocity.speedSigma};
+    }
+    const auto& [t1, p1] = chained_.back();
+    const Eigen::Vector3d d(p1.x() - start->second.x(), p1.y() - start->second.y(),
+                            p1.z() - start->second.z());
+    return {p1.getRotationMatrix().asEigen().transpose() * d / (t1 - start->first),
+            params_.gravityVelocitySigma};
+}
+
 std::optional<mrpt::poses::CPose3DPDFGaussian> VisualOdometryNRD::bridgeByGyro(double t) const {
     const auto g = gyro_.between(last_tracked_.t, t);
     if (!g) return std::nullopt;
@@ -313,16 +353,13 @@ std::optional<mrpt::poses::CPose3DPDFGaussian> VisualOdometryNRD::bridgeByGyro(d
     step.linear() = S * g->R * S.transpose();
     // The velocity before the gap (the last tracked frame's, in its own frame) fading over it.
     const auto& fading = params_.bridgeVelocity;
-    Eigen::Vector3d v0 = Eigen::Vector3d::Zero();
-    if (last_step_seconds_ > 0) {
-        const mrpt::math::TPoint3D d = last_step_.translation();
-        v0 = Eigen::Vector3d(d.x, d.y, d.z) / last_step_seconds_;
-    }
+    const auto [v0, v0Sigma] = velocityAtLastTracked();
     step.translation() = fading.meanDisplacement(v0, gap);
     Eigen::Matrix<double, 6, 6> cov =
         Eigen::Matrix<double, 6, 6>::Zero();  // (rotation, translation)
     cov.topLeftCorner<3, 3>() = g->sigma * g->sigma * Eigen::Matrix3d::Identity();
-    cov.bottomRightCorner<3, 3>() = fading.displacementVariance(gap) * Eigen::Matrix3d::Identity();
+    cov.bottomRightCorner<3, 3>() =
+        fading.displacementVariance(gap, v0Sigma) * Eigen::Matrix3d::Identity();
     mrpt::poses::CPose3DPDFGaussian edge = last_tracked_.pdf;
     edge += mrpt::poses::CPose3DPDFGaussian(poseOf3D(step), mrptCovarianceOf(cov));
     return edge;
@@ -440,7 +477,14 @@ JsonObject VisualOdometryNRD::describe() const {
         .set("vo_relocalizations_against_the_motion_model", relocalizations_rejected_)
         .set("segments", segment_ + 1)
         .set("vo_ms_per_frame", detail::voTimingJson(vo_.totals()));
-    if (params_.useGyro) stats.set("frames_with_gyro_rotation", gyro_priors_);
+    if (params_.useGyro) {
+        const Eigen::Vector3d b = gyro_bias_.bias() * 180 / M_PI;
+        stats.set("frames_with_gyro_rotation", gyro_priors_)
+            .set("gyro_bias_deg_per_s", std::vector<double>{b.x(), b.y(), b.z()})
+            .set("gyro_bias_sigma_deg_per_s", gyro_bias_.sigma() * 180 / M_PI)
+            .set("gyro_bias_updates", gyro_bias_.updates())
+            .set("gyro_bias_outliers", gyro_bias_.skipped());
+    }
     if (params_.useGravity) stats.set("nodes_with_measured_up", attitude_priors_);
     JsonObject why;
     for (const auto& [reason, count] : failures_) why.set(reason, count);

@@ -16,8 +16,9 @@ struct FadingVelocity {
 
     /** Expected displacement over `seconds` from velocity `v0`: v0 tau (1 - e^-T/tau). */
     Eigen::Vector3d meanDisplacement(const Eigen::Vector3d& v0, double seconds) const;
-    /** Its variance per axis [m^2]: sigma^2 tau^2 (2 T/tau - 3 + 4 e^-T/tau - e^-2T/tau). */
-    double displacementVariance(double seconds) const;
+    /** Its variance per axis [m^2]: sigma^2 tau^2 (2 T/tau - 3 + 4 e^-T/tau - e^-2T/tau), and
+     * (tau (1 - e^-T/tau))^2 v0Sigma^2 where the start velocity is known to v0Sigma per axis. */
+    double displacementVariance(double seconds, double v0Sigma = 0) const;
 };
 
 }  // namespace lodestone::odometry

@@ -32,6 +32,9 @@ class GyroIntegrator {
     bool add(const mrpt::obs::CObservationIMU& imu);
     /** R_t0_t1, or nothing when the samples do not cover [t0, t1] (a gap, not yet received). */
     std::optional<Rotation> between(double t0, double t1) const;
+    /** The bias to take out of every sample from now on [rad/s, sensor frame], and how well it
+     * is known per axis (replaces Params::biasStd in the sigma). */
+    void setBias(const Eigen::Vector3d& bias, double biasStd);
     /** Forgets samples older than t (keeps the one in force at t). */
     void dropBefore(double t);
     /** The sensor's pose on the robot, from its samples. */
@@ -44,6 +47,7 @@ class GyroIntegrator {
         Eigen::Vector3d w;
     };
     Params params_;
+    Eigen::Vector3d bias_{Eigen::Vector3d::Zero()};
     std::deque<Sample> samples_;
     Eigen::Isometry3d sensor_on_robot_{Eigen::Isometry3d::Identity()};
 };

@@ -4,6 +4,7 @@
 #include <lodestone/graphslam/nrd/NodeSpacing.h>
 #include <lodestone/odometry/FadingVelocity.h>
 #include <lodestone/odometry/GravityEstimator.h>
+#include <lodestone/odometry/GyroBiasEstimator.h>
 #include <lodestone/odometry/GyroIntegrator.h>
 #include <lodestone/vision/RgbdVisualOdometry.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
@@ -36,14 +37,15 @@ namespace lodestone::graphslam {
  * (`use_gyro`) that covers the gap, a gap of up to
  * `gyro_bridge_max_seconds` is bridged by it: the gyro's rotation over the gap, and a
  * translation from the carrier's last velocity fading as a velocity does that nothing measures
- * (a first-order Gauss-Markov process: `bridge_speed_sigma`, `bridge_velocity_seconds`), its
- * covariance growing with the gap - the segment goes on, its edge loose where nothing saw the
- * motion. Else a short gap (`bridge_max_seconds`) is bridged by the camera's last velocity, the
- * edge's covariance that of a constant-velocity model with white-noise acceleration over the
- * gap; after a longer one
- * the frame it starts from is the first node of a new segment, tied to the last node by a very
- * weak edge (`lost_edge_sigma`), as after a kidnap; the visual loop closer relocalizes it
- * (SlamEngine, Relocalizer). Its record carries when tracking was lost and found again.
+ * (a first-order Gauss-Markov process: `bridge_speed_sigma`, `bridge_velocity_seconds`; the
+ * velocity VO's over its last 0.3 s), its covariance growing with the gap - the segment goes
+ * on, its edge loose where nothing saw the motion. The gyro's bias is learnt meanwhile from
+ * VO's rotations between reference frames where the features tracked (GyroBiasEstimator) and
+ * taken out of its rates. Else a short gap (`bridge_max_seconds`) is bridged by the camera's
+ * last velocity, the edge's covariance that of a constant-velocity model with white-noise
+ * acceleration over the gap; after a longer one the frame it starts from is the first node of
+ * a new segment, tied to the last node by a very weak edge (`lost_edge_sigma`), as after a
+ * kidnap; the visual loop closer relocalizes it (SlamEngine, Relocalizer). Its record carries when tracking was lost and found again.
  *
  * INI: [VisualOdometryNRD] and [visual_odometry]. */
 class VisualOdometryNRD : public NodeDecider {
@@ -86,7 +88,8 @@ class VisualOdometryNRD : public NodeDecider {
         odometry::GravityEstimator::Params gravity;
         /** The carrier's velocity change over the window, taken out of the mean, is VO's: its
          * displacement over `gravityVelocitySeconds` at each end of the window, trusted to
-         * `gravityVelocitySigma` per axis [m/s] (`gravity_velocity_sigma`). */
+         * `gravityVelocitySigma` per axis [m/s] (`gravity_velocity_sigma`). The same is the
+         * velocity a gyro's bridge across a gap starts from. */
         double gravityVelocitySeconds{0.3};
         double gravityVelocitySigma{0.03};
         vision::RgbdVisualOdometry::Params visual;  ///< [visual_odometry]
@@ -121,6 +124,14 @@ class VisualOdometryNRD : public NodeDecider {
     /** The same across a gap from the last tracked frame to time t, by the gyro's rotation and
      * the fading velocity; nothing when the gyro does not cover the gap. */
     std::optional<mrpt::poses::CPose3DPDFGaussian> bridgeByGyro(double t) const;
+    /** The carrier's velocity at the last tracked frame, in that frame [m/s], and its sigma
+     * per axis: VO's displacement over `gravityVelocitySeconds`, trusted to
+     * `gravityVelocitySigma`; where VO has not tracked since it restarted, zero and the
+     * carrier's speed spread. */
+    std::pair<Eigen::Vector3d, double> velocityAtLastTracked() const;
+    /** VO's rotation from its old reference to a frame that became the new one, against the
+     * gyro's over the same time: the gyro's bias learnt. */
+    void learnGyroBias(const vision::VoResult& r, double t, const Eigen::Isometry3d& T_robot_optical);
     /** The node's up at t from the accelerometer, the velocity change VO measured over the
      * window taken out; nothing where VO did not track the whole window. */
     std::optional<AttitudePrior> measuredUp(double t) const;
@@ -149,6 +160,7 @@ class VisualOdometryNRD : public NodeDecider {
     Params params_;
     vision::RgbdVisualOdometry vo_;
     odometry::GyroIntegrator gyro_;
+    odometry::GyroBiasEstimator gyro_bias_;  // learnt where VO tracks on features
     odometry::GravityEstimator gravity_;
     std::size_t attitude_priors_{0};  // nodes given the accelerometer's up
     std::size_t gyro_priors_{0};  // frames given the gyro's rotation
