@@ -45,7 +45,8 @@ namespace lodestone::graphslam {
  * last velocity, the edge's covariance that of a constant-velocity model with white-noise
  * acceleration over the gap; after a longer one the frame it starts from is the first node of
  * a new segment, tied to the last node by a very weak edge (`lost_edge_sigma`), as after a
- * kidnap; the visual loop closer relocalizes it (SlamEngine, Relocalizer). Its record carries when tracking was lost and found again.
+ * kidnap; the visual loop closer relocalizes it (SlamEngine, Relocalizer). Its record carries
+ * when tracking was lost and found again.
  *
  * INI: [VisualOdometryNRD] and [visual_odometry]. */
 class VisualOdometryNRD : public NodeDecider {
@@ -131,7 +132,8 @@ class VisualOdometryNRD : public NodeDecider {
     std::pair<Eigen::Vector3d, double> velocityAtLastTracked() const;
     /** VO's rotation from its old reference to a frame that became the new one, against the
      * gyro's over the same time: the gyro's bias learnt. */
-    void learnGyroBias(const vision::VoResult& r, double t, const Eigen::Isometry3d& T_robot_optical);
+    void learnGyroBias(const vision::VoResult& r, double t,
+                       const Eigen::Isometry3d& T_robot_optical);
     /** The node's up at t from the accelerometer, the velocity change VO measured over the
      * window taken out; nothing where VO did not track the whole window. */
     std::optional<AttitudePrior> measuredUp(double t) const;
