@@ -61,6 +61,7 @@ void RgbdVisualOdometry::Params::loadFromConfigFile(const mrpt::config::CConfigF
     guidedKeypointSigma = s.getDouble("guided_keypoint_sigma", guidedKeypointSigma);
     depthAlignment = s.getBool("depth_alignment", depthAlignment);
     depthWithFeatures = s.getBool("depth_with_features", depthWithFeatures);
+    depthStart = s.getBool("depth_start", depthStart);
     depthModelKeyframes = s.getInt("depth_model_keyframes", depthModelKeyframes);
     depthSampling.columns = s.getInt("depth_grid_columns", depthSampling.columns);
     depthSampling.depthNoise = ransac.depthNoise;
@@ -95,6 +96,7 @@ void RgbdVisualOdometry::Params::dumpToTextStream(std::ostream& out) const {
         << "guided_keypoint_sigma = " << guidedKeypointSigma << "  [px]\n"
         << "depth_alignment    = " << (depthAlignment ? "true" : "false") << "\n"
         << "depth_with_features = " << (depthWithFeatures ? "true" : "false") << "\n"
+        << "depth_start        = " << (depthStart ? "true" : "false") << "\n"
         << "depth_model_keyframes = " << depthModelKeyframes << "\n"
         << "depth_grid_columns = " << depthSampling.columns << "\n"
         << "depth_min_observed = " << depthIcp.minObserved << "  [of 6 directions]\n"
@@ -289,7 +291,13 @@ VoResult RgbdVisualOdometry::processFrame(const RgbdFrame& frame, const MotionPr
 
     if (state_ == VoState::Lost || !reference_) {
         // (Re-)initialize on a frame good enough to track from.
-        if (current.size() < static_cast<std::size_t>(params_.ransac.minInliers)) {
+        // A frame with too few features may still start depth alignment (depth_start): a plain
+        // corridor's walls and floor pin its heading and its place across, the wheels the rest
+        // (the next frame decides whether the depth pins enough, depth_min_observed).
+        const bool depthToStartFrom = params_.depthAlignment && params_.depthStart &&
+                                      cloud.size() >= params_.depthIcp.minCorrespondences;
+        if (current.size() < static_cast<std::size_t>(params_.ransac.minInliers) &&
+            !depthToStartFrom) {
             // Nothing to start from either: that too counts towards LOST.
             return fail(VoFailure::FewFeatures);
         }

@@ -337,3 +337,51 @@ TEST(RgbdVisualOdometry, AGyroAndOneWallSolvedAsOneGiveALooseMotion) {
     EXPECT_GT(std::sqrt(C(0, 0)), 0.03) << "the move along the wall is not measured";
     EXPECT_LT(std::abs(err.x()), 3 * std::sqrt(C(0, 0))) << "and its sigma holds the error";
 }
+
+// `depth_start`: a plain corridor gives too few features to start VO from; its depth alone
+// starts it, and the next frame is aligned by depth (the wheels' prediction starting the ICP):
+// the turn and the move across measured, the move along left loose. Without the key VO never
+// starts there.
+TEST(RgbdVisualOdometry, APlainCorridorStartsFromItsDepthWhereAskedTo) {
+    const lodestone::sim::World world(plainCorridor(), 3);
+    const Eigen::Isometry3d ref = cameraPose({5.0, 0.1, 1.2}, 0.0, 0.1);
+    const Eigen::Isometry3d cur = cameraPose({5.1, 0.12, 1.2}, 0.02, 0.1);
+    const Eigen::Isometry3d truth = opticalMotion(ref, cur);
+    RgbdFrame first = render(world, ref, 11), second = render(world, cur, 12);
+    second.timestamp = first.timestamp + 0.1;
+    MotionPrior wheels;  // 3 cm off along the corridor and 1 deg off in heading
+    wheels.T_ref_cur = truth;
+    wheels.T_ref_cur.translation().z() += 0.03;
+    wheels.T_ref_cur.linear() = truth.linear() * Eigen::AngleAxisd(0.017, Eigen::Vector3d::UnitY());
+    wheels.covariance.setZero();
+    wheels.covariance.diagonal() << 4e-4, 4e-4, 4e-4, 1e-3, 1e-3, 1e-3;
+    const auto run = [&](bool depthStart) {
+        RgbdVisualOdometry::Params p;
+        p.depthAlignment = true;
+        p.depthStart = depthStart;
+        p.depthIcp.minObserved = 4;
+        RgbdVisualOdometry vo(p);
+        const VoResult start = vo.process(first);
+        EXPECT_LT(start.features, static_cast<std::size_t>(p.ransac.minInliers))
+            << "the corridor is meant to be too plain for features";
+        return vo.process(second, &wheels);
+    };
+    EXPECT_FALSE(run(false).success);
+    const VoResult on = run(true);
+    ASSERT_TRUE(on.success && on.depthAligned) << toString(on.failure);
+    EXPECT_GE(on.depthObserved, 4);
+    EXPECT_LT(angleOf(truth.inverse() * on.T_ref_cur), 0.1 * M_PI / 180)
+        << "the heading comes from the walls, not the wheels' 1 deg";
+    const Eigen::Vector3d along =
+        opticalMotion(ref, cameraPose({6, 0.1, 1.2}, 0, 0.1)).translation().normalized();
+    EXPECT_GT(std::sqrt(along.dot(on.covariance.bottomRightCorner<3, 3>() * along)), 0.05)
+        << "the move along is not measured by depth";
+}
+
+TEST(RgbdVisualOdometryParams, DepthStartIsReadAndOffByDefault) {
+    RgbdVisualOdometry::Params p;
+    EXPECT_FALSE(p.depthStart);
+    mrpt::config::CConfigFileMemory ini("[vo]\ndepth_alignment = true\ndepth_start = true\n");
+    p.loadFromConfigFile(ini, "vo");
+    EXPECT_TRUE(p.depthStart);
+}

@@ -121,6 +121,10 @@ class RgbdVisualOdometry {
         /** With depth alignment, also where the features aligned: both solved as one (the
          * features' motion and covariance as a measurement in the depth's Gauss-Newton). */
         bool depthWithFeatures{false};
+        /** With depth alignment, a frame with too few features to start from starts it from
+         * its depth alone (for a carrier whose wheels measure what depth leaves unpinned: a
+         * plain corridor's length); false: VO starts only where features are. */
+        bool depthStart{false};
         /** Where the features fail and a rotation prior says how far the carrier may have
          * moved: the depth and the rotation solved as one (the rotation and the fading
          * velocity's translation a measurement, loose by `translationSigma`), the motion counting when the
