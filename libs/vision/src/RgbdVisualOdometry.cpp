@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 
 namespace lodestone::vision {
 
@@ -267,12 +268,17 @@ VoResult RgbdVisualOdometry::processFrame(const RgbdFrame& frame, const MotionPr
     r.timing.orb = msSince(t0);
     r.features = current.size();
     r.frameFeatures = std::make_shared<const FrameFeatures>(current);
-    DepthCloud cloud;
-    if (params_.depthAlignment) {
-        const auto td = std::chrono::steady_clock::now();
-        cloud = sampleDepthCloud(frame, params_.depthSampling);
-        r.timing.depth = msSince(td);
-    }
+    // The frame's depth points, sampled when first needed: for a new reference, a start, or an
+    // alignment (most frames whose features align need none unless solved with them).
+    std::optional<DepthCloud> sampled;
+    const auto cloud = [&]() -> DepthCloud& {
+        if (!sampled) {
+            const auto td = std::chrono::steady_clock::now();
+            sampled = sampleDepthCloud(frame, params_.depthSampling);
+            r.timing.depth += msSince(td);
+        }
+        return *sampled;
+    };
 
     const auto fail = [&](VoFailure why) {
         r.failure = why;
@@ -285,7 +291,7 @@ VoResult RgbdVisualOdometry::processFrame(const RgbdFrame& frame, const MotionPr
         reference_ = std::move(current);
         reference_time_ = frame.timestamp;
         if (params_.depthAlignment) {
-            depth_model_.addReference(std::move(cloud), T_ref_new.inverse(), pinned);
+            depth_model_.addReference(std::move(cloud()), T_ref_new.inverse(), pinned);
         }
     };
 
@@ -295,7 +301,7 @@ VoResult RgbdVisualOdometry::processFrame(const RgbdFrame& frame, const MotionPr
         // corridor's walls and floor pin its heading and its place across, the wheels the rest
         // (the next frame decides whether the depth pins enough, depth_min_observed).
         const bool depthToStartFrom = params_.depthAlignment && params_.depthStart &&
-                                      cloud.size() >= params_.depthIcp.minCorrespondences;
+                                      cloud().size() >= params_.depthIcp.minCorrespondences;
         if (current.size() < static_cast<std::size_t>(params_.ransac.minInliers) &&
             !depthToStartFrom) {
             // Nothing to start from either: that too counts towards LOST.
@@ -345,9 +351,10 @@ VoResult RgbdVisualOdometry::processFrame(const RgbdFrame& frame, const MotionPr
         r.failure = aligned->success ? VoFailure::Implausible : aligned->failure;
         if (!params_.depthAlignment) return fail(r.failure);
         // The features failed; the depth may still hold walls, a floor, a door frame.
+        const DepthCloud& points = cloud();
         const auto td = std::chrono::steady_clock::now();
         ++totals_.depthTried;
-        const DepthAlignment d = alignDepth(cloud, frame.timestamp, prior, rotation);
+        const DepthAlignment d = alignDepth(points, frame.timestamp, prior, rotation);
         r.timing.depth += msSince(td);
         r.depthObserved = d.observed;
         est.transform = d.T_ref_cur;
@@ -360,11 +367,12 @@ VoResult RgbdVisualOdometry::processFrame(const RgbdFrame& frame, const MotionPr
         r.depthAligned = true;
     } else if (params_.depthAlignment && params_.depthWithFeatures) {
         // Both measured the motion: one solve, the features' covariance as a measurement.
+        const DepthCloud& points = cloud();
         const auto td = std::chrono::steady_clock::now();
         MotionPrior measured;
         measured.T_ref_cur = est.transform;
         measured.covariance = est.covariance;
-        const DepthAlignment d = icp_.align(depth_model_, cloud, est.transform, &measured);
+        const DepthAlignment d = icp_.align(depth_model_, points, est.transform, &measured);
         r.timing.depth += msSince(td);
         if (d.success) {
             RigidEstimate joined = est;
