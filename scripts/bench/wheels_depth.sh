@@ -7,7 +7,7 @@
 # (no_start). A row per scenario, seed and INI: ATE, the frames depth alignment was tried on,
 # aligned on, and why it failed (does not pin enough), and the run's wall time.
 # Usage: scripts/bench/wheels_depth.sh [SEEDS] [SCENARIO ...]
-#   (default: 3 seeds of corridor and paper_loop; about 15 minutes on two cores)
+#   (default: 3 seeds of corridor and paper_loop; about 25 minutes)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 "$root/scripts/build.sh" > /dev/null
