@@ -2,8 +2,10 @@
 #include <lodestone/obs/SerializedBool.h>
 #include <mrpt/serialization/CArchive.h>
 
+#include <cctype>
 #include <opencv2/core.hpp>
 #include <stdexcept>
+#include <string_view>
 
 namespace lodestone::maps {
 
@@ -18,8 +20,12 @@ uint8_t CMapNode::serializeGetVersion() const { return 0; }
 
 bool isMapLabel(const std::string& label) {
     if (label.empty() || label.size() > 256) return false;
+    // Letters, digits and a few marks only: the manifest lists the labels in an INI value, where
+    // a backslash continues the line, ';' and '#' start comments and '$' substitutes.
     for (const unsigned char c : label)
-        if (c <= ' ' || c >= 127) return false;
+        if (!std::isalnum(c) &&
+            std::string_view("_-.:/+").find(static_cast<char>(c)) == std::string_view::npos)
+            return false;
     return true;
 }
 

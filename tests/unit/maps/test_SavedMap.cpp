@@ -1,6 +1,7 @@
 // Saved maps: a round trip gives identical files, the golden map of format 1 keeps loading, and
 // every damaged or foreign folder is refused with the file named.
 #include <gtest/gtest.h>
+#include <lodestone/maps/MapNode.h>
 #include <lodestone/maps/MapSummary.h>
 #include <lodestone/maps/SavedMap.h>
 
@@ -252,4 +253,13 @@ TEST_F(MapFolder, DamagedBinaryFilesAreNamedNeverCrash) {
         writeBytes(path(maps::MapFile::Graph), graph.substr(0, cut));
         expectRefused(maps::MapFile::Graph);
     }
+}
+
+// The manifest lists the magnetometers' labels in an INI value: a label that value would
+// misread (a backslash continuing the line, a comment, a substitution, a space) is no label.
+TEST(MapLabel, OnlyWhatAnIniValueReadsBackAsWritten) {
+    for (const char* good : {"MAG_L", "imu-1", "xsens.mag:0", "a/b+c"})
+        EXPECT_TRUE(lodestone::maps::isMapLabel(good)) << good;
+    for (const char* bad : {"", "MAG_\\", "a;b", "a#b", "$env{x}", "two words", "a=b", "[x]"})
+        EXPECT_FALSE(lodestone::maps::isMapLabel(bad)) << bad;
 }

@@ -21,8 +21,8 @@ class CMapNode : public mrpt::serialization::CSerializable {
     graphslam::NodeRecord record;
 };
 
-/** A sensor label a map can hold: 1-256 printable ASCII characters, no space (the manifest
- * lists them space-separated). */
+/** A sensor label a map can hold: 1-256 letters, digits and `_-.:/+` (the manifest lists them
+ * space-separated in an INI value, where `\`, `;`, `#` and `$` mean something). */
 bool isMapLabel(const std::string& label);
 
 }  // namespace lodestone::maps
