@@ -28,4 +28,12 @@ bool eraseEdge(Graph& graph, TNodeID from, TNodeID to, const Constraint& c) {
     return false;
 }
 
+bool hasEdge(const Graph& graph, TNodeID from, TNodeID to, const Constraint& c) {
+    const auto range = graph.edges.equal_range({from, to});
+    for (auto it = range.first; it != range.second; ++it) {
+        if (it->second.mean == c.mean) return true;
+    }
+    return false;
+}
+
 }  // namespace lodestone::graphslam

@@ -133,6 +133,14 @@ void SlamEngine::afterNodeDecider(bool /*newNode*/) {
     }
     if (!closures.empty()) gso_->addLoopClosures(closures);
     gso_->updateState(nullptr, nullptr, nullptr);
+    if (!closures.empty()) {
+        // What the optimizer kept (it erases what it rejects) is known to every loop closer.
+        std::vector<LoopClosure> kept;
+        for (auto& lc : closures) {
+            if (hasEdge(graph_, lc.from, lc.to, lc.constraint)) kept.push_back(std::move(lc));
+        }
+        if (!kept.empty()) erd_->closuresKept(kept);
+    }
     stats_.gsoSeconds += msSince(t0) / 1e3;
 }
 

@@ -82,4 +82,22 @@ class ScriptedLoopCloser : public graphslam::EdgeDecider {
     std::size_t next_{0};
 };
 
+/** A loop closer that closes nothing and records the closures the engine says were kept. */
+class KeptClosureRecorder : public graphslam::EdgeDecider {
+  public:
+    KeptClosureRecorder() { setClassName("KeptClosureRecorder"); }
+    void configure(const mrpt::config::CConfigFileBase&) override {}
+    graphslam::JsonObject describe() const override {
+        return graphslam::JsonObject().set("class", "KeptClosureRecorder");
+    }
+    bool updateState(mrpt::obs::CActionCollection::Ptr, mrpt::obs::CSensoryFrame::Ptr,
+                     mrpt::obs::CObservation::Ptr) override {
+        return false;
+    }
+    void closuresKept(const std::vector<graphslam::LoopClosure>& kept) override {
+        for (const auto& lc : kept) this->kept.push_back(lc);
+    }
+    std::vector<graphslam::LoopClosure> kept;
+};
+
 }  // namespace lodestone::test

@@ -3,6 +3,7 @@
 // unbroken path judged by the uncertainty grown between the two, which must hold the truth
 // (the gate's 99.73 %) without being much wider.
 #include <gtest/gtest.h>
+#include <lodestone/graphslam/erd/magnetic/MagneticPath.h>
 #include <lodestone/graphslam/erd/magnetic/PathUncertainty.h>
 
 #include <Eigen/LU>
@@ -166,4 +167,70 @@ TEST(PathUncertainty, ASegmentsGateDistanceIsTheLeastOfItsPoints) {
         EXPECT_LE(bound, least * (1 + 1e-9) + 1e-12) << "trial " << trial;
         EXPECT_GE(bound, least - 1e-3 * (1 + least)) << "trial " << trial;
     }
+}
+
+TEST(PathUncertainty, AClosureAnyCloserMadePinsTheGate) {
+    // Two laps of the plain corridor's ring (28 x 4 m between its sides' centre lines, from a
+    // corner): on the second lap's last side the place 4 m across the ring, on the first side,
+    // is inside the gate of a closer whose last pin is the run's start (the drift over 120 m).
+    // Another closer's closure a few metres back, kept by the optimizer, ties the robot to the
+    // first lap; the place across the ring is then far outside the gate.
+    const double step = 0.1;  // [m]
+    mrpt::poses::CPosePDFGaussian z;
+    z.cov.setZero();
+    z.cov(0, 0) = 4e-6;
+    z.cov(1, 1) = 1e-6;
+    z.cov(2, 2) = 2e-6;
+    graphslam::Graph graph;
+    graphslam::NodeStore nodes;
+    graphslam::MagneticPath path;  // the INIs' drift and floor
+    std::string label;
+    mrpt::poses::CPose3D pose;
+    const auto turnsAfter = [](graphslam::TNodeID id) {  // a lap: 280, 40, 280, 40 steps
+        const auto k = id % 640;
+        return k == 280 || k == 320 || k == 600 || k == 0;
+    };
+    const graphslam::TNodeID last = 1229, target = 10;  // (1229: x = 2.1 m on the top side)
+    for (graphslam::TNodeID id = 0; id <= last; ++id) {
+        if (id > 0) {
+            z.mean = mrpt::poses::CPose2D(step, 0, turnsAfter(id) ? M_PI / 2 : 0.0);
+            const auto edge = graphslam::planarConstraint(z);
+            pose = pose + edge.mean;
+            graph.insertEdge(id - 1, id, edge);
+        }
+        graph.nodes[id] = pose;
+        graphslam::NodeRecord r;
+        r.timestamp = double(id);
+        nodes.add(id, r);
+        path.addNode(id, graph, nodes, label, 1e9, [](double, const Eigen::Vector3d&) {});
+    }
+    const auto& q = graph.nodes.at(last);
+    const auto& t = graph.nodes.at(target);
+    ASSERT_NEAR(q.y() - t.y(), 4.1, 0.2);  // (the first step's turn: 0.1 m off the grid)
+    const Eigen::Vector2d across(q.x() - t.x(), q.y() - t.y());
+    const double gate = 11.83;  // chi-square 99.73 %, 2 dof
+    const double before = path.uncertainty.relativeGateDistance2(target, last, across);
+    EXPECT_LT(before, gate);
+
+    const graphslam::TNodeID earlier = 560, later = 1200;  // one place, laps 1 and 2
+    const mrpt::poses::CPose3D rel = graph.nodes.at(later) - graph.nodes.at(earlier);
+    mrpt::poses::CPosePDFGaussian c;
+    c.mean = mrpt::poses::CPose2D(rel.x(), rel.y(), rel.yaw());
+    c.cov.setZero();
+    c.cov(0, 0) = c.cov(1, 1) = 0.05 * 0.05;
+    c.cov(2, 2) = 0.02 * 0.02;
+    graphslam::LoopClosure kept;
+    kept.from = earlier;
+    kept.to = later;
+    kept.constraint = graphslam::planarConstraint(c);
+    kept.source = "OrbSubmapERD";
+    graphslam::LoopClosure unseen = kept;  // a node the path has not taken in: left alone
+    unseen.to = last + 10;
+    path.pinKept({kept, unseen}, graph);
+    const double after = path.uncertainty.relativeGateDistance2(target, last, across);
+    EXPECT_GT(after, gate);
+    EXPECT_GT(after, 4 * before);
+    // The pinned node is as certain as the closure says.
+    const Eigen::Matrix3d pinned = path.uncertainty.covariance(later);
+    EXPECT_NEAR(pinned(0, 0) + pinned(1, 1), 2 * 0.05 * 0.05, 1e-5);
 }

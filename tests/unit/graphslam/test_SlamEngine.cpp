@@ -98,6 +98,29 @@ TEST(SlamEngine, AWrongClosureIsRemovedAndReported) {
     EXPECT_LT(graphslam::positionRmse(engine->graph(), s.truth), 0.15);
 }
 
+TEST(SlamEngine, EveryLoopCloserIsToldWhatTheOptimizerKept) {
+    // Another closer's closures reach a decider that closes nothing - the right ones, not the
+    // one the optimizer refused.
+    SyntheticGraph s = SyntheticGraph::make({});
+    LoopClosure wrong = s.closures[s.closures.size() / 3];
+    wrong.constraint.mean = wrong.constraint.mean + mrpt::poses::CPose3D(-1.0, 0.7, 0, 0.3, 0, 0);
+    const std::size_t right = s.closures.size();
+    s.closures.push_back(wrong);
+    auto erd = std::make_unique<graphslam::CompositeERD>();
+    erd->addChild(std::make_unique<test::ScriptedLoopCloser>(s.closures));
+    auto recorder = std::make_unique<test::KeptClosureRecorder>();
+    const auto* told = recorder.get();
+    erd->addChild(std::move(recorder));
+    graphslam::SlamEngine engine(std::make_unique<test::ScriptedNRD>(odometryOf(s)), std::move(erd),
+                                 std::make_unique<graphslam::CeresGSO>());
+    runAll(engine);
+    EXPECT_EQ(told->kept.size(), right);
+    for (const auto& lc : told->kept) {
+        EXPECT_FALSE(lc.constraint.mean == wrong.constraint.mean) << lc.from << " -> " << lc.to;
+        EXPECT_EQ(lc.source, "ScriptedLoopCloser");
+    }
+}
+
 TEST(SlamEngine, AKidnappedSegmentIsReanchoredByItsFirstClosure) {
     SyntheticGraph::Params p;
     p.laps = 2;

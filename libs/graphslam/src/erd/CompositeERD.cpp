@@ -74,6 +74,10 @@ std::vector<LoopClosure> CompositeERD::takeNewLoopClosures() {
     return all;
 }
 
+void CompositeERD::closuresKept(const std::vector<LoopClosure>& kept) {
+    for (auto& c : children_) c->closuresKept(kept);
+}
+
 bool CompositeERD::justInsertedLoopClosure() const {
     for (const auto& c : children_) {
         if (c->justInsertedLoopClosure()) return true;

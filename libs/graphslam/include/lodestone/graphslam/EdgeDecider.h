@@ -22,6 +22,10 @@ class EdgeDecider : public mrpt::graphslam::deciders::CEdgeRegistrationDecider<G
     /** The loop closures registered since the last call (the engine empties the queue after
      * every step). */
     virtual std::vector<LoopClosure> takeNewLoopClosures();
+    /** The loop closures of every decider that the optimizer kept this step (the engine calls
+     * it after solving): what the graph now knows of where its newest nodes are, whoever
+     * found it. A decider that gates by its own path's uncertainty pins it there. */
+    virtual void closuresKept(const std::vector<LoopClosure>& /*kept*/) {}
     /** MRPT's statistics: this decider's class name and "lc" (what CGraphSlamEngine counts). */
     void getEdgesStats(std::map<std::string, int>* edge_type_to_num) const override;
     std::size_t loopClosuresRegistered() const { return registered_; }

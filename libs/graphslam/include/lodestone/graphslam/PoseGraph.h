@@ -42,5 +42,7 @@ constexpr double kPlanarStiffness = 1e6;  ///< information of z [1/m^2], pitch a
 /** Removes the edge from->to whose mean is `c.mean` (there may be several between two nodes).
  * Returns false if there is none. */
 bool eraseEdge(Graph& graph, TNodeID from, TNodeID to, const Constraint& c);
+/** Whether the graph holds the edge from->to whose mean is `c.mean`. */
+bool hasEdge(const Graph& graph, TNodeID from, TNodeID to, const Constraint& c);
 
 }  // namespace lodestone::graphslam

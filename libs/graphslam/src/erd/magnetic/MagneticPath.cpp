@@ -65,6 +65,17 @@ void MagneticPath::pinClosure(TNodeID query, double targetYaw, const Eigen::Matr
     uncertainty.pin(query, pinned);
 }
 
+void MagneticPath::pinKept(const std::vector<LoopClosure>& kept, const Graph& graph) {
+    for (const auto& lc : kept) {
+        // The edge's covariance is in the frame of its `from` node, whichever end is newer.
+        const TNodeID newer = std::max(lc.from, lc.to);
+        const auto from = graph.nodes.find(lc.from);
+        if (newer >= travel.size() || from == graph.nodes.end()) continue;
+        const Eigen::Matrix3d cov = closure::planarCovariance(lc.constraint);
+        pinClosure(newer, from->second.yaw(), cov.topLeftCorner<2, 2>(), cov(2, 2));
+    }
+}
+
 JsonObject& MagneticPath::describeCounts(JsonObject& stats) const {
     return stats.set("readings", counts.readings)
         .set("dropped_readings", counts.dropped)

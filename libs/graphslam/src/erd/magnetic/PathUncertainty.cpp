@@ -7,8 +7,6 @@
 
 namespace lodestone::graphslam::closure {
 
-namespace {
-/** The x, y, yaw block of an edge's covariance (MRPT order x, y, z, yaw, pitch, roll). */
 Eigen::Matrix3d planarCovariance(const Constraint& c) {
     constexpr int kAt[3] = {0, 1, 3};
     Eigen::Matrix3d info;
@@ -19,7 +17,6 @@ Eigen::Matrix3d planarCovariance(const Constraint& c) {
         return Eigen::Matrix3d::Identity() * 1e6;  // no information: anything goes
     return ldlt.solve(Eigen::Matrix3d::Identity());
 }
-}  // namespace
 
 PathUncertainty::Matrix4 PathUncertainty::startState() const {
     Matrix4 s = Matrix4::Zero();

@@ -37,6 +37,7 @@ class CompositeERD : public EdgeDecider {
     void setSegmentGroups(std::function<int(int)> groupOf) override;
     void setDiagnosticTruth(std::shared_ptr<const std::vector<io::TumPose>> truth) override;
     std::vector<LoopClosure> takeNewLoopClosures() override;
+    void closuresKept(const std::vector<LoopClosure>& kept) override;
     bool justInsertedLoopClosure() const override;
     void getEdgesStats(std::map<std::string, int>* edge_type_to_num) const override;
     std::set<std::string> requiredObservations() const override;

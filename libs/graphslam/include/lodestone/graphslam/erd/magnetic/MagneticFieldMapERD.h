@@ -59,6 +59,10 @@ class MagneticFieldMapERD : public EdgeDecider {
         return {"CObservationMagnetometer"};
     }
     JsonObject describe() const override;
+    /** Pins its path where any closer's kept closure placed a node (MagneticPath::pinKept). */
+    void closuresKept(const std::vector<LoopClosure>& kept) override {
+        path_.pinKept(kept, *m_graph);
+    }
     const Stats& stats() const { return stats_; }
 
   private:

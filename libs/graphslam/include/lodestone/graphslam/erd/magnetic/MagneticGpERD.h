@@ -131,6 +131,10 @@ class MagneticGpERD : public EdgeDecider {
         return {"CObservationMagnetometer"};
     }
     JsonObject describe() const override;
+    /** Pins its path where any closer's kept closure placed a node (MagneticPath::pinKept). */
+    void closuresKept(const std::vector<LoopClosure>& kept) override {
+        path_.pinKept(kept, *m_graph);
+    }
 
     const std::vector<Record>& records() const { return records_; }
     const Stats& stats() const { return stats_; }

@@ -49,6 +49,10 @@ class MagneticPath {
      * `targetYaw` and `yawVariance`: the uncertainty pinned there, in the map frame. */
     void pinClosure(TNodeID query, double targetYaw, const Eigen::Matrix2d& positionCov,
                     double yawVariance);
+    /** Every loop closure the optimizer kept (any closer's: `EdgeDecider::closuresKept`)
+     * pins its newer node as its own closures do: a closer's gate knows what the graph knows.
+     * Nodes this path has not taken in yet are left alone. */
+    void pinKept(const std::vector<LoopClosure>& kept, const Graph& graph);
     /** Where `graph` has a reading taken at `travel` during node `node`'s step: along the step
      * from node - 1 by travel (x, y, yaw; at the node itself across a segment start). */
     Eigen::Vector3d poseAt(const Graph& graph, TNodeID node, double travel) const;

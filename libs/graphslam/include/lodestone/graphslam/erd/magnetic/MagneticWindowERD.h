@@ -147,6 +147,10 @@ class MagneticWindowERD : public EdgeDecider {
         return {"CObservationMagnetometer"};
     }
     JsonObject describe() const override;
+    /** Pins its path where any closer's kept closure placed a node (MagneticPath::pinKept). */
+    void closuresKept(const std::vector<LoopClosure>& kept) override {
+        path_.pinKept(kept, *m_graph);
+    }
     const Stats& stats() const { return stats_; }
     const std::vector<TruthQuery>& truthQueries() const { return truth_queries_; }
 

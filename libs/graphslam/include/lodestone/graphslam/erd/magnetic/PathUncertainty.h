@@ -7,6 +7,10 @@
 
 namespace lodestone::graphslam::closure {
 
+/** The x, y, yaw block of an edge's covariance (MRPT order x, y, z, yaw, pitch, roll); 1e6 I
+ * where the edge holds no information there. */
+Eigen::Matrix3d planarCovariance(const Constraint& c);
+
 /** What PathUncertainty adds to the odometry's own claims. */
 struct PathUncertaintyParams {
     double headingBias{0.005};  ///< [rad/m] 1 sigma of the systematic heading drift
