@@ -190,7 +190,7 @@ TEST(PathUncertainty, AClosureAnyCloserMadePinsTheGate) {
         const auto k = id % 640;
         return k == 280 || k == 320 || k == 600 || k == 0;
     };
-    const graphslam::TNodeID last = 1229, target = 10;  // (1229: x = 2.1 m on the top side)
+    const graphslam::TNodeID last = 1229, target = 10;  // (1229: the top side, across from 10)
     for (graphslam::TNodeID id = 0; id <= last; ++id) {
         if (id > 0) {
             z.mean = mrpt::poses::CPose2D(step, 0, turnsAfter(id) ? M_PI / 2 : 0.0);
