@@ -42,7 +42,8 @@ INI
     p99=$(echo "$summary" | sed -E 's/.*p99 ([0-9.]+) s.*/\1/')
     max=$(echo "$summary" | sed -E 's/.*max ([0-9.]+) s.*/\1/')
     skipped=$(echo "$summary" | sed -E 's/.*; ([0-9]+ of [0-9]+) RGB-D.*/\1/')
-    obs=$(head -1 "$run/grab.txt" | awk '{print $2}')
+    # (the optimizer's log lines may come first)
+    obs=$(grep -m1 "^lodestone-grab:" "$run/grab.txt" | awk '{print $2}')
     live_ate=$("$eval_" "$run/grab_slam/trajectory.tum" "$run/grab.gt.tum" | awk '/^ATE/{print $3}')
     "$slam" --rawlog "$run/grab.rawlog.gz" --config "$root/config_ini/slam/slam.ini" --quiet --out "$run/offline" > /dev/null
     offline_ate=$("$eval_" "$run/offline/trajectory.tum" "$run/grab.gt.tum" | awk '/^ATE/{print $3}')
