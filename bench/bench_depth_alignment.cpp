@@ -4,6 +4,8 @@
 // number of directions the depth pinned). For depth-aligned frames the error is split along the
 // directions the covariance says were pinned (with their NEES per direction: 1 when the
 // covariance is honest) and the rest (the initial guess: the prior or constant velocity).
+// The length error: each step's estimate along its true direction, summed, against the true
+// lengths summed (with its standard error), as a bias in VO's steps hides in RMS errors.
 // Prints a markdown table row per group; every failed frame is counted by why.
 //   bench_depth_alignment RAWLOG GROUND_TRUTH.tum SLAM.ini [NAME]
 #include <lodestone/io/RawlogSource.h>
@@ -16,6 +18,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <algorithm>
@@ -31,6 +34,10 @@ struct Group {
     std::size_t pinnedDims{0}, looseDims{0};
     double nees{0};                         // summed over pinned directions
     std::vector<double> translationErrors;  // [m], for the median
+    // Length: the estimate along the true direction against the true length, summed over the
+    // steps that moved (>= 5 mm): a VO that measures every step short shows here, where RMS
+    // errors hide it.
+    double trueLength{0}, estAlong{0}, lengthDiff2{0};
 };
 
 double median(std::vector<double> v) {
@@ -96,6 +103,13 @@ int main(int argc, char** argv) {
             gr.sumR2 += e.head<3>().squaredNorm();
             gr.sumT2 += e.tail<3>().squaredNorm();
             gr.translationErrors.push_back(e.tail<3>().norm());
+            const double length = T_true.translation().norm();
+            if (length >= 0.005) {
+                const double along = r.T_ref_cur.translation().dot(T_true.translation()) / length;
+                gr.trueLength += length;
+                gr.estAlong += along;
+                gr.lengthDiff2 += (along - length) * (along - length);
+            }
             // Pinned: the covariance's eigen-directions (translation block) under 10 cm.
             const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eig(r.covariance);
             for (int k = 0; k < 6; ++k) {
@@ -112,18 +126,22 @@ int main(int argc, char** argv) {
                 }
             }
         }
-        std::printf("| %s | all frames | %zu |  |  |  |  |  |\n", name.c_str(), frames);
+        std::printf("| %s | all frames | %zu |  |  |  |  |  |  |\n", name.c_str(), frames);
         for (const auto& [key, g] : groups) {
             const double n = static_cast<double>(g.frames);
-            std::printf("| %s | %s | %zu | %.1f / %.1f | %.2f | %.1f | %s | %.2f |\n", name.c_str(),
+            // The length error's standard error: the steps' differences as independent draws.
+            const double lengthError = g.trueLength > 0 ? g.estAlong / g.trueLength - 1 : NAN;
+            const double lengthSe = g.trueLength > 0 ? std::sqrt(g.lengthDiff2) / g.trueLength : NAN;
+            std::printf("| %s | %s | %zu | %.1f / %.1f | %.2f | %+.2f +- %.2f | %.1f | %s | %.2f |\n", name.c_str(),
                         key.c_str(), g.frames, 1000 * median(g.translationErrors),
                         1000 * std::sqrt(g.sumT2 / n),
-                        std::sqrt(g.sumR2 / n) * 180 / M_PI, 1000 * std::sqrt(g.pinnedT2 / n),
+                        std::sqrt(g.sumR2 / n) * 180 / M_PI, 100 * lengthError, 100 * lengthSe,
+                        1000 * std::sqrt(g.pinnedT2 / n),
                         g.looseDims > 0 ? std::to_string(static_cast<int>(1000 * std::sqrt(g.looseT2 / n))).c_str() : "-",
                         g.pinnedDims > 0 ? g.nees / static_cast<double>(g.pinnedDims) : 0.0);
         }
         for (const auto& [why, count] : failed) {
-            std::printf("| %s | failed: %s | %zu |  |  |  |  |  |\n", name.c_str(), why.c_str(), count);
+            std::printf("| %s | failed: %s | %zu |  |  |  |  |  |  |\n", name.c_str(), why.c_str(), count);
         }
         const auto& tot = vo.totals();
         std::fprintf(stderr, "%s: depth tried %zu, aligned %zu, %.2f ms a frame on depth\n",

@@ -10,7 +10,8 @@
 # solved as one through the gaps, counting where the depth pins 4 or 3 (-depth4, -depth3). Two
 # tables:
 #   1. every VO step against the truth (bench/bench_depth_alignment.cpp): how it was found, its
-#      translation error (median / RMS), rotation error, the error along the directions its
+#      translation error (median / RMS), rotation error, its length error (the estimate along the
+#      true direction against the true length, summed: VO's steps short or long), the error along the directions its
 #      covariance calls pinned and along the rest, and the NEES per pinned direction (1: honest);
 #   2. the SLAM run: ATE; the ATE of each VO segment aligned on its own, pooled (lodestone-eval
 #      segments): the odometry's own accuracy, apart from where the segments were placed; VO
@@ -82,8 +83,8 @@ done
 if [ -s "$steps" ]; then  # (none when only the gyro carriers ran: VO alone has no gyro)
     echo "#### Every VO step against the truth ($(basename "$scenario"), read from disk)"
     echo
-    echo "| carrier, INI | found by | steps | translation error median / RMS [mm] | rotation RMS [deg] | along pinned directions RMS [mm] | along loose directions RMS [mm] | NEES per pinned direction |"
-    echo "|---|---|---|---|---|---|---|---|"
+    echo "| carrier, INI | found by | steps | translation error median / RMS [mm] | rotation RMS [deg] | length error [%] | along pinned directions RMS [mm] | along loose directions RMS [mm] | NEES per pinned direction |"
+    echo "|---|---|---|---|---|---|---|---|---|"
     cat "$steps"
     echo
 fi

@@ -11,18 +11,45 @@ RgbdRenderer::RgbdRenderer(const World& world, const CameraSpec& camera, std::ui
       noise_(noiseSeed),
       cos_max_incidence_(std::cos(camera.maxIncidence)) {}
 
+namespace {
+/** The extent along a surface's texture axes (u, v) of a pixel's footprint: the ray d (forward
+ * component 1) meets the plane of normal n at parameter t, and each pixel step moves the hit by
+ * t (step - d (n . step) / (n . d)); the footprint is the box around both moves. */
+Eigen::Vector2d footprint(const Eigen::Vector3d& d, double t, const Eigen::Vector3d& n,
+                          const Eigen::Vector3d& uAxis, const Eigen::Vector3d& vAxis,
+                          const Eigen::Vector3d& column, const Eigen::Vector3d& row) {
+    const double nd = n.dot(d);
+    Eigen::Vector2d extent(0, 0);
+    for (const Eigen::Vector3d* step : {&column, &row}) {
+        const Eigen::Vector3d move = t * (*step - d * (n.dot(*step) / nd));
+        extent += Eigen::Vector2d(std::abs(move.dot(uAxis)), std::abs(move.dot(vAxis)));
+    }
+    return extent;
+}
+}  // namespace
+
 // One pixel: h is the column's horizontal ray direction (forward component 1, so a ray
 // parameter is a depth), b the row's vertical slope (up positive).
 RgbdRenderer::Surface RgbdRenderer::trace(const Eigen::Vector3d& pos, const Eigen::Vector2d& h,
-                                          const std::optional<WallHit>& wall, double b) const {
+                                          const std::optional<WallHit>& wall, double b,
+                                          const PixelSteps& pixel) const {
     const double hNorm = h.norm();
+    const Eigen::Vector3d d(h.x(), h.y(), b);
     if (wall) {
         const double z = pos.z() + b * wall->t;
         if (z >= 0 && z <= world_.ceilingHeight()) {
-            const auto& tex = world_.wallTexture(world_.floorPlan().walls()[wall->wall].surface);
+            const Wall& w = world_.floorPlan().walls()[wall->wall];
+            const auto& tex = world_.wallTexture(w.surface);
             // Incidence in 3D: the wall normal is horizontal.
             const double cosInc = wall->cosIncidence * hNorm / std::sqrt(hNorm * hNorm + b * b);
-            return {wall->t, cosInc, tex.sample(wall->u, z), true};
+            if (!world_.areaFilteredTextures())
+                return {wall->t, cosInc, tex.sample(wall->u, z), true};
+            const Eigen::Vector2d along = (w.b - w.a) / w.length();
+            const Eigen::Vector2d extent =
+                footprint(d, wall->t, Eigen::Vector3d(-along.y(), along.x(), 0),
+                          Eigen::Vector3d(along.x(), along.y(), 0), Eigen::Vector3d::UnitZ(),
+                          pixel.column, pixel.row);
+            return {wall->t, cosInc, tex.sampleArea(wall->u, z, extent.x(), extent.y()), true};
         }
     }
     double t;
@@ -38,7 +65,11 @@ RgbdRenderer::Surface RgbdRenderer::trace(const Eigen::Vector3d& pos, const Eige
     }
     const Eigen::Vector2d p = pos.head<2>() + t * h - world_.floorOrigin();
     const double cosInc = std::abs(b) / std::sqrt(hNorm * hNorm + b * b);
-    return {t, cosInc, tex->sample(p.x(), p.y()), true};
+    if (!world_.areaFilteredTextures()) return {t, cosInc, tex->sample(p.x(), p.y()), true};
+    const Eigen::Vector2d extent =
+        footprint(d, t, Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitX(),
+                  Eigen::Vector3d::UnitY(), pixel.column, pixel.row);
+    return {t, cosInc, tex->sampleArea(p.x(), p.y(), extent.x(), extent.y()), true};
 }
 
 void RgbdRenderer::render(const Eigen::Vector3d& pos, double yaw, Random& rng, cv::Mat3b& rgb,
@@ -68,15 +99,17 @@ void RgbdRenderer::render(const Eigen::Isometry3d& pose, Random& rng, cv::Mat3b&
         const Eigen::Vector2d hColumn = (R * Eigen::Vector3d(1, a, 0)).head<2>();
         const auto wallColumn =
             level ? world_.floorPlan().castRay(pos.head<2>(), hColumn, 1e-9, farT) : std::nullopt;
+        const PixelSteps pixel{R.col(1) / camera_.fx, R.col(2) / camera_.fy};
         for (int r = 0; r < H; ++r) {
             const double b = (camera_.cy - r) / camera_.fy;  // upwards slope
             Surface s;
             if (level) {
-                s = trace(pos, hColumn, wallColumn, b);
+                s = trace(pos, hColumn, wallColumn, b, pixel);
             } else {
                 const Eigen::Vector3d d = R * Eigen::Vector3d(1, a, b);
                 const Eigen::Vector2d h = d.head<2>();
-                s = trace(pos, h, world_.floorPlan().castRay(pos.head<2>(), h, 1e-9, farT), d.z());
+                s = trace(pos, h, world_.floorPlan().castRay(pos.head<2>(), h, 1e-9, farT), d.z(),
+                          pixel);
             }
             const std::size_t i = static_cast<std::size_t>(r) * W + c;
             // Colour: what the surface looks like, plus sensor noise.
@@ -122,7 +155,9 @@ double RgbdRenderer::idealDepth(const Eigen::Vector3d& pos, double yaw, int row,
         left(-std::sin(yaw), std::cos(yaw));
     const Eigen::Vector2d h = forward + ((camera_.cx - col) / camera_.fx) * left;
     const auto wall = world_.floorPlan().castRay(pos.head<2>(), h, 1e-9, 1e3);
-    const Surface s = trace(pos, h, wall, (camera_.cy - row) / camera_.fy);
+    const PixelSteps pixel{Eigen::Vector3d(left.x(), left.y(), 0) / camera_.fx,
+                           Eigen::Vector3d::UnitZ() / camera_.fy};
+    const Surface s = trace(pos, h, wall, (camera_.cy - row) / camera_.fy, pixel);
     if (!s.valid || s.depth < camera_.minRange || s.depth > camera_.maxRange) {
         return std::numeric_limits<double>::quiet_NaN();
     }

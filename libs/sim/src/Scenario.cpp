@@ -50,6 +50,9 @@ void readWorld(IniSection& s, Scenario& sc) {
     positive(s, "wall_height", sc.wallHeight);
     sc.texturePixelsPerMetre = s.getDouble("texture_resolution", sc.texturePixelsPerMetre);
     positive(s, "texture_resolution", sc.texturePixelsPerMetre);
+    const std::string filter = s.getString("texture_filter", "area");
+    if (filter != "area" && filter != "point") s.fail("texture_filter", "must be area or point");
+    sc.areaFilteredTextures = filter == "area";
     sc.floor = readSurface(s, "floor", "tiles");
     sc.ceiling = readSurface(s, "ceiling", "plain");
     sc.lampSpacing = s.getDouble("lamp_spacing", sc.lampSpacing);

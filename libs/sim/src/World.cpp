@@ -10,7 +10,9 @@ constexpr double kFloorPixelsPerMetre = 100;
 }  // namespace
 
 World::World(const Scenario& sc, std::uint64_t seed)
-    : ceiling_height_(sc.wallHeight), lamp_spacing_(sc.lampSpacing) {
+    : ceiling_height_(sc.wallHeight),
+      lamp_spacing_(sc.lampSpacing),
+      area_filtered_(sc.areaFilteredTextures) {
     Random rng(seed);
     Random textureRng = rng.fork(1), fieldRng = rng.fork(2);
     for (const auto& spec : sc.walls) {

@@ -124,6 +124,67 @@ TEST(SurfaceTextureImage, APhotoIsTiledAtItsWidth) {
         std::runtime_error);
 }
 
+TEST(SurfaceTextureArea, ABoxAveragesTheTexelsItCovers) {
+    // A checkerboard of single texels (0 / 200 in the first channel), copied texel for texel.
+    lodestone::test::TempDir dir;
+    cv::Mat3b photo(40, 80, cv::Vec3b(0, 0, 0));
+    for (int r = 0; r < photo.rows; ++r)
+        for (int c = 0; c < photo.cols; ++c)
+            if ((r + c) % 2) photo(r, c) = cv::Vec3b(200, 50, 50);
+    const auto file = dir.file("checker.png");
+    cv::imwrite(file, photo);
+    Random rng(1);
+    const auto tex = SurfaceTexture::generate(SurfaceSpec::parse("image:" + file + ":0.8"), 0.8,
+                                              0.4, 100, rng);
+    ASSERT_EQ(tex.raster().cols, 80);
+    // A box of 4 x 4 texels anywhere: half of each.
+    for (const auto& [u, v] : {std::pair{0.205, 0.205}, {0.335, 0.115}, {0.615, 0.295}}) {
+        EXPECT_NEAR(tex.sampleArea(u, v, 0.04, 0.04)[0], 100, 1e-6) << u << "," << v;
+        // A point sample at a texel centre sees that texel only.
+        EXPECT_GT(std::abs(tex.sample(u, v)[0] - 100), 10) << u << "," << v;
+    }
+    // A footprint under one texel is the bilinear sample: magnified, nothing changes.
+    for (const auto& [u, v] : {std::pair{0.2031, 0.1012}, {0.5555, 0.3077}}) {
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(tex.sampleArea(u, v, 0.004, 0.002)[c], tex.sample(u, v)[c], 1e-6);
+    }
+    // A box 8 texels long and one texel high, over the raster's edge: clamped inside.
+    EXPECT_NEAR(tex.sampleArea(0.0, 0.2, 0.08, 0.01)[0], 100, 1e-6);
+}
+
+TEST_F(RgbdRendererTest, APixelAveragesTheWallOverItsFootprint) {
+    // 7 m from the posters a pixel covers 7 / 570 m: 2.5 texels at 200 px/m each way.
+    camera_.rgbNoise = 0;
+    const Eigen::Vector3d cam(1.0, 0.5, 1.2);
+    cv::Mat3b rgb;
+    cv::Mat_<uint16_t> depth;
+    Random rng(3);
+    RgbdRenderer(*world_, camera_, 1).render(cam, 0.0, rng, rgb, depth);
+    Scenario pointSc = sc_;
+    pointSc.areaFilteredTextures = false;
+    const World pointWorld(pointSc, 5);
+    cv::Mat3b pointRgb;
+    RgbdRenderer(pointWorld, camera_, 1).render(cam, 0.0, rng, pointRgb, depth);
+    const auto& wall = world_->wallTexture(world_->floorPlan().walls()[0].surface);
+    const double foot = 7.0 / camera_.fx;
+    int differ = 0;
+    // (pixels that see the front wall, 0.2 m in from its edges)
+    for (int r = 160; r < 310; r += 7) {
+        for (int c = 150; c < 560; c += 11) {
+            // The front wall runs from (8, -3) to (8, 3): u is y + 3, v the height.
+            const double u = cam.y() + 7.0 * (camera_.cx - c) / camera_.fx + 3.0;
+            const double v = cam.z() + 7.0 * (camera_.cy - r) / camera_.fy;
+            const cv::Vec3f area = wall.sampleArea(u, v, foot, foot), point = wall.sample(u, v);
+            for (int ch = 0; ch < 3; ++ch) {
+                EXPECT_NEAR(rgb(r, c)[ch], area[ch], 1.0) << r << "," << c;
+                EXPECT_NEAR(pointRgb(r, c)[ch], point[ch], 1.0) << r << "," << c;
+            }
+            differ += std::abs(area[0] - point[0]) > 5;
+        }
+    }
+    EXPECT_GT(differ, 50) << "the footprint's average and the centre's sample differ on posters";
+}
+
 TEST_F(RgbdRendererTest, TexturedFractionSaysWhatTheCameraFaces) {
     const RgbdRenderer renderer(*world_, camera_, 1);
     // Facing the posters wall at x = 8 from 4 m: every column ends on it.

@@ -43,8 +43,13 @@ class RgbdRenderer {
         cv::Vec3f colour;
         bool valid;
     };
+    /** `pixel` holds the ray's change across one pixel (a column step, a row step): the
+     * pixel's footprint on the surface, over which its colour is averaged. */
+    struct PixelSteps {
+        Eigen::Vector3d column, row;
+    };
     Surface trace(const Eigen::Vector3d& position, const Eigen::Vector2d& h,
-                  const std::optional<WallHit>& wall, double b) const;
+                  const std::optional<WallHit>& wall, double b, const PixelSteps& pixel) const;
 
     const World& world_;
     CameraSpec camera_;

@@ -37,12 +37,24 @@ class SurfaceTexture {
 
     /** Bilinear colour at (u, v) [m], BGR in 0..255; (u, v) clamped to the raster. */
     cv::Vec3f sample(double u, double v) const;
+    /** The mean colour over a box `du` x `dv` [m] centred on (u, v): what a camera pixel whose
+     * footprint on the surface is that box records (it integrates the light over its area; a
+     * point sample of a texture finer than the footprint aliases, and features on the aliased
+     * pattern slide over the surface as the camera moves). A box under one texel is widened to
+     * one, which is the bilinear sample: magnified, the surface looks as `sample` draws it. */
+    cv::Vec3f sampleArea(double u, double v, double du, double dv) const;
 
     const cv::Mat3b& raster() const { return raster_; }
     double pixelsPerMetre() const { return px_per_m_; }
 
   private:
+    void buildIntegral();
+    /** The integral at a fractional texel corner (x, y): bilinear between the integral's
+     * entries, exact for a piecewise-constant raster. */
+    cv::Vec3d integralAt(double x, double y) const;
+
     cv::Mat3b raster_;
+    cv::Mat integral_;  ///< (rows + 1) x (cols + 1) x 3: sums of the texels below and left
     double px_per_m_{100};
 };
 

@@ -23,6 +23,8 @@ class World {
     /** World (x, y) of the floor and ceiling textures' (u, v) = (0, 0) [m]. */
     const Eigen::Vector2d& floorOrigin() const { return floor_origin_; }
     double ceilingHeight() const { return ceiling_height_; }
+    /** Scenario::areaFilteredTextures: a pixel averages the texture over its footprint. */
+    bool areaFilteredTextures() const { return area_filtered_; }
     const MagneticField& field() const { return field_; }
 
     /** View-independent light factor at a world point (ceiling lamps on a grid). */
@@ -38,6 +40,7 @@ class World {
     Eigen::Vector2d floor_origin_;
     double ceiling_height_;
     double lamp_spacing_;
+    bool area_filtered_;
     MagneticField field_;
 };
 
