@@ -10,6 +10,7 @@
 //   bench_depth_alignment RAWLOG GROUND_TRUTH.tum SLAM.ini [NAME]
 #include <lodestone/io/RawlogSource.h>
 #include <lodestone/io/TumTrajectory.h>
+#include <lodestone/obs/registerAllClasses.h>
 #include <lodestone/odometry/RgbdObservationFrame.h>
 #include <lodestone/vision/RgbdVisualOdometry.h>
 #include <mrpt/config/CConfigFile.h>
@@ -59,6 +60,7 @@ int main(int argc, char** argv) {
         return 2;
     }
     try {
+        registerAllClasses();  // (a rawlog with magnetometers too)
         const std::string name = argc > 4 ? argv[4] : argv[1];
         vision::RgbdVisualOdometry::Params params;
         params.loadFromConfigFile(mrpt::config::CConfigFile(argv[3]), "visual_odometry");

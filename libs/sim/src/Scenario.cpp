@@ -50,7 +50,7 @@ void readWorld(IniSection& s, Scenario& sc) {
     positive(s, "wall_height", sc.wallHeight);
     sc.texturePixelsPerMetre = s.getDouble("texture_resolution", sc.texturePixelsPerMetre);
     positive(s, "texture_resolution", sc.texturePixelsPerMetre);
-    const std::string filter = s.getString("texture_filter", "area");
+    const std::string filter = s.getString("texture_filter", "point");
     if (filter != "area" && filter != "point") s.fail("texture_filter", "must be area or point");
     sc.areaFilteredTextures = filter == "area";
     sc.floor = readSurface(s, "floor", "tiles");

@@ -156,16 +156,17 @@ TEST_F(RgbdRendererTest, APixelAveragesTheWallOverItsFootprint) {
     // 7 m from the posters a pixel covers 7 / 570 m: 2.5 texels at 200 px/m each way.
     camera_.rgbNoise = 0;
     const Eigen::Vector3d cam(1.0, 0.5, 1.2);
+    Scenario areaSc = sc_;
+    areaSc.areaFilteredTextures = true;
+    const World areaWorld(areaSc, 5);
     cv::Mat3b rgb;
     cv::Mat_<uint16_t> depth;
     Random rng(3);
-    RgbdRenderer(*world_, camera_, 1).render(cam, 0.0, rng, rgb, depth);
-    Scenario pointSc = sc_;
-    pointSc.areaFilteredTextures = false;
-    const World pointWorld(pointSc, 5);
+    RgbdRenderer(areaWorld, camera_, 1).render(cam, 0.0, rng, rgb, depth);
+    ASSERT_FALSE(sc_.areaFilteredTextures) << "point sampling is the default";
     cv::Mat3b pointRgb;
-    RgbdRenderer(pointWorld, camera_, 1).render(cam, 0.0, rng, pointRgb, depth);
-    const auto& wall = world_->wallTexture(world_->floorPlan().walls()[0].surface);
+    RgbdRenderer(*world_, camera_, 1).render(cam, 0.0, rng, pointRgb, depth);
+    const auto& wall = areaWorld.wallTexture(areaWorld.floorPlan().walls()[0].surface);
     const double foot = 7.0 / camera_.fx;
     int differ = 0;
     // (pixels that see the front wall, 0.2 m in from its edges)

@@ -93,6 +93,13 @@ TEST(Scenario, BadSurfaceIsNamed) {
     EXPECT_NE(msg.find("'brick'"), std::string::npos) << msg;
 }
 
+TEST(Scenario, TextureFilterIsPointOrArea) {
+    EXPECT_EQ(loadError("texture_resolution = 200", "texture_resolution = 200\ntexture_filter = area"), "");
+    const auto msg =
+        loadError("texture_resolution = 200", "texture_resolution = 200\ntexture_filter = areas");
+    EXPECT_NE(msg.find("key 'texture_filter'"), std::string::npos) << msg;
+}
+
 TEST(Scenario, NegativeNoiseAndHugeImagesAreNamed) {
     auto msg = loadError("noise_std = 0.3", "noise_std = -0.3");
     EXPECT_NE(msg.find("key 'noise_std'"), std::string::npos) << msg;
