@@ -132,7 +132,7 @@ struct Scenario {
      * aliases wherever a pixel covers more than a texel - features on the aliased pattern slide
      * over the surface, and the robot camera's VO steps come out 3.3 % short where area makes
      * them 1.8 %. Area is not the default yet: the fused odometry's remaining length bias then
-     * reaches the graph (docs/results/simulator.md). */
+     * reaches the map (docs/results/simulator.md). */
     bool areaFilteredTextures{false};
     SurfaceSpec floor, ceiling;
     double lampSpacing{2.5};  ///< ceiling lamps on a grid [m]
