@@ -187,7 +187,6 @@ SurfaceTexture SurfaceTexture::generate(const SurfaceSpec& spec, double width, d
     }
     // Image rows grow downwards; v grows upwards: flip so that row 0 is v = 0 (the floor).
     cv::flip(t.raster_, t.raster_, 0);
-    t.buildIntegral();
     return t;
 }
 
@@ -200,11 +199,11 @@ void SurfaceTexture::bakeShading(const std::function<double(double u, double v)>
             for (int c = 0; c < 3; ++c) row[x][c] = cv::saturate_cast<uchar>(row[x][c] * f);
         }
     }
-    buildIntegral();
+    if (!integral_.empty()) prepareAreaSampling();  // (the raster changed)
 }
 
-void SurfaceTexture::buildIntegral() {
-    // 32-bit sums are exact up to 8.4 million texels (255 each): a 42 m x 1 m wall at 200 px/m.
+void SurfaceTexture::prepareAreaSampling() {
+    // 32-bit sums are exact up to 8.4 million texels (255 each): 210 m^2 of wall at 200 px/m.
     if (static_cast<double>(raster_.total()) * 255 < 2147483647.0) {
         cv::integral(raster_, integral_, CV_32S);
     } else {
@@ -231,6 +230,8 @@ cv::Vec3d SurfaceTexture::integralAt(double x, double y) const {
 }
 
 cv::Vec3f SurfaceTexture::sampleArea(double u, double v, double du, double dv) const {
+    if (integral_.empty())
+        throw std::logic_error("SurfaceTexture::sampleArea before prepareAreaSampling");
     // Magnified (the footprint within one texel both ways): the bilinear sample is the same.
     if (std::abs(du) * px_per_m_ <= 1 && std::abs(dv) * px_per_m_ <= 1) return sample(u, v);
     // In texels, the centre kept where a one-texel box fits (as sample() clamps).

@@ -50,6 +50,11 @@ World::World(const Scenario& sc, std::uint64_t seed)
         const double dx = x - (std::floor(x / s) + 0.5) * s, dy = y - (std::floor(y / s) + 0.5) * s;
         return 0.8 + (dx * dx + dy * dy < 0.04 ? 0.25 : 0.0);
     });
+    if (area_filtered_) {
+        for (auto& tex : wall_textures_) tex.prepareAreaSampling();
+        floor_.prepareAreaSampling();
+        ceiling_.prepareAreaSampling();
+    }
     buildMagneticField(sc, fieldRng);
 }
 

@@ -134,8 +134,10 @@ TEST(SurfaceTextureArea, ABoxAveragesTheTexelsItCovers) {
     const auto file = dir.file("checker.png");
     cv::imwrite(file, photo);
     Random rng(1);
-    const auto tex = SurfaceTexture::generate(SurfaceSpec::parse("image:" + file + ":0.8"), 0.8,
-                                              0.4, 100, rng);
+    auto tex = SurfaceTexture::generate(SurfaceSpec::parse("image:" + file + ":0.8"), 0.8, 0.4,
+                                        100, rng);
+    EXPECT_THROW(tex.sampleArea(0.2, 0.2, 0.04, 0.04), std::logic_error) << "not prepared";
+    tex.prepareAreaSampling();
     ASSERT_EQ(tex.raster().cols, 80);
     // A box of 4 x 4 texels anywhere: half of each.
     for (const auto& [u, v] : {std::pair{0.205, 0.205}, {0.335, 0.115}, {0.615, 0.295}}) {

@@ -43,12 +43,14 @@ class SurfaceTexture {
      * pattern slide over the surface as the camera moves). A box under one texel is widened to
      * one, which is the bilinear sample: magnified, the surface looks as `sample` draws it. */
     cv::Vec3f sampleArea(double u, double v, double du, double dv) const;
+    /** Builds what sampleArea needs (the raster's integral image, 12 bytes a texel; kept up to
+     * date by bakeShading): only worlds that filter by area pay for it. */
+    void prepareAreaSampling();
 
     const cv::Mat3b& raster() const { return raster_; }
     double pixelsPerMetre() const { return px_per_m_; }
 
   private:
-    void buildIntegral();
     /** The integral at a fractional texel corner (x, y): bilinear between the integral's
      * entries, exact for a piecewise-constant raster. */
     cv::Vec3d integralAt(double x, double y) const;
