@@ -131,7 +131,8 @@ int main(int argc, char** argv) {
         std::printf("| %s | all frames | %zu |  |  |  |  |  |  |\n", name.c_str(), frames);
         for (const auto& [key, g] : groups) {
             const double n = static_cast<double>(g.frames);
-            // The length error's standard error: the steps' differences as independent draws.
+            // The length error's standard error: the steps' differences as independent draws
+            // (about their zero, not their mean: conservative where the bias is large).
             const double lengthError = g.trueLength > 0 ? g.estAlong / g.trueLength - 1 : NAN;
             const double lengthSe = g.trueLength > 0 ? std::sqrt(g.lengthDiff2) / g.trueLength : NAN;
             std::printf("| %s | %s | %zu | %.1f / %.1f | %.2f | %+.2f +- %.2f | %.1f | %s | %.2f |\n", name.c_str(),

@@ -34,7 +34,7 @@ RgbdRenderer::Surface RgbdRenderer::trace(const Eigen::Vector3d& pos, const Eige
                                           const std::optional<WallHit>& wall, double b,
                                           const PixelSteps& pixel) const {
     const double hNorm = h.norm();
-    const Eigen::Vector3d d(h.x(), h.y(), b);
+    const Eigen::Vector3d d(h.x(), h.y(), b);  // (the footprint's ray: area filtering only)
     if (wall) {
         const double z = pos.z() + b * wall->t;
         if (z >= 0 && z <= world_.ceilingHeight()) {
