@@ -39,6 +39,8 @@ const char* toString(VoFailure f) {
             return "too few RANSAC inliers";
         case VoFailure::Implausible:
             return "implausible motion";
+        case VoFailure::FasterThanCarrier:
+            return "faster than the carrier";
     }
     return "?";
 }
@@ -54,6 +56,14 @@ void RgbdVisualOdometry::Params::loadFromConfigFile(const mrpt::config::CConfigF
     lostAfter = s.getInt("lost_after", lostAfter);
     maxTranslation = s.getDouble("max_translation", maxTranslation);
     maxRotation = s.getDouble("max_rotation_deg", maxRotation * 180 / M_PI) * M_PI / 180;
+    maxSpeed = s.getDouble("max_speed", maxSpeed);
+    stepError = s.getDouble("step_error", stepError);
+    maxTurnRate = s.getDouble("max_turn_rate_deg", maxTurnRate * 180 / M_PI) * M_PI / 180;
+    stepErrorAngle = s.getDouble("step_error_deg", stepErrorAngle * 180 / M_PI) * M_PI / 180;
+    if (!(maxSpeed >= 0)) s.fail("max_speed", "must be >= 0 (0: off)");
+    if (!(maxTurnRate >= 0)) s.fail("max_turn_rate_deg", "must be >= 0 (0: off)");
+    if (!(stepError >= 0)) s.fail("step_error", "must be >= 0");
+    if (!(stepErrorAngle >= 0)) s.fail("step_error_deg", "must be >= 0");
     seed = static_cast<std::uint64_t>(s.getInt("seed", static_cast<int>(seed)));
     keyframeDistance = s.getDouble("keyframe_distance", keyframeDistance);
     keyframeAngle = s.getDouble("keyframe_angle_deg", keyframeAngle * 180 / M_PI) * M_PI / 180;
@@ -87,8 +97,12 @@ void RgbdVisualOdometry::Params::dumpToTextStream(std::ostream& out) const {
     matcher.dumpToTextStream(out);
     ransac.dumpToTextStream(out);
     out << "lost_after         = " << lostAfter << "  [frames]\n"
-        << "max_translation    = " << maxTranslation << "  [m per frame]\n"
-        << "max_rotation_deg   = " << maxRotation * 180 / M_PI << "  [deg per frame]\n"
+        << "max_translation    = " << maxTranslation << "  [m from the reference]\n"
+        << "max_rotation_deg   = " << maxRotation * 180 / M_PI << "  [deg from the reference]\n"
+        << "max_speed          = " << maxSpeed << "  [m/s since the last tracked frame; 0: off]\n"
+        << "step_error         = " << stepError << "  [m]\n"
+        << "max_turn_rate_deg  = " << maxTurnRate * 180 / M_PI << "  [deg/s; 0: off]\n"
+        << "step_error_deg     = " << stepErrorAngle * 180 / M_PI << "  [deg]\n"
         << "seed               = " << seed << "\n"
         << "keyframe_distance  = " << keyframeDistance << "  [m]\n"
         << "keyframe_angle_deg = " << keyframeAngle * 180 / M_PI << "  [deg]\n"
@@ -184,10 +198,21 @@ RgbdVisualOdometry::Alignment RgbdVisualOdometry::alignMatches(
     return a;
 }
 
-bool RgbdVisualOdometry::plausible(const RigidEstimate& est) const {
+VoFailure RgbdVisualOdometry::plausibility(const RigidEstimate& est, double timestamp) const {
     const double angle = Eigen::AngleAxisd(est.transform.rotation()).angle();
-    return est.transform.translation().norm() <= params_.maxTranslation &&
-           angle <= params_.maxRotation;
+    if (est.transform.translation().norm() > params_.maxTranslation || angle > params_.maxRotation)
+        return VoFailure::Implausible;
+    // The step from the last tracked frame (both in the reference): what the carrier did in
+    // the time between them, give or take one step's error.
+    const double dt = std::max(0.0, timestamp - last_time_);
+    const Eigen::Isometry3d step = last_in_ref_.inverse() * est.transform;
+    if (params_.maxSpeed > 0 &&
+        step.translation().norm() > params_.maxSpeed * dt + params_.stepError)
+        return VoFailure::FasterThanCarrier;
+    if (params_.maxTurnRate > 0 && Eigen::AngleAxisd(step.rotation()).angle() >
+                                       params_.maxTurnRate * dt + params_.stepErrorAngle)
+        return VoFailure::FasterThanCarrier;
+    return VoFailure::None;
 }
 
 VoResult RgbdVisualOdometry::process(const RgbdFrame& frame, const MotionPrior* prior,
@@ -332,7 +357,7 @@ VoResult RgbdVisualOdometry::processFrame(const RgbdFrame& frame, const MotionPr
         totals_.guidedPairsAll += static_cast<double>(current.size() * reference_->size());
         auto a = alignMatches(*reference_, current, g.matches, seed);
         a.timing.matching = matching;
-        if (a.success && plausible(a.estimate)) {
+        if (a.success && plausibility(a.estimate, frame.timestamp) == VoFailure::None) {
             aligned = a;
             r.guided = true;
         } else {
@@ -347,8 +372,10 @@ VoResult RgbdVisualOdometry::processFrame(const RgbdFrame& frame, const MotionPr
     r.matches = aligned->matches;
     r.inliers = aligned->inliers;
     RigidEstimate est = aligned->estimate;
-    if (!aligned->success || !plausible(est)) {
-        r.failure = aligned->success ? VoFailure::Implausible : aligned->failure;
+    const VoFailure implausible =
+        aligned->success ? plausibility(est, frame.timestamp) : VoFailure::None;
+    if (!aligned->success || implausible != VoFailure::None) {
+        r.failure = aligned->success ? implausible : aligned->failure;
         if (!params_.depthAlignment) return fail(r.failure);
         // The features failed; the depth may still hold walls, a floor, a door frame.
         const DepthCloud& points = cloud();
@@ -360,7 +387,7 @@ VoResult RgbdVisualOdometry::processFrame(const RgbdFrame& frame, const MotionPr
         est.transform = d.T_ref_cur;
         est.covariance = d.covariance;
         ++totals_.depthObserved[static_cast<std::size_t>(std::clamp(d.observed, 0, 6))];
-        if (!d.success || !plausible(est)) {
+        if (!d.success || plausibility(est, frame.timestamp) != VoFailure::None) {
             ++totals_.depthFailures[static_cast<std::size_t>(d.failure)];
             return fail(r.failure);
         }
@@ -378,7 +405,7 @@ VoResult RgbdVisualOdometry::processFrame(const RgbdFrame& frame, const MotionPr
             RigidEstimate joined = est;
             joined.transform = d.T_ref_cur;
             joined.covariance = d.covariance;
-            if (plausible(joined)) {
+            if (plausibility(joined, frame.timestamp) == VoFailure::None) {
                 est = joined;
                 r.depthJoined = true;
                 r.depthObserved = d.observed;

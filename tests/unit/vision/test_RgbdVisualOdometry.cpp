@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 #include <lodestone/sim/RgbdRenderer.h>
 #include <lodestone/vision/RgbdVisualOdometry.h>
+#include <mrpt/config/CConfigFileMemory.h>
 
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
@@ -93,6 +94,60 @@ TEST(RgbdVisualOdometry, SimulatedMotionTowardsAPostersWall) {
     EXPECT_NEAR(aa.angle(), 0.03, 0.005);
     EXPECT_NEAR(std::abs(aa.axis().y()), 1.0, 0.05);
     EXPECT_LT(aa.axis().y() * 1.0, 0.0) << "a left turn is negative about y (down)";
+}
+
+TEST(RgbdVisualOdometry, AStepFasterThanTheCarrierIsRefused) {
+    const auto sc = lodestone::test::boxScenario("posters");
+    const lodestone::sim::World world(sc, 3);
+    lodestone::sim::CameraSpec cam;
+    auto first = simulatedFrame(world, cam, 5.0, 0.0);
+    auto second = simulatedFrame(world, cam, 5.08, 0.03);  // 8 cm on, 1.7 deg left
+    first.timestamp = 10.0;
+    const auto after = [&](double seconds, const RgbdVisualOdometry::Params& p) {
+        RgbdVisualOdometry vo(p);
+        vo.process(first);
+        auto f = second;
+        f.timestamp = first.timestamp + seconds;
+        return vo.process(f);
+    };
+    RgbdVisualOdometry::Params p;
+    p.maxSpeed = 1.0;  // [m/s]
+    p.stepError = 0.02;
+    // 8 cm in one frame at 30 Hz is 2.4 m/s: more than 1 m/s and 2 cm of error allow ...
+    const auto fast = after(1.0 / 30, p);
+    EXPECT_FALSE(fast.success);
+    EXPECT_EQ(fast.failure, VoFailure::FasterThanCarrier) << toString(fast.failure);
+    // ... in a tenth of a second it is 0.8 m/s: a motion it can make.
+    const auto slow = after(0.1, p);
+    EXPECT_TRUE(slow.success) << toString(slow.failure);
+    EXPECT_NEAR(slow.T_ref_cur.translation().z(), 0.08, 0.01);
+    // The check is off by default.
+    EXPECT_TRUE(after(1.0 / 30, RgbdVisualOdometry::Params()).success);
+    // The turn alone: 1.7 deg in a frame is 52 deg/s, more than 10 deg/s and 0.5 deg allow.
+    RgbdVisualOdometry::Params turn;
+    turn.maxTurnRate = 10 * M_PI / 180;
+    turn.stepErrorAngle = 0.5 * M_PI / 180;
+    EXPECT_EQ(after(1.0 / 30, turn).failure, VoFailure::FasterThanCarrier);
+    EXPECT_TRUE(after(0.2, turn).success);
+}
+
+TEST(RgbdVisualOdometryParams, TheCarrierBoundsAreReadAndChecked) {
+    RgbdVisualOdometry::Params p;
+    mrpt::config::CConfigFileMemory ini(
+        "[vo]\nmax_speed = 2.5\nstep_error = 0.04\nmax_turn_rate_deg = 180\nstep_error_deg = 2\n");
+    p.loadFromConfigFile(ini, "vo");
+    EXPECT_DOUBLE_EQ(p.maxSpeed, 2.5);
+    EXPECT_DOUBLE_EQ(p.stepError, 0.04);
+    EXPECT_NEAR(p.maxTurnRate, M_PI, 1e-12);
+    EXPECT_NEAR(p.stepErrorAngle, 2 * M_PI / 180, 1e-12);
+    mrpt::config::CConfigFileMemory bad("[vo]\nmax_speed = -1\n");
+    try {
+        RgbdVisualOdometry::Params q;
+        q.loadFromConfigFile(bad, "vo");
+        FAIL() << "a negative speed was accepted";
+    } catch (const std::exception& e) {
+        EXPECT_NE(std::string(e.what()).find("max_speed"), std::string::npos) << e.what();
+    }
 }
 
 TEST(RgbdVisualOdometry, AMotionPriorGuidesTheMatchingAndAWrongOneFallsBack) {

@@ -23,7 +23,17 @@ enum class VoState {
 };
 
 /** Why a frame did not give a motion. */
-enum class VoFailure { None, NoReference, FewFeatures, FewMatches, NoConsensus, Implausible };
+/** Why a frame did not give a motion (`FasterThanCarrier`: the motion since the last tracked
+ * frame is more than the carrier can do in the time between them). */
+enum class VoFailure {
+    None,
+    NoReference,
+    FewFeatures,
+    FewMatches,
+    NoConsensus,
+    Implausible,
+    FasterThanCarrier
+};
 
 const char* toString(VoState s);
 const char* toString(VoFailure f);
@@ -103,8 +113,18 @@ class RgbdVisualOdometry {
         DescriptorMatcher::Params matcher;
         RigidRansac::Params ransac;
         int lostAfter{5};            ///< consecutive failed frames before LOST
-        double maxTranslation{0.5};  ///< per frame, beyond it the motion is implausible [m]
-        double maxRotation{35 * M_PI / 180};  ///< per frame [rad]
+        /** From the reference (a frame's motion since its reference keyframe), beyond it the
+         * motion is implausible [m] ... */
+        double maxTranslation{0.5};
+        double maxRotation{35 * M_PI / 180};  ///< ... [rad]
+        /** Since the last tracked frame: a motion the carrier cannot make in the time between
+         * them, `maxSpeed` times that time plus `stepError` (what one VO step may be off by),
+         * is implausible [m/s, m] (0: no such check). An alignment of features along one edge
+         * can jump tens of centimetres in one frame and claim a millimetre. */
+        double maxSpeed{0};
+        double stepError{0.05};
+        double maxTurnRate{0};                ///< [rad/s] (0: no such check) ...
+        double stepErrorAngle{3 * M_PI / 180};  ///< ... plus this [rad]
         /** A tracked frame replaces the reference only once it moved this far from it [m] or
          * turned this much [rad]: fewer, longer steps accumulate less error. 0, 0: every frame. */
         double keyframeDistance{0.10};
@@ -190,7 +210,9 @@ class RgbdVisualOdometry {
     /** RANSAC on given matches (the second half of `align`). */
     Alignment alignMatches(const FrameFeatures& reference, const FrameFeatures& current,
                            const std::vector<cv::DMatch>& matches, std::uint64_t seed) const;
-    bool plausible(const RigidEstimate& estimate) const;
+    /** None, or why the motion is implausible: beyond the reference bounds, or faster than the
+     * carrier since the last tracked frame (at `timestamp`). */
+    VoFailure plausibility(const RigidEstimate& estimate, double timestamp) const;
 
     Params params_;
     OrbExtractor extractor_;
