@@ -22,7 +22,6 @@ enum class VoState {
     Lost           ///< `lostAfter` consecutive frames failed; no motion is reported
 };
 
-/** Why a frame did not give a motion. */
 /** Why a frame did not give a motion (`FasterThanCarrier`: the motion since the last tracked
  * frame is more than the carrier can do in the time between them). */
 enum class VoFailure {
