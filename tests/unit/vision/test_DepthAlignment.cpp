@@ -6,44 +6,15 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "SimTestFrames.h"
 #include "SimTestWorlds.h"
 
 using namespace lodestone::vision;
+using lodestone::test::cameraPose;
+using lodestone::test::opticalInCamera;
+using lodestone::test::render;
 
 namespace {
-/** The optical frame (x right, y down, z forward) in MRPT's depth frame (x forward, y left, z up). */
-Eigen::Isometry3d opticalInCamera() {
-    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    T.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;
-    return T;
-}
-
-/** A camera pose in the world (MRPT's depth frame) at `p`, turned by yaw, pitch (down +), roll. */
-Eigen::Isometry3d cameraPose(const Eigen::Vector3d& p, double yaw, double pitch = 0, double roll = 0) {
-    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    T.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
-                  Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
-                  Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
-                     .toRotationMatrix();
-    T.translation() = p;
-    return T;
-}
-
-RgbdFrame render(const lodestone::sim::World& world, const Eigen::Isometry3d& pose,
-                 std::uint64_t seed) {
-    lodestone::sim::CameraSpec cam;
-    lodestone::sim::RgbdRenderer renderer(world, cam, seed);
-    lodestone::sim::Random rng(seed);
-    cv::Mat3b rgb;
-    cv::Mat_<uint16_t> depth;
-    renderer.render(pose, rng, rgb, depth);
-    RgbdFrame f;
-    cv::cvtColor(rgb, f.gray, cv::COLOR_BGR2GRAY);
-    f.depth = depthToMetres(depth, 0.001);
-    f.intrinsics = {cam.fx, cam.fy, cam.cx, cam.cy, cam.width, cam.height};
-    return f;
-}
-
 /** The current frame's pose in the reference's optical frame, from their world poses. */
 Eigen::Isometry3d opticalMotion(const Eigen::Isometry3d& ref, const Eigen::Isometry3d& cur) {
     return (ref * opticalInCamera()).inverse() * (cur * opticalInCamera());

@@ -74,6 +74,9 @@ void VisualOdometryNRD::configure(const mrpt::config::CConfigFileBase& ini) {
     if (!(p.gyroBridgeMaxSeconds >= 0)) s.fail("gyro_bridge_max_seconds", "must be >= 0");
     if (!(fading.speedSigma > 0)) s.fail("bridge_speed_sigma", "must be > 0");
     if (!(fading.correlationSeconds > 0)) s.fail("bridge_velocity_seconds", "must be > 0");
+    p.bridgeByDepth = s.getBool("bridge_by_depth", p.bridgeByDepth);
+    if (p.bridgeByDepth && !p.useGyro)
+        s.fail("bridge_by_depth", "needs use_gyro = true (the depth corrects the gyro's bridge)");
     p.useGravity = s.getBool("use_gravity", p.useGravity);
     auto& g = p.gravity;
     g.biasStd = s.getDouble("accel_bias", g.biasStd);
@@ -94,6 +97,11 @@ void VisualOdometryNRD::configure(const mrpt::config::CConfigFileBase& ini) {
     gyro_ = odometry::GyroIntegrator(params_.gyro);
     gyro_bias_ = odometry::GyroBiasEstimator(params_.gyro.biasStd);
     gravity_ = odometry::GravityEstimator(params_.gravity);
+    odometry::DepthBridge::Params bridge;
+    bridge.motion = params_.bridgeVelocity;
+    bridge.sampling = params_.visual.depthSampling;
+    bridge.icp = params_.visual.depthIcp;
+    depth_bridge_ = odometry::DepthBridge(bridge);
 }
 
 bool VisualOdometryNRD::updateState(mrpt::obs::CActionCollection::Ptr,
@@ -153,8 +161,8 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
         rotation = gyroSinceReference(t, T_robot_optical);
         if (rotation) ++gyro_priors_;
     }
-    const auto r = vo_.process(odometry::frameFromObservation(*scan), nullptr,
-                               rotation ? &*rotation : nullptr);
+    const vision::RgbdFrame frame = odometry::frameFromObservation(*scan);
+    const auto r = vo_.process(frame, nullptr, rotation ? &*rotation : nullptr);
     if (params_.useGyro) {
         // Keep what the next frame's rotation needs: from VO's reference (or this frame) on,
         // and from the last tracked frame (a bridge across a gap, this frame's restart
@@ -182,8 +190,11 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
             gap_seconds_.push_back(gap);
         }
         std::optional<mrpt::poses::CPose3DPDFGaussian> found, byGyro, expected;
-        if (!first && params_.useGyro && gap <= params_.gyroBridgeMaxSeconds)
+        if (!first && params_.useGyro && gap <= params_.gyroBridgeMaxSeconds) {
+            followGap(frame, t, T_robot_optical);
             byGyro = bridgeByGyro(t);
+            if (byGyro && depth_bridge_.active() && depth_bridge_.aligned() > 0) ++bridged_by_depth_;
+        }
         // Where the carrier can have gone meanwhile, as far as a motion model knows: what a
         // view found again must agree with (features along one edge - a door frame, a corner -
         // align at any turn about it).
@@ -213,6 +224,7 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
         reference_ = {t, here};
         last_tracked_ = {t, here};
         last_tracked_features_ = r.frameFeatures;
+        trackedFrame(frame, T_robot_optical);
         chained_.clear();  // (VO starts again: its velocity is unknown until it has tracked)
         chained_.emplace_back(t, mrpt::poses::CPose3D());
         return;
@@ -220,6 +232,7 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
     if (!r.success) {
         ++failed_frames_;  // (VO keeps its reference; once LOST it restarts: NoReference above)
         ++failures_[vision::toString(r.failure)];
+        if (params_.useGyro) followGap(frame, t, T_robot_optical);
         return;
     }
     // The reference is the one VO started from or the last tracked frame, which VO made its
@@ -240,6 +253,7 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
     }
     last_tracked_ = {t, cur};
     last_tracked_features_ = r.frameFeatures;
+    trackedFrame(frame, T_robot_optical);
     if (cur.mean.norm() < params_.nodeDistance && rotationAngle(cur.mean) < params_.nodeAngle)
         return;
     registerAt(*scan, t, r.frameFeatures, cur, false);
@@ -300,69 +314,6 @@ std::optional<mrpt::poses::CPose3DPDFGaussian> VisualOdometryNRD::relocalize(
         return edge;
     }
     return std::nullopt;
-}
-
-mrpt::poses::CPose3DPDFGaussian VisualOdometryNRD::bridge(double gap) const {
-    // The last step scaled to the gap (first order in its angles), from the last tracked frame.
-    const double k = gap / last_step_seconds_;
-    const auto& s = last_step_;
-    mrpt::poses::CPose3DPDFGaussian motion;
-    motion.mean = mrpt::poses::CPose3D(k * s.x(), k * s.y(), k * s.z(), k * s.yaw(), k * s.pitch(),
-                                       k * s.roll());
-    const double st = 0.5 * params_.bridgeAccelSigma * gap * gap,
-                 sr = 0.5 * params_.bridgeAngularAccelSigma * gap * gap;
-    motion.cov.setZero();
-    for (int i = 0; i < 3; ++i) {
-        motion.cov(i, i) = st * st;
-        motion.cov(i + 3, i + 3) = sr * sr;
-    }
-    mrpt::poses::CPose3DPDFGaussian edge = last_tracked_.pdf;
-    edge += motion;
-    return edge;
-}
-
-std::pair<Eigen::Vector3d, double> VisualOdometryNRD::velocityAtLastTracked() const {
-    // Over VO's last gravityVelocitySeconds of tracked frames, not its last step: a step's few
-    // millimetres of error in a frame interval are a tenth of a metre per second.
-    const std::pair<double, mrpt::poses::CPose3D>* start = nullptr;
-    if (!chained_.empty()) {
-        const double end = chained_.back().first;
-        for (auto c = chained_.rbegin(); c != chained_.rend(); ++c) {
-            start = &*c;
-            if (end - c->first >= params_.gravityVelocitySeconds) break;
-        }
-    }
-    if (!start || !(chained_.back().first > start->first)) {
-        // (VO has not tracked since it restarted: the carrier's velocity is its spread)
-        return {Eigen::Vector3d::Zero(), params_.bridgeVelocity.speedSigma};
-    }
-    const auto& [t1, p1] = chained_.back();
-    const Eigen::Vector3d d(p1.x() - start->second.x(), p1.y() - start->second.y(),
-                            p1.z() - start->second.z());
-    return {p1.getRotationMatrix().asEigen().transpose() * d / (t1 - start->first),
-            params_.gravityVelocitySigma};
-}
-
-std::optional<mrpt::poses::CPose3DPDFGaussian> VisualOdometryNRD::bridgeByGyro(double t) const {
-    const auto g = gyro_.between(last_tracked_.t, t);
-    if (!g) return std::nullopt;
-    const double gap = t - last_tracked_.t;
-    // The gyro's body rotation in the robot frame: S R S^T, S the gyro's rotation on the robot.
-    const Eigen::Matrix3d S = gyro_.sensorOnRobot().linear();
-    Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
-    step.linear() = S * g->R * S.transpose();
-    // The velocity before the gap (the last tracked frame's, in its own frame) fading over it.
-    const auto& fading = params_.bridgeVelocity;
-    const auto [v0, v0Sigma] = velocityAtLastTracked();
-    step.translation() = fading.meanDisplacement(v0, gap);
-    Eigen::Matrix<double, 6, 6> cov =
-        Eigen::Matrix<double, 6, 6>::Zero();  // (rotation, translation)
-    cov.topLeftCorner<3, 3>() = g->sigma * g->sigma * Eigen::Matrix3d::Identity();
-    cov.bottomRightCorner<3, 3>() =
-        fading.displacementVariance(gap, v0Sigma) * Eigen::Matrix3d::Identity();
-    mrpt::poses::CPose3DPDFGaussian edge = last_tracked_.pdf;
-    edge += mrpt::poses::CPose3DPDFGaussian(poseOf3D(step), mrptCovarianceOf(cov));
-    return edge;
 }
 
 void VisualOdometryNRD::registerAt(const mrpt::obs::CObservation3DRangeScan& scan, double t,
@@ -454,6 +405,7 @@ JsonObject VisualOdometryNRD::describe() const {
     if (params_.useGyro) {
         params.set("gyro_label", params_.gyroLabel)
             .set("gyro_bridge_max_seconds", params_.gyroBridgeMaxSeconds)
+            .set("bridge_by_depth", params_.bridgeByDepth)
             .set("bridge_speed_sigma", params_.bridgeVelocity.speedSigma)
             .set("bridge_velocity_seconds", params_.bridgeVelocity.correlationSeconds)
             .set("use_gravity", params_.useGravity);
@@ -484,6 +436,11 @@ JsonObject VisualOdometryNRD::describe() const {
             .set("gyro_bias_sigma_deg_per_s", gyro_bias_.sigma() * 180 / M_PI)
             .set("gyro_bias_updates", gyro_bias_.updates())
             .set("gyro_bias_outliers", gyro_bias_.skipped());
+        if (params_.bridgeByDepth) {
+            stats.set("vo_gaps_bridged_by_depth", bridged_by_depth_)
+                .set("depth_bridge_frames_aligned", depth_bridge_aligned_)
+                .set("depth_bridge_frames_rejected", depth_bridge_rejected_);
+        }
     }
     if (params_.useGravity) stats.set("nodes_with_measured_up", attitude_priors_);
     JsonObject why;

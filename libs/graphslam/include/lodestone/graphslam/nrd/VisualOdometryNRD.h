@@ -2,6 +2,7 @@
 
 #include <lodestone/graphslam/NodeDecider.h>
 #include <lodestone/graphslam/nrd/NodeSpacing.h>
+#include <lodestone/odometry/DepthBridge.h>
 #include <lodestone/odometry/FadingVelocity.h>
 #include <lodestone/odometry/GravityEstimator.h>
 #include <lodestone/odometry/GyroBiasEstimator.h>
@@ -81,6 +82,10 @@ class VisualOdometryNRD : public NodeDecider {
          * (`bridge_velocity_seconds`, `bridge_speed_sigma`). */
         double gyroBridgeMaxSeconds{10.0};
         odometry::FadingVelocity bridgeVelocity;
+        /** The gyro's bridge corrected by the depth of the gap's frames (odometry::DepthBridge:
+         * each frame's depth aligned with an earlier one measures the translation where it
+         * pins it - a plain wall's distance - the fading velocity carrying the rest). */
+        bool bridgeByDepth{false};
         /** With the gyro: the same IMU's accelerometer, averaged over the last second before
          * each node, gives the node's up - a prior on its roll and pitch in the graph
          * (odometry::GravityEstimator; `accel_bias`, `gravity_window_seconds`,
@@ -125,6 +130,11 @@ class VisualOdometryNRD : public NodeDecider {
     /** The same across a gap from the last tracked frame to time t, by the gyro's rotation and
      * the fading velocity; nothing when the gyro does not cover the gap. */
     std::optional<mrpt::poses::CPose3DPDFGaussian> bridgeByGyro(double t) const;
+    /** VO tracked this frame (or restarted on it): a gap after it starts here. */
+    void trackedFrame(const vision::RgbdFrame& frame, const Eigen::Isometry3d& T_robot_optical);
+    /** A frame VO did not track, or restarted on: into the gap's depth bridge (started at the
+     * last tracked frame), where the gyro covers the gap. */
+    void followGap(const vision::RgbdFrame& frame, double t, const Eigen::Isometry3d& T_robot_optical);
     /** The carrier's velocity at the last tracked frame, in that frame [m/s], and its sigma
      * per axis: VO's displacement over `gravityVelocitySeconds`, trusted to
      * `gravityVelocitySigma`; where VO has not tracked since it restarted, zero and the
@@ -169,6 +179,11 @@ class VisualOdometryNRD : public NodeDecider {
     Anchor reference_;    // VO's reference frame
     Anchor last_tracked_;  // the last frame VO tracked (it may become the reference)
     std::shared_ptr<const vision::FrameFeatures> last_tracked_features_;
+    std::optional<vision::RgbdFrame> last_tracked_frame_;  // (its images shared, not copied)
+    Eigen::Isometry3d last_tracked_optical_{Eigen::Isometry3d::Identity()};  // its camera on the robot
+    odometry::DepthBridge depth_bridge_;  // the gap since the last tracked frame, by its depth
+    std::size_t bridged_by_depth_{0};     // gyro bridges the depth corrected
+    std::size_t depth_bridge_aligned_{0}, depth_bridge_rejected_{0};  // gap frames, over the run
     std::deque<std::pair<TNodeID, std::shared_ptr<const vision::FrameFeatures>>> recent_keyframes_;
     mrpt::poses::CPose3D since_keyframe_;  // the last node relative to the last keyframe
     int segment_{0};

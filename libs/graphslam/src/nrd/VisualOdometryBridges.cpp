@@ -1,0 +1,109 @@
+// VisualOdometryNRD across a VO gap: the bridges from the last tracked frame - the last
+// velocity's, the gyro's, and the gyro's corrected by the gap's depth (the frames VO did not
+// track still see walls and floors, which measure the translation the motion model guesses:
+// odometry::DepthBridge).
+#include <lodestone/graphslam/Se3Pose.h>
+#include <lodestone/graphslam/nrd/VisualOdometryNRD.h>
+
+namespace lodestone::graphslam {
+
+void VisualOdometryNRD::trackedFrame(const vision::RgbdFrame& frame,
+                                     const Eigen::Isometry3d& T_robot_optical) {
+    depth_bridge_.reset();
+    if (!params_.bridgeByDepth) return;
+    last_tracked_frame_ = frame;
+    last_tracked_optical_ = T_robot_optical;
+}
+
+mrpt::poses::CPose3DPDFGaussian VisualOdometryNRD::bridge(double gap) const {
+    // The last step scaled to the gap (first order in its angles), from the last tracked frame.
+    const double k = gap / last_step_seconds_;
+    const auto& s = last_step_;
+    mrpt::poses::CPose3DPDFGaussian motion;
+    motion.mean = mrpt::poses::CPose3D(k * s.x(), k * s.y(), k * s.z(), k * s.yaw(), k * s.pitch(),
+                                       k * s.roll());
+    const double st = 0.5 * params_.bridgeAccelSigma * gap * gap,
+                 sr = 0.5 * params_.bridgeAngularAccelSigma * gap * gap;
+    motion.cov.setZero();
+    for (int i = 0; i < 3; ++i) {
+        motion.cov(i, i) = st * st;
+        motion.cov(i + 3, i + 3) = sr * sr;
+    }
+    mrpt::poses::CPose3DPDFGaussian edge = last_tracked_.pdf;
+    edge += motion;
+    return edge;
+}
+
+std::pair<Eigen::Vector3d, double> VisualOdometryNRD::velocityAtLastTracked() const {
+    // Over VO's last gravityVelocitySeconds of tracked frames, not its last step: a step's few
+    // millimetres of error in a frame interval are a tenth of a metre per second.
+    const std::pair<double, mrpt::poses::CPose3D>* start = nullptr;
+    if (!chained_.empty()) {
+        const double end = chained_.back().first;
+        for (auto c = chained_.rbegin(); c != chained_.rend(); ++c) {
+            start = &*c;
+            if (end - c->first >= params_.gravityVelocitySeconds) break;
+        }
+    }
+    if (!start || !(chained_.back().first > start->first)) {
+        // (VO has not tracked since it restarted: the carrier's velocity is its spread)
+        return {Eigen::Vector3d::Zero(), params_.bridgeVelocity.speedSigma};
+    }
+    const auto& [t1, p1] = chained_.back();
+    const Eigen::Vector3d d(p1.x() - start->second.x(), p1.y() - start->second.y(),
+                            p1.z() - start->second.z());
+    return {p1.getRotationMatrix().asEigen().transpose() * d / (t1 - start->first),
+            params_.gravityVelocitySigma};
+}
+
+std::optional<mrpt::poses::CPose3DPDFGaussian> VisualOdometryNRD::bridgeByGyro(double t) const {
+    const auto g = gyro_.between(last_tracked_.t, t);
+    if (!g) return std::nullopt;
+    const double gap = t - last_tracked_.t;
+    // The gyro's body rotation in the robot frame: S R S^T, S the gyro's rotation on the robot.
+    const Eigen::Matrix3d S = gyro_.sensorOnRobot().linear();
+    Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
+    step.linear() = S * g->R * S.transpose();
+    Eigen::Matrix<double, 6, 6> cov =
+        Eigen::Matrix<double, 6, 6>::Zero();  // (rotation, translation)
+    cov.topLeftCorner<3, 3>() = g->sigma * g->sigma * Eigen::Matrix3d::Identity();
+    if (params_.bridgeByDepth && depth_bridge_.active() &&
+        depth_bridge_.startTime() == last_tracked_.t) {
+        // The gap's frames followed up to this one (followGap): the depth's where it pinned.
+        step.translation() = depth_bridge_.displacement();
+        cov.bottomRightCorner<3, 3>() = depth_bridge_.covariance();
+    } else {
+        // The velocity before the gap (the last tracked frame's, in its own frame) fading.
+        const auto& fading = params_.bridgeVelocity;
+        const auto [v0, v0Sigma] = velocityAtLastTracked();
+        step.translation() = fading.meanDisplacement(v0, gap);
+        cov.bottomRightCorner<3, 3>() =
+            fading.displacementVariance(gap, v0Sigma) * Eigen::Matrix3d::Identity();
+    }
+    mrpt::poses::CPose3DPDFGaussian edge = last_tracked_.pdf;
+    edge += mrpt::poses::CPose3DPDFGaussian(poseOf3D(step), mrptCovarianceOf(cov));
+    return edge;
+}
+
+
+void VisualOdometryNRD::followGap(const vision::RgbdFrame& frame, double t,
+                                  const Eigen::Isometry3d& T_robot_optical) {
+    if (!params_.bridgeByDepth || !last_tracked_frame_ ||
+        !(t - last_tracked_.t <= params_.gyroBridgeMaxSeconds))
+        return;
+    const auto g = gyro_.between(last_tracked_.t, t);
+    if (!g) return;
+    if (!depth_bridge_.active() || depth_bridge_.startTime() != last_tracked_.t) {
+        const auto [v0, v0Sigma] = velocityAtLastTracked();
+        depth_bridge_.start(last_tracked_.t, *last_tracked_frame_, last_tracked_optical_, v0,
+                            v0Sigma);
+    }
+    // The gyro's body rotation in the robot frame: S R S^T, S the gyro's rotation on the robot.
+    const Eigen::Matrix3d S = gyro_.sensorOnRobot().linear();
+    const int aligned = depth_bridge_.aligned(), rejected = depth_bridge_.rejected();
+    depth_bridge_.add(t, frame, T_robot_optical, S * g->R * S.transpose());
+    depth_bridge_aligned_ += static_cast<std::size_t>(depth_bridge_.aligned() - aligned);
+    depth_bridge_rejected_ += static_cast<std::size_t>(depth_bridge_.rejected() - rejected);
+}
+
+}  // namespace lodestone::graphslam

@@ -1,0 +1,89 @@
+#pragma once
+
+#include <lodestone/odometry/FadingVelocity.h>
+#include <lodestone/vision/RgbdFrame.h>
+#include <lodestone/vision/depth/DepthCloud.h>
+#include <lodestone/vision/depth/DepthModel.h>
+#include <lodestone/vision/depth/PointToPlaneIcp.h>
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+
+namespace lodestone::odometry {
+
+/** Where the carrier went across a gap in visual odometry: the fading-velocity motion model
+ * (FadingVelocity) corrected by the depth of every frame in the gap. Each frame's depth is
+ * aligned with the previous frame's (point-to-plane ICP, the gyro's rotation between them
+ * held), which measures the translation in the directions the depth pins - walking at a plain
+ * wall, the distance to it - and nothing in the others, where the motion model carries on.
+ *
+ * A frame is aligned with the last frame made the model (while the carrier moved less than
+ * `anchorDistance` from it), which measures the translation between them where the depth pins
+ * it. A Kalman filter on the robot's position and velocity in the robot frame of the last
+ * tracked frame, the position at the last aligned frame cloned beside them (each alignment
+ * measures the difference of the two). Its prediction is the Ornstein-Uhlenbeck velocity of
+ * FadingVelocity discretized exactly, so with no frame aligned the result is FadingVelocity's
+ * mean and variance; an alignment whose translation disagrees with the prediction beyond
+ * `gateChi2` (a wrong ICP minimum) is left out. */
+class DepthBridge {
+  public:
+    struct Params {
+        FadingVelocity motion;
+        vision::DepthSampling sampling;
+        vision::PointToPlaneIcp::Params icp;
+        double gateChi2{16.27};  ///< an alignment's translation against the prediction (3 dof, 99.9 %)
+        /** Frames are aligned with the same earlier frame until the motion since it exceeds
+         * this [m] or this turn [rad] (or it no longer aligns). */
+        double anchorDistance{0.10};
+        double anchorAngle{5 * M_PI / 180};
+    };
+
+    DepthBridge() : DepthBridge(Params{}) {}
+    explicit DepthBridge(const Params& params);
+
+    /** A gap starts after the last tracked frame: its time, depth and optical frame on the
+     * robot, and the robot's velocity there (in its frame) with its sigma per axis. */
+    void start(double t0, const vision::RgbdFrame& lastTracked,
+               const Eigen::Isometry3d& T_robot_optical, const Eigen::Vector3d& v0,
+               double v0Sigma);
+    /** A frame in the gap at `t`: `R_0` the robot's rotation since the gap's start (the gyro's,
+     * in the start's robot frame). */
+    void add(double t, const vision::RgbdFrame& frame, const Eigen::Isometry3d& T_robot_optical,
+             const Eigen::Matrix3d& R_0);
+    void reset() { active_ = false; }
+
+    bool active() const { return active_; }
+    double startTime() const { return t0_; }
+    /** The robot's displacement since the start (in the start's robot frame) and its
+     * covariance, at the last frame added (at the start: zero). */
+    Eigen::Vector3d displacement() const { return x_.head<3>(); }
+    Eigen::Matrix3d covariance() const { return P_.topLeftCorner<3, 3>(); }
+    /** Frames of this gap whose depth measured the motion, and those left out by the gate. */
+    int aligned() const { return aligned_; }
+    int rejected() const { return rejected_; }
+
+  private:
+    using Vector9d = Eigen::Matrix<double, 9, 1>;
+    using Matrix9d = Eigen::Matrix<double, 9, 9>;
+    void predict(double t);
+    /** The depth's translation from the model frame to this one, in the model frame's robot
+     * axes, and its covariance; nothing where the depth did not align. */
+    bool measure(const vision::DepthCloud& cloud, const Eigen::Isometry3d& T_robot_optical,
+                 const Eigen::Matrix3d& R_0, Eigen::Vector3d& z, Eigen::Matrix3d& Z) const;
+    /** The model frame becomes this one: its cloud, and the position cloned. */
+    void anchor(vision::DepthCloud cloud, const Eigen::Isometry3d& T_robot_optical,
+                const Eigen::Matrix3d& R_0);
+
+    Params params_;
+    bool active_{false};
+    double t0_{0}, t_{0};
+    Vector9d x_{Vector9d::Zero()};  // position, velocity, the position at the model frame
+    Matrix9d P_{Matrix9d::Zero()};
+    vision::DepthModel model_{1};
+    Eigen::Matrix3d R_0m_{Eigen::Matrix3d::Identity()};  // the model frame's rotation
+    Eigen::Isometry3d T_robot_optical_m_{Eigen::Isometry3d::Identity()};
+    int aligned_{0}, rejected_{0};
+};
+
+}  // namespace lodestone::odometry

@@ -1,0 +1,140 @@
+#include <lodestone/odometry/DepthBridge.h>
+
+#include <Eigen/Cholesky>
+
+#include <algorithm>
+#include <cmath>
+
+namespace lodestone::odometry {
+
+namespace {
+Eigen::Matrix3d skew(const Eigen::Vector3d& a) {
+    Eigen::Matrix3d S;
+    S << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
+    return S;
+}
+
+/** The sigma an alignment reports where the depth pins nothing: so loose that a hundred such
+ * frames in a gap add no information there (the prediction's guess, not a measurement). */
+constexpr double kUnpinnedSigma = 100.0;
+}  // namespace
+
+DepthBridge::DepthBridge(const Params& params) : params_(params) {
+    // Every direction the depth pins counts (a plain wall: its distance and two tilts); where it
+    // pins none the alignment keeps the prediction, which is then no measurement.
+    params_.icp.minObserved = 1;
+    params_.icp.unobservedSigma = kUnpinnedSigma;
+}
+
+void DepthBridge::start(double t0, const vision::RgbdFrame& lastTracked,
+                        const Eigen::Isometry3d& T_robot_optical, const Eigen::Vector3d& v0,
+                        double v0Sigma) {
+    active_ = true;
+    t0_ = t_ = t0;
+    aligned_ = rejected_ = 0;
+    x_.setZero();
+    x_.segment<3>(3) = v0;
+    P_.setZero();
+    P_.block<3, 3>(3, 3) = v0Sigma * v0Sigma * Eigen::Matrix3d::Identity();
+    model_.clear();
+    anchor(vision::sampleDepthCloud(lastTracked, params_.sampling), T_robot_optical,
+           Eigen::Matrix3d::Identity());
+}
+
+void DepthBridge::predict(double t) {
+    const double dt = std::max(0.0, t - t_);
+    t_ = std::max(t_, t);
+    if (dt == 0) return;
+    // The Ornstein-Uhlenbeck velocity and its integral over dt, per axis (FadingVelocity's
+    // model; its displacement variance is the sum of these steps).
+    const double tau = params_.motion.correlationSeconds, s2 = std::pow(params_.motion.speedSigma, 2);
+    const double u = dt / tau, a = std::exp(-u), carry = tau * -std::expm1(-u);
+    const double bracket =
+        u < 1e-3 ? 2.0 * u * u * u / 3.0 : 2 * u - 3 + 4 * a - a * a;
+    const double qpp = s2 * tau * tau * bracket, qvv = s2 * -std::expm1(-2 * u),
+                 qpv = s2 * tau * std::pow(-std::expm1(-u), 2);
+    Matrix9d F = Matrix9d::Identity();
+    F.block<3, 3>(0, 3) = carry * Eigen::Matrix3d::Identity();
+    F.block<3, 3>(3, 3) = a * Eigen::Matrix3d::Identity();
+    Matrix9d Q = Matrix9d::Zero();
+    const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+    Q.block<3, 3>(0, 0) = qpp * I;
+    Q.block<3, 3>(3, 3) = qvv * I;
+    Q.block<3, 3>(0, 3) = Q.block<3, 3>(3, 0) = qpv * I;
+    x_ = F * x_;
+    P_ = F * P_ * F.transpose() + Q;
+}
+
+bool DepthBridge::measure(const vision::DepthCloud& cloud, const Eigen::Isometry3d& T_robot_optical,
+                          const Eigen::Matrix3d& R_0, Eigen::Vector3d& z, Eigen::Matrix3d& Z) const {
+    if (model_.empty()) return false;
+    // The predicted robot motion from the model frame, then as the camera's.
+    const Eigen::Isometry3d& Cm = T_robot_optical_m_;
+    const Eigen::Isometry3d& Ck = T_robot_optical;
+    Eigen::Isometry3d robot = Eigen::Isometry3d::Identity();
+    robot.linear() = R_0m_.transpose() * R_0;
+    robot.translation() = R_0m_.transpose() * (x_.head<3>() - x_.tail<3>());
+    // From the prediction; the gyro's turn about what the depth does not pin stays.
+    const Eigen::Isometry3d initial = Cm.inverse() * robot * Ck;
+    const vision::PointToPlaneIcp icp(params_.icp);
+    const auto d = icp.align(model_, cloud, initial);
+    if (!d.success) return false;
+    // The translation of exp(xi) T is R(w) t + v: to first order t - [t]x w + v.
+    const Eigen::Vector3d t = d.T_ref_cur.translation();
+    Eigen::Matrix<double, 3, 6> J;
+    J << -skew(t), Eigen::Matrix3d::Identity();
+    // Back to the robot: its translation is Cm (optical motion) Ck^-1's, the turn the gyro's.
+    z = Cm.linear() * t + Cm.translation() - robot.linear() * Ck.translation();
+    Z = Cm.linear() * (J * d.covariance * J.transpose()) * Cm.linear().transpose();
+    return true;
+}
+
+void DepthBridge::anchor(vision::DepthCloud cloud, const Eigen::Isometry3d& T_robot_optical,
+                         const Eigen::Matrix3d& R_0) {
+    if (cloud.size() < params_.icp.minCorrespondences) return;  // (the model frame stays)
+    model_.clear();
+    model_.addReference(std::move(cloud), Eigen::Isometry3d::Identity());
+    T_robot_optical_m_ = T_robot_optical;
+    R_0m_ = R_0;
+    // The clone: the position here, with every correlation it has.
+    x_.tail<3>() = x_.head<3>();
+    P_.block<3, 9>(6, 0) = P_.block<3, 9>(0, 0);
+    P_.block<9, 3>(0, 6) = P_.block<9, 3>(0, 0);
+}
+
+void DepthBridge::add(double t, const vision::RgbdFrame& frame,
+                      const Eigen::Isometry3d& T_robot_optical, const Eigen::Matrix3d& R_0) {
+    if (!active_) return;
+    predict(t);
+    vision::DepthCloud cloud = vision::sampleDepthCloud(frame, params_.sampling);
+    Eigen::Vector3d z;
+    Eigen::Matrix3d Z;
+    const bool measured = measure(cloud, T_robot_optical, R_0, z, Z);
+    if (measured) {
+        // z = R_0m^T (p - p_m)
+        Eigen::Matrix<double, 3, 9> H = Eigen::Matrix<double, 3, 9>::Zero();
+        H.leftCols<3>() = R_0m_.transpose();
+        H.rightCols<3>() = -R_0m_.transpose();
+        const Eigen::Vector3d y = z - H * x_;
+        const Eigen::Matrix3d S = H * P_ * H.transpose() + Z;
+        const Eigen::LDLT<Eigen::Matrix3d> Sl(S);
+        if (y.dot(Sl.solve(y)) > params_.gateChi2) {
+            ++rejected_;
+        } else {
+            const Eigen::Matrix<double, 9, 3> K = Sl.solve(H * P_).transpose();
+            x_ += K * y;
+            const Matrix9d IKH = Matrix9d::Identity() - K * H;
+            P_ = IKH * P_ * IKH.transpose() + K * Z * K.transpose();  // (Joseph: stays symmetric)
+            ++aligned_;
+        }
+    }
+    // A new model frame once this one is far enough (as VO's keyframes: fewer, longer steps
+    // accumulate less of the depth's quantization), or where it no longer aligned.
+    const double moved = (x_.head<3>() - x_.tail<3>()).norm();
+    const double turned = Eigen::AngleAxisd(R_0m_.transpose() * R_0).angle();
+    if (!measured || moved >= params_.anchorDistance || turned >= params_.anchorAngle)
+        anchor(std::move(cloud), T_robot_optical, R_0);
+}
+
+}  // namespace lodestone::odometry
+

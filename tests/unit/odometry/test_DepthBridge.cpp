@@ -1,0 +1,70 @@
+#include <gtest/gtest.h>
+#include <lodestone/odometry/DepthBridge.h>
+#include <lodestone/sim/World.h>
+
+#include <cmath>
+
+#include "SimTestFrames.h"
+#include "SimTestWorlds.h"
+
+using lodestone::odometry::DepthBridge;
+using lodestone::odometry::FadingVelocity;
+
+namespace {
+constexpr double kRate = 30;  // [Hz]
+}
+
+// With no depth in any frame the bridge is the fading velocity's, mean and variance alike.
+TEST(DepthBridge, WithoutDepthItIsTheFadingVelocitysBridge) {
+    lodestone::vision::RgbdFrame blank;
+    blank.intrinsics = {570.3, 570.3, 319.5, 239.5, 640, 480};
+    blank.depth = cv::Mat::zeros(480, 640, CV_32FC1);
+    DepthBridge::Params p;
+    p.motion = FadingVelocity{0.5, 1.0};
+    DepthBridge bridge(p);
+    const Eigen::Vector3d v0(0.3, -0.1, 0.02);
+    const double v0Sigma = 0.03;
+    bridge.start(10.0, blank, lodestone::test::opticalInCamera(), v0, v0Sigma);
+    for (int k = 1; k <= 120; ++k) {
+        bridge.add(10.0 + k / kRate, blank, lodestone::test::opticalInCamera(),
+                   Eigen::Matrix3d::Identity());
+    }
+    const double gap = 120 / kRate;
+    const Eigen::Vector3d mean = p.motion.meanDisplacement(v0, gap);
+    const double variance = p.motion.displacementVariance(gap, v0Sigma);
+    for (int a = 0; a < 3; ++a) {
+        EXPECT_NEAR(bridge.displacement()(a), mean(a), 1e-9);
+        EXPECT_NEAR(bridge.covariance()(a, a), variance, 1e-9 * variance);
+    }
+    EXPECT_EQ(bridge.aligned(), 0);
+}
+
+// Walking 1 m at a plain wall (2 m from it to 1 m, nothing else in view) while drifting 0.2 m
+// sideways, the velocity before the gap a tenth of the truth's: the depth measures the approach,
+// which the motion model alone puts at 0.1 m, and says nothing of the drift along the wall -
+// there the model's guess stands with its loose covariance, the truth inside it.
+TEST(DepthBridge, TheDepthMeasuresTheApproachToAPlainWallAndNotTheDriftAlongIt) {
+    const lodestone::sim::World world(lodestone::test::boxScenario("plain"), 3);
+    const auto at = [](double s) {  // the front wall is x = 8
+        return lodestone::test::cameraPose({6.0 + s, 0.2 * s, 1.25}, 0.0);
+    };
+    const Eigen::Isometry3d camera = lodestone::test::opticalInCamera();  // (robot = camera)
+    DepthBridge bridge;
+    bridge.start(0.0, lodestone::test::render(world, at(0), 1), camera, {0.033, 0, 0}, 0.03);
+    const int frames = 90;  // 3 s
+    for (int k = 1; k <= frames; ++k) {
+        bridge.add(k / kRate, lodestone::test::render(world, at(double(k) / frames), 1 + k), camera,
+                   Eigen::Matrix3d::Identity());
+    }
+    EXPECT_GE(bridge.aligned(), frames - 2);
+    EXPECT_EQ(bridge.rejected(), 0);
+    const Eigen::Vector3d d = bridge.displacement();
+    const Eigen::Matrix3d P = bridge.covariance();
+    EXPECT_NEAR(d.x(), 1.0, 0.01) << d.transpose();
+    EXPECT_LT(std::sqrt(P(0, 0)), 0.02);
+    // Along the wall: loose (the model's), and honest about the drift it could not see.
+    EXPECT_GT(std::sqrt(P(1, 1)), 0.5);
+    EXPECT_GT(std::sqrt(P(2, 2)), 0.5);
+    EXPECT_LT(std::abs(d.y() - 0.2), 3 * std::sqrt(P(1, 1)));
+    EXPECT_LT(std::abs(d.z()), 0.05);
+}
