@@ -28,14 +28,14 @@ DepthBridge::DepthBridge(const Params& params) : params_(params) {
 
 void DepthBridge::start(double t0, const vision::RgbdFrame& lastTracked,
                         const Eigen::Isometry3d& T_robot_optical, const Eigen::Vector3d& v0,
-                        double v0Sigma) {
+                        const Eigen::Matrix3d& v0Covariance) {
     active_ = true;
     t0_ = t_ = t0;
     aligned_ = rejected_ = 0;
     x_.setZero();
     x_.segment<3>(3) = v0;
     P_.setZero();
-    P_.block<3, 3>(3, 3) = v0Sigma * v0Sigma * Eigen::Matrix3d::Identity();
+    P_.block<3, 3>(3, 3) = v0Covariance;
     model_.clear();
     anchor(vision::sampleDepthCloud(lastTracked, params_.sampling), T_robot_optical,
            Eigen::Matrix3d::Identity());

@@ -24,7 +24,8 @@ TEST(DepthBridge, WithoutDepthItIsTheFadingVelocitysBridge) {
     DepthBridge bridge(p);
     const Eigen::Vector3d v0(0.3, -0.1, 0.02);
     const double v0Sigma = 0.03;
-    bridge.start(10.0, blank, lodestone::test::opticalInCamera(), v0, v0Sigma);
+    bridge.start(10.0, blank, lodestone::test::opticalInCamera(), v0,
+                 v0Sigma * v0Sigma * Eigen::Matrix3d::Identity());
     for (int k = 1; k <= 120; ++k) {
         bridge.add(10.0 + k / kRate, blank, lodestone::test::opticalInCamera(),
                    Eigen::Matrix3d::Identity());
@@ -50,7 +51,8 @@ TEST(DepthBridge, TheDepthMeasuresTheApproachToAPlainWallAndNotTheDriftAlongIt) 
     };
     const Eigen::Isometry3d camera = lodestone::test::opticalInCamera();  // (robot = camera)
     DepthBridge bridge;
-    bridge.start(0.0, lodestone::test::render(world, at(0), 1), camera, {0.033, 0, 0}, 0.03);
+    bridge.start(0.0, lodestone::test::render(world, at(0), 1), camera, {0.033, 0, 0},
+                 0.03 * 0.03 * Eigen::Matrix3d::Identity());
     const int frames = 90;  // 3 s
     for (int k = 1; k <= frames; ++k) {
         bridge.add(k / kRate, lodestone::test::render(world, at(double(k) / frames), 1 + k), camera,

@@ -5,6 +5,9 @@
 #include <lodestone/graphslam/Se3Pose.h>
 #include <lodestone/graphslam/nrd/VisualOdometryNRD.h>
 
+#include <algorithm>
+#include <cmath>
+
 namespace lodestone::graphslam {
 
 void VisualOdometryNRD::trackedFrame(const vision::RgbdFrame& frame,
@@ -34,26 +37,36 @@ mrpt::poses::CPose3DPDFGaussian VisualOdometryNRD::bridge(double gap) const {
     return edge;
 }
 
-std::pair<Eigen::Vector3d, double> VisualOdometryNRD::velocityAtLastTracked() const {
+VisualOdometryNRD::Velocity VisualOdometryNRD::velocityAtLastTracked() const {
     // Over VO's last gravityVelocitySeconds of tracked frames, not its last step: a step's few
     // millimetres of error in a frame interval are a tenth of a metre per second.
-    const std::pair<double, mrpt::poses::CPose3D>* start = nullptr;
+    // (the newest frame that old, else the oldest)
+    std::size_t start = chained_.size();
     if (!chained_.empty()) {
         const double end = chained_.back().first;
-        for (auto c = chained_.rbegin(); c != chained_.rend(); ++c) {
-            start = &*c;
-            if (end - c->first >= params_.gravityVelocitySeconds) break;
-        }
+        start = chained_.size() - 1;
+        while (start > 0 && end - chained_[start].first < params_.gravityVelocitySeconds) --start;
     }
-    if (!start || !(chained_.back().first > start->first)) {
+    Velocity v;
+    if (start >= chained_.size() || !(chained_.back().first > chained_[start].first)) {
         // (VO has not tracked since it restarted: the carrier's velocity is its spread)
-        return {Eigen::Vector3d::Zero(), params_.bridgeVelocity.speedSigma};
+        v.sigma = params_.bridgeVelocity.speedSigma;
+        v.covariance = v.sigma * v.sigma * Eigen::Matrix3d::Identity();
+        return v;
     }
     const auto& [t1, p1] = chained_.back();
-    const Eigen::Vector3d d(p1.x() - start->second.x(), p1.y() - start->second.y(),
-                            p1.z() - start->second.z());
-    return {p1.getRotationMatrix().asEigen().transpose() * d / (t1 - start->first),
-            params_.gravityVelocitySigma};
+    const auto& p0 = chained_[start].second;
+    const double dt = t1 - chained_[start].first;
+    const Eigen::Matrix3d R1 = p1.getRotationMatrix().asEigen();
+    const Eigen::Vector3d d(p1.x() - p0.x(), p1.y() - p0.y(), p1.z() - p0.z());
+    v.mean = R1.transpose() * d / dt;
+    v.sigma = params_.gravityVelocitySigma;
+    // VO's own uncertainty of both ends (each against its reference: at most their sum), as
+    // a velocity in the last frame's axes, never below gravityVelocitySigma.
+    v.covariance = R1.transpose() * (chained_covariance_.back() + chained_covariance_[start]) * R1 /
+                       (dt * dt) +
+                   v.sigma * v.sigma * Eigen::Matrix3d::Identity();
+    return v;
 }
 
 std::optional<mrpt::poses::CPose3DPDFGaussian> VisualOdometryNRD::bridgeByGyro(double t) const {
@@ -75,10 +88,10 @@ std::optional<mrpt::poses::CPose3DPDFGaussian> VisualOdometryNRD::bridgeByGyro(d
     } else {
         // The velocity before the gap (the last tracked frame's, in its own frame) fading.
         const auto& fading = params_.bridgeVelocity;
-        const auto [v0, v0Sigma] = velocityAtLastTracked();
-        step.translation() = fading.meanDisplacement(v0, gap);
+        const auto v0 = velocityAtLastTracked();
+        step.translation() = fading.meanDisplacement(v0.mean, gap);
         cov.bottomRightCorner<3, 3>() =
-            fading.displacementVariance(gap, v0Sigma) * Eigen::Matrix3d::Identity();
+            fading.displacementVariance(gap, v0.sigma) * Eigen::Matrix3d::Identity();
     }
     mrpt::poses::CPose3DPDFGaussian edge = last_tracked_.pdf;
     edge += mrpt::poses::CPose3DPDFGaussian(poseOf3D(step), mrptCovarianceOf(cov));
@@ -94,9 +107,14 @@ void VisualOdometryNRD::followGap(const vision::RgbdFrame& frame, double t,
     const auto g = gyro_.between(last_tracked_.t, t);
     if (!g) return;
     if (!depth_bridge_.active() || depth_bridge_.startTime() != last_tracked_.t) {
-        const auto [v0, v0Sigma] = velocityAtLastTracked();
-        depth_bridge_.start(last_tracked_.t, *last_tracked_frame_, last_tracked_optical_, v0,
-                            v0Sigma);
+        // VO's velocity as a measurement of the carrier's, whose spread the motion model knows:
+        // where VO's last frames did not measure an axis (a plain wall ahead leaves the height
+        // to a few features), the velocity there is the model's, not VO's drift.
+        const auto vo = velocityAtLastTracked();
+        const double s2 = std::pow(params_.bridgeVelocity.speedSigma, 2);
+        const Eigen::Matrix3d gain = s2 * (s2 * Eigen::Matrix3d::Identity() + vo.covariance).inverse();
+        depth_bridge_.start(last_tracked_.t, *last_tracked_frame_, last_tracked_optical_,
+                            gain * vo.mean, gain * vo.covariance);
     }
     // The gyro's body rotation in the robot frame: S R S^T, S the gyro's rotation on the robot.
     const Eigen::Matrix3d S = gyro_.sensorOnRobot().linear();

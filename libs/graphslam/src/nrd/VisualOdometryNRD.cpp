@@ -193,7 +193,6 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
         if (!first && params_.useGyro && gap <= params_.gyroBridgeMaxSeconds) {
             followGap(frame, t, T_robot_optical);
             byGyro = bridgeByGyro(t);
-            if (byGyro && depth_bridge_.active() && depth_bridge_.aligned() > 0) ++bridged_by_depth_;
         }
         // Where the carrier can have gone meanwhile, as far as a motion model knows: what a
         // view found again must agree with (features along one edge - a door frame, a corner -
@@ -211,6 +210,7 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
         } else if (byGyro) {
             // The gyro saw every turn of the gap: the segment goes on, loose where it must.
             ++bridged_by_gyro_;
+            if (depth_bridge_.active() && depth_bridge_.aligned() > 0) ++bridged_by_depth_;
             registerAt(*scan, t, r.frameFeatures, *byGyro, false);
         } else if (!first && gap <= params_.bridgeMaxSeconds && last_step_seconds_ > 0) {
             // A short gap: where the last velocity carries the camera, as sure as a
@@ -227,6 +227,7 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
         trackedFrame(frame, T_robot_optical);
         chained_.clear();  // (VO starts again: its velocity is unknown until it has tracked)
         chained_.emplace_back(t, mrpt::poses::CPose3D());
+        chained_covariance_.assign(1, Eigen::Matrix3d::Zero());
         return;
     }
     if (!r.success) {
@@ -246,10 +247,17 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
     last_step_seconds_ = t - last_tracked_.t;
     if (!chained_.empty()) {
         chained_.emplace_back(t, chained_.back().second + last_step_);
+        // VO's own uncertainty of this frame against its reference, in the chain's axes.
+        const Eigen::Matrix3d R = chained_.back().second.getRotationMatrix().asEigen();
+        const Eigen::Matrix3d C = motion.cov.asEigen().topLeftCorner<3, 3>();
+        chained_covariance_.push_back(R * C * R.transpose());
         // (kept: VO's velocity before a gap; with the accelerometer, the window before a node)
         double old = t - 2 * params_.gravityVelocitySeconds;
         if (params_.useGravity) old -= params_.gravity.windowSeconds;
-        while (chained_.size() > 1 && chained_[1].first < old) chained_.pop_front();
+        while (chained_.size() > 1 && chained_[1].first < old) {
+            chained_.pop_front();
+            chained_covariance_.pop_front();
+        }
     }
     last_tracked_ = {t, cur};
     last_tracked_features_ = r.frameFeatures;

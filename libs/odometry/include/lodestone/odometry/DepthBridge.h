@@ -43,10 +43,10 @@ class DepthBridge {
     explicit DepthBridge(const Params& params);
 
     /** A gap starts after the last tracked frame: its time, depth and optical frame on the
-     * robot, and the robot's velocity there (in its frame) with its sigma per axis. */
+     * robot, and the robot's velocity there (in its frame) with its covariance. */
     void start(double t0, const vision::RgbdFrame& lastTracked,
                const Eigen::Isometry3d& T_robot_optical, const Eigen::Vector3d& v0,
-               double v0Sigma);
+               const Eigen::Matrix3d& v0Covariance);
     /** A frame in the gap at `t`: `R_0` the robot's rotation since the gap's start (the gyro's,
      * in the start's robot frame). */
     void add(double t, const vision::RgbdFrame& frame, const Eigen::Isometry3d& T_robot_optical,

@@ -135,11 +135,16 @@ class VisualOdometryNRD : public NodeDecider {
     /** A frame VO did not track, or restarted on: into the gap's depth bridge (started at the
      * last tracked frame), where the gyro covers the gap. */
     void followGap(const vision::RgbdFrame& frame, double t, const Eigen::Isometry3d& T_robot_optical);
-    /** The carrier's velocity at the last tracked frame, in that frame [m/s], and its sigma
-     * per axis: VO's displacement over `gravityVelocitySeconds`, trusted to
-     * `gravityVelocitySigma`; where VO has not tracked since it restarted, zero and the
-     * carrier's speed spread. */
-    std::pair<Eigen::Vector3d, double> velocityAtLastTracked() const;
+    /** The carrier's velocity at the last tracked frame, in that frame [m/s]: VO's
+     * displacement over `gravityVelocitySeconds`, trusted to `gravityVelocitySigma` per axis
+     * (`sigma`) or to VO's own covariance of its ends, floored there (`covariance`); where VO
+     * has not tracked since it restarted, zero and the carrier's speed spread. */
+    struct Velocity {
+        Eigen::Vector3d mean{Eigen::Vector3d::Zero()};
+        double sigma{0};
+        Eigen::Matrix3d covariance{Eigen::Matrix3d::Zero()};
+    };
+    Velocity velocityAtLastTracked() const;
     /** VO's rotation from its old reference to a frame that became the new one, against the
      * gyro's over the same time: the gyro's bias learnt. */
     void learnGyroBias(const vision::VoResult& r, double t,
@@ -182,7 +187,7 @@ class VisualOdometryNRD : public NodeDecider {
     std::optional<vision::RgbdFrame> last_tracked_frame_;  // (its images shared, not copied)
     Eigen::Isometry3d last_tracked_optical_{Eigen::Isometry3d::Identity()};  // its camera on the robot
     odometry::DepthBridge depth_bridge_;  // the gap since the last tracked frame, by its depth
-    std::size_t bridged_by_depth_{0};     // gyro bridges the depth corrected
+    std::size_t bridged_by_depth_{0};     // gyro bridges the depth corrected (of those taken)
     std::size_t depth_bridge_aligned_{0}, depth_bridge_rejected_{0};  // gap frames, over the run
     std::deque<std::pair<TNodeID, std::shared_ptr<const vision::FrameFeatures>>> recent_keyframes_;
     mrpt::poses::CPose3D since_keyframe_;  // the last node relative to the last keyframe
@@ -193,6 +198,7 @@ class VisualOdometryNRD : public NodeDecider {
     std::vector<double> unbridged_gap_seconds_;  // the gaps that opened a new segment
     // VO's tracked frames chained (since the last restart), for the window's velocities
     std::deque<std::pair<double, mrpt::poses::CPose3D>> chained_;
+    std::deque<Eigen::Matrix3d> chained_covariance_;  // VO's, of each against its reference
     mrpt::poses::CPose3D last_step_;  // the last motion between tracked frames ...
     double last_step_seconds_{0};      // ... and how long it took
     std::vector<double> gap_seconds_;  // from the last tracked frame to VO's restart

@@ -1,0 +1,61 @@
+#!/usr/bin/env python3
+"""The edges a lodestone-slam run bridged VO's gaps with, against the truth: every odometry edge
+(node k to k + 1) spanning at least MIN seconds, its translation against the true translation
+between the two nodes (in the first node's frame). Prints one line: the count, the error's
+median, maximum and RMS [m], and the error per axis (RMS, the first node's x, y, z).
+Usage: scripts/bench/gap_edges.py RUN_DIR GROUND_TRUTH.tum [MIN_SECONDS (default 1.0)]"""
+import bisect
+import math
+import sys
+
+
+def rotation(qx, qy, qz, qw):
+    return [[1 - 2 * (qy * qy + qz * qz), 2 * (qx * qy - qz * qw), 2 * (qx * qz + qy * qw)],
+            [2 * (qx * qy + qz * qw), 1 - 2 * (qx * qx + qz * qz), 2 * (qy * qz - qx * qw)],
+            [2 * (qx * qz - qy * qw), 2 * (qy * qz + qx * qw), 1 - 2 * (qx * qx + qy * qy)]]
+
+
+def main():
+    run, truth_path = sys.argv[1], sys.argv[2]
+    min_seconds = float(sys.argv[3]) if len(sys.argv) > 3 else 1.0
+    stamps = {}
+    for line in open(run + "/nodes.csv"):
+        if line.startswith("node"):
+            continue
+        f = line.split(",")
+        stamps[int(f[0])] = float(f[1])
+    truth = [list(map(float, l.split()[:8])) for l in open(truth_path)
+             if l.strip() and not l.startswith("#")]
+    times = [r[0] for r in truth]
+
+    def at(t):
+        return truth[min(bisect.bisect_left(times, t - 1e-4), len(truth) - 1)]
+
+    errors, axes = [], [0.0, 0.0, 0.0]
+    for line in open(run + "/graph.graph"):
+        f = line.split()
+        if not f or f[0] != "EDGE3":
+            continue
+        a, b = int(f[1]), int(f[2])
+        if b != a + 1 or stamps[b] - stamps[a] < min_seconds:
+            continue
+        edge = list(map(float, f[3:6]))
+        A, B = at(stamps[a]), at(stamps[b])
+        R = rotation(*A[4:8])
+        d = [B[i] - A[i] for i in (1, 2, 3)]
+        true = [sum(R[r][c] * d[r] for r in range(3)) for c in range(3)]
+        errors.append(math.dist(edge, true))
+        for k in range(3):
+            axes[k] += (edge[k] - true[k]) ** 2
+    if not errors:
+        print("0 edges")
+        return
+    n = len(errors)
+    errors.sort()
+    print("%d edges, error median %.3f max %.3f RMS %.3f m; per axis RMS x %.3f y %.3f z %.3f m" % (
+        n, errors[n // 2], errors[-1], math.sqrt(sum(e * e for e in errors) / n),
+        *(math.sqrt(s / n) for s in axes)))
+
+
+if __name__ == "__main__":
+    main()
