@@ -70,3 +70,33 @@ TEST(DepthBridge, TheDepthMeasuresTheApproachToAPlainWallAndNotTheDriftAlongIt) 
     EXPECT_LT(std::abs(d.y() - 0.2), 3 * std::sqrt(P(1, 1)));
     EXPECT_LT(std::abs(d.z()), 0.05);
 }
+
+// A robot's camera (0.45 m up, 0.10 m ahead of the axle) turning a quarter turn in place 1.2 m
+// from a plain wall, the floor in view below it: the optical centre swings round the axle, and
+// the bridge, given the gyro's turn, finds the robot where it stood.
+TEST(DepthBridge, ARobotTurningInPlaceBeforeAWallStaysWhereItStood) {
+    const lodestone::sim::World world(lodestone::test::boxScenario("plain"), 3);
+    Eigen::Isometry3d cameraOnRobot = Eigen::Isometry3d::Identity();
+    cameraOnRobot.translation() << 0.10, 0, 0.45;
+    const auto robotAt = [](double yaw) {
+        Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+        T.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+        T.translation() << 6.7, 0.0, 0.0;
+        return T;
+    };
+    const Eigen::Isometry3d optical = cameraOnRobot * lodestone::test::opticalInCamera();
+    DepthBridge bridge;
+    bridge.start(0.0, lodestone::test::render(world, robotAt(0) * cameraOnRobot, 1), optical,
+                 Eigen::Vector3d::Zero(), 0.03 * 0.03 * Eigen::Matrix3d::Identity());
+    const int frames = 75;  // 2.5 s at 36 deg/s
+    for (int k = 1; k <= frames; ++k) {
+        const double yaw = M_PI / 2 * k / frames;
+        bridge.add(k / kRate, lodestone::test::render(world, robotAt(yaw) * cameraOnRobot, 1 + k),
+                   optical, Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix());
+    }
+    EXPECT_GE(bridge.aligned(), frames - 2);
+    const Eigen::Vector3d d = bridge.displacement();
+    EXPECT_LT(d.norm(), 0.02) << d.transpose();
+    const Eigen::Vector3d sigma = bridge.covariance().diagonal().cwiseSqrt();
+    for (int a = 0; a < 3; ++a) EXPECT_LT(std::abs(d(a)), 3 * sigma(a) + 0.005) << a;
+}

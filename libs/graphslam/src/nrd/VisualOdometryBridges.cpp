@@ -109,12 +109,14 @@ void VisualOdometryNRD::followGap(const vision::RgbdFrame& frame, double t,
     if (!depth_bridge_.active() || depth_bridge_.startTime() != last_tracked_.t) {
         // VO's velocity as a measurement of the carrier's, whose spread the motion model knows:
         // where VO's last frames did not measure an axis (a plain wall ahead leaves the height
-        // to a few features), the velocity there is the model's, not VO's drift.
+        // to a few features), the velocity there is the model's, not VO's drift. Axis by axis:
+        // VO's correlations between axes are the least sure part of its covariance, and the
+        // depth's precise approach would turn a slight one into metres per second elsewhere.
         const auto vo = velocityAtLastTracked();
         const double s2 = std::pow(params_.bridgeVelocity.speedSigma, 2);
-        const Eigen::Matrix3d gain = s2 * (s2 * Eigen::Matrix3d::Identity() + vo.covariance).inverse();
+        const Eigen::Array3d c = vo.covariance.diagonal().array(), gain = s2 / (s2 + c);
         depth_bridge_.start(last_tracked_.t, *last_tracked_frame_, last_tracked_optical_,
-                            gain * vo.mean, gain * vo.covariance);
+                            (gain * vo.mean.array()).matrix(), (gain * c).matrix().asDiagonal());
     }
     // The gyro's body rotation in the robot frame: S R S^T, S the gyro's rotation on the robot.
     const Eigen::Matrix3d S = gyro_.sensorOnRobot().linear();

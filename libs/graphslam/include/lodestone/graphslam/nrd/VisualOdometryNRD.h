@@ -40,7 +40,9 @@ namespace lodestone::graphslam {
  * translation from the carrier's last velocity fading as a velocity does that nothing measures
  * (a first-order Gauss-Markov process: `bridge_speed_sigma`, `bridge_velocity_seconds`; the
  * velocity VO's over its last 0.3 s), its covariance growing with the gap - the segment goes
- * on, its edge loose where nothing saw the motion. The gyro's bias is learnt meanwhile from
+ * on, its edge loose where nothing saw the motion (with `bridge_by_depth`, the translation
+ * measured by the gap frames' depth where it pins it: odometry::DepthBridge). The gyro's bias
+ * is learnt meanwhile from
  * VO's rotations between reference frames where the features tracked (GyroBiasEstimator) and
  * taken out of its rates. Else a short gap (`bridge_max_seconds`) is bridged by the camera's
  * last velocity, the edge's covariance that of a constant-velocity model with white-noise
