@@ -39,8 +39,9 @@ DepthBridge::DepthBridge(const Params& params) : params_(params) {
 
 void DepthBridge::start(double t0, const vision::RgbdFrame& lastTracked,
                         const Eigen::Isometry3d& T_robot_optical, const Eigen::Vector3d& v0,
-                        const Eigen::Matrix3d& v0Covariance) {
+                        const Eigen::Matrix3d& v0Covariance, const Eigen::Vector3d& up) {
     active_ = true;
+    up_ = up.normalized();
     t0_ = t_ = t0;
     aligned_ = rejected_ = 0;
     x_.setZero();
@@ -50,6 +51,22 @@ void DepthBridge::start(double t0, const vision::RgbdFrame& lastTracked,
     model_.clear();
     anchor(vision::sampleDepthCloud(lastTracked, params_.sampling), T_robot_optical,
            Eigen::Matrix3d::Identity());
+}
+
+Eigen::Vector3d DepthBridge::displacement() const {
+    const Eigen::Vector3d d = x_.head<3>();
+    if (!(params_.heightSigma > 0)) return d;
+    // The height's prior as one measurement of up . d = 0, once, on what the filter holds.
+    const Eigen::Matrix3d P = P_.topLeftCorner<3, 3>();
+    const Eigen::Vector3d Pu = P * up_;
+    return d - Pu * (up_.dot(d) / (up_.dot(Pu) + params_.heightSigma * params_.heightSigma));
+}
+
+Eigen::Matrix3d DepthBridge::covariance() const {
+    const Eigen::Matrix3d P = P_.topLeftCorner<3, 3>();
+    if (!(params_.heightSigma > 0)) return P;
+    const Eigen::Vector3d Pu = P * up_;
+    return P - Pu * Pu.transpose() / (up_.dot(Pu) + params_.heightSigma * params_.heightSigma);
 }
 
 void DepthBridge::predict(double t) {

@@ -25,6 +25,8 @@ TEST(VisualOdometryNRD, ConfigurationMistakesNameTheKey) {
               std::string::npos);
     EXPECT_NE(errorOf("[VisualOdometryNRD]\nuse_gyro = true\nbridge_speed_sigma = 0\n").find("bridge_speed_sigma"),
               std::string::npos);
+    EXPECT_NE(errorOf("[VisualOdometryNRD]\nuse_gyro = true\nbridge_height_sigma = -1\n").find("bridge_height_sigma"),
+              std::string::npos);
     EXPECT_EQ(errorOf("[VisualOdometryNRD]\nuse_gyro = true\nbridge_by_depth = true\n"), "no error");
     EXPECT_TRUE(nrd.params().bridgeByDepth);
 }

@@ -115,8 +115,12 @@ void VisualOdometryNRD::followGap(const vision::RgbdFrame& frame, double t,
         const auto vo = velocityAtLastTracked();
         const double s2 = std::pow(params_.bridgeVelocity.speedSigma, 2);
         const Eigen::Array3d c = vo.covariance.diagonal().array(), gain = s2 / (s2 + c);
+        // Up: the accelerometer's where measured, else the robot frame's z.
+        std::optional<AttitudePrior> up;
+        if (params_.useGravity) up = measuredUp(last_tracked_.t);
         depth_bridge_.start(last_tracked_.t, *last_tracked_frame_, last_tracked_optical_,
-                            (gain * vo.mean.array()).matrix(), (gain * c).matrix().asDiagonal());
+                            (gain * vo.mean.array()).matrix(), (gain * c).matrix().asDiagonal(),
+                            up ? up->up : Eigen::Vector3d::UnitZ());
     }
     // The gyro's body rotation in the robot frame: S R S^T, S the gyro's rotation on the robot.
     const Eigen::Matrix3d S = gyro_.sensorOnRobot().linear();

@@ -75,6 +75,8 @@ void VisualOdometryNRD::configure(const mrpt::config::CConfigFileBase& ini) {
     if (!(fading.speedSigma > 0)) s.fail("bridge_speed_sigma", "must be > 0");
     if (!(fading.correlationSeconds > 0)) s.fail("bridge_velocity_seconds", "must be > 0");
     p.bridgeByDepth = s.getBool("bridge_by_depth", p.bridgeByDepth);
+    p.bridgeHeightSigma = s.getDouble("bridge_height_sigma", p.bridgeHeightSigma);
+    if (!(p.bridgeHeightSigma >= 0)) s.fail("bridge_height_sigma", "must be >= 0");
     if (p.bridgeByDepth && !p.useGyro)
         s.fail("bridge_by_depth", "needs use_gyro = true (the depth corrects the gyro's bridge)");
     p.useGravity = s.getBool("use_gravity", p.useGravity);
@@ -101,6 +103,7 @@ void VisualOdometryNRD::configure(const mrpt::config::CConfigFileBase& ini) {
     bridge.motion = params_.bridgeVelocity;
     bridge.sampling = params_.visual.depthSampling;
     bridge.icp = params_.visual.depthIcp;
+    bridge.heightSigma = params_.bridgeHeightSigma;
     depth_bridge_ = odometry::DepthBridge(bridge);
 }
 
@@ -414,6 +417,7 @@ JsonObject VisualOdometryNRD::describe() const {
         params.set("gyro_label", params_.gyroLabel)
             .set("gyro_bridge_max_seconds", params_.gyroBridgeMaxSeconds)
             .set("bridge_by_depth", params_.bridgeByDepth)
+            .set("bridge_height_sigma", params_.bridgeHeightSigma)
             .set("bridge_speed_sigma", params_.bridgeVelocity.speedSigma)
             .set("bridge_velocity_seconds", params_.bridgeVelocity.correlationSeconds)
             .set("use_gravity", params_.useGravity);

@@ -37,6 +37,10 @@ class DepthBridge {
          * this [m] or this turn [rad] (or it no longer aligns). */
         double anchorDistance{0.10};
         double anchorAngle{5 * M_PI / 180};
+        /** How far the carrier's height wanders over a gap [m] (a robot on one floor, a hand
+         * bobbing and swaying: centimetres, not the metres a drifting vertical velocity gives
+         * over seconds); 0: no such prior. The result is conditioned on it. */
+        double heightSigma{0};
     };
 
     DepthBridge() : DepthBridge(Params{}) {}
@@ -46,7 +50,8 @@ class DepthBridge {
      * robot, and the robot's velocity there (in its frame) with its covariance. */
     void start(double t0, const vision::RgbdFrame& lastTracked,
                const Eigen::Isometry3d& T_robot_optical, const Eigen::Vector3d& v0,
-               const Eigen::Matrix3d& v0Covariance);
+               const Eigen::Matrix3d& v0Covariance,
+               const Eigen::Vector3d& up = Eigen::Vector3d::UnitZ());
     /** A frame in the gap at `t`: `R_0` the robot's rotation since the gap's start (the gyro's,
      * in the start's robot frame). */
     void add(double t, const vision::RgbdFrame& frame, const Eigen::Isometry3d& T_robot_optical,
@@ -56,9 +61,10 @@ class DepthBridge {
     bool active() const { return active_; }
     double startTime() const { return t0_; }
     /** The robot's displacement since the start (in the start's robot frame) and its
-     * covariance, at the last frame added (at the start: zero). */
-    Eigen::Vector3d displacement() const { return x_.head<3>(); }
-    Eigen::Matrix3d covariance() const { return P_.topLeftCorner<3, 3>(); }
+     * covariance, at the last frame added (at the start: zero); with `heightSigma`, given that
+     * the height along `up` changed by about that much at most. */
+    Eigen::Vector3d displacement() const;
+    Eigen::Matrix3d covariance() const;
     /** Frames of this gap whose depth measured the motion, and those left out by the gate. */
     int aligned() const { return aligned_; }
     int rejected() const { return rejected_; }
@@ -83,6 +89,7 @@ class DepthBridge {
     vision::DepthModel model_{1};
     Eigen::Matrix3d R_0m_{Eigen::Matrix3d::Identity()};  // the model frame's rotation
     Eigen::Isometry3d T_robot_optical_m_{Eigen::Isometry3d::Identity()};
+    Eigen::Vector3d up_{Eigen::Vector3d::UnitZ()};
     int aligned_{0}, rejected_{0};
 };
 

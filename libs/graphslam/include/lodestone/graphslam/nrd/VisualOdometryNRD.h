@@ -88,6 +88,9 @@ class VisualOdometryNRD : public NodeDecider {
          * each frame's depth aligned with an earlier one measures the translation where it
          * pins it - a plain wall's distance - the fading velocity carrying the rest). */
         bool bridgeByDepth{false};
+        /** With it, how far the carrier's height wanders over a gap [m] (the up the
+         * accelerometer's, where measured; 0: no such prior): `bridge_height_sigma`. */
+        double bridgeHeightSigma{0};
         /** With the gyro: the same IMU's accelerometer, averaged over the last second before
          * each node, gives the node's up - a prior on its roll and pitch in the graph
          * (odometry::GravityEstimator; `accel_bias`, `gravity_window_seconds`,
