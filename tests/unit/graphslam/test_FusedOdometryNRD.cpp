@@ -11,6 +11,8 @@
 
 #include <gtest/gtest.h>
 
+#include "ConfigErrorOf.h"
+
 #include <cmath>
 #include <map>
 
@@ -182,15 +184,7 @@ TEST(FusedOdometryNRD, AKidnapStartsASegmentOnAWeakEdge) {
 
 TEST(FusedOdometryNRD, ConfigurationMistakesNameTheKey) {
     graphslam::FusedOdometryNRD nrd;
-    const auto errorOf = [&](const std::string& text) {
-        mrpt::config::CConfigFileMemory ini(text);
-        try {
-            nrd.configure(ini);
-        } catch (const config::ConfigError& e) {
-            return std::string(e.what());
-        }
-        return std::string("no error");
-    };
+    const auto errorOf = [&](const std::string& text) { return test::configErrorOf(nrd, text); };
     EXPECT_NE(errorOf("[FusedOdometryNRD]\nnode_distanse = 0.2\n").find("node_distanse"),
               std::string::npos);
     EXPECT_NE(errorOf("[FusedOdometryNRD]\nkeyframe_distance = 0.05\n").find("keyframe_distance"),

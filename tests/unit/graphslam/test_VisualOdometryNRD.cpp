@@ -1,23 +1,15 @@
 #include <gtest/gtest.h>
-#include <lodestone/config/IniSection.h>
 #include <lodestone/graphslam/nrd/VisualOdometryNRD.h>
-#include <mrpt/config/CConfigFileMemory.h>
 
 #include <string>
+
+#include "ConfigErrorOf.h"
 
 using namespace lodestone;
 
 TEST(VisualOdometryNRD, ConfigurationMistakesNameTheKey) {
     graphslam::VisualOdometryNRD nrd;
-    const auto errorOf = [&](const std::string& text) {
-        mrpt::config::CConfigFileMemory ini(text);
-        try {
-            nrd.configure(ini);
-        } catch (const config::ConfigError& e) {
-            return std::string(e.what());
-        }
-        return std::string("no error");
-    };
+    const auto errorOf = [&](const std::string& text) { return test::configErrorOf(nrd, text); };
     EXPECT_NE(errorOf("[VisualOdometryNRD]\nbridge_by_dept = true\nuse_gyro = true\n").find("bridge_by_dept"),
               std::string::npos);
     // The depth corrects the gyro's bridge: without a gyro there is none to correct.
