@@ -38,9 +38,9 @@ mrpt::poses::CPose3DPDFGaussian VisualOdometryNRD::bridge(double gap) const {
 }
 
 VisualOdometryNRD::Velocity VisualOdometryNRD::velocityAtLastTracked() const {
-    // Over VO's last gravityVelocitySeconds of tracked frames, not its last step: a step's few
-    // millimetres of error in a frame interval are a tenth of a metre per second.
-    // (the newest frame that old, else the oldest)
+    // Over VO's last gravityVelocitySeconds of tracked frames (from the newest frame that old,
+    // else the oldest), not its last step: a step's few millimetres of error in a frame
+    // interval are a tenth of a metre per second.
     std::size_t start = chained_.size();
     if (!chained_.empty()) {
         const double end = chained_.back().first;
@@ -97,7 +97,6 @@ std::optional<mrpt::poses::CPose3DPDFGaussian> VisualOdometryNRD::bridgeByGyro(d
     edge += mrpt::poses::CPose3DPDFGaussian(poseOf3D(step), mrptCovarianceOf(cov));
     return edge;
 }
-
 
 void VisualOdometryNRD::followGap(const vision::RgbdFrame& frame, double t,
                                   const Eigen::Isometry3d& T_robot_optical) {

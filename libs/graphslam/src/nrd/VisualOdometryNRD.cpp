@@ -250,7 +250,8 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
     last_step_seconds_ = t - last_tracked_.t;
     if (!chained_.empty()) {
         chained_.emplace_back(t, chained_.back().second + last_step_);
-        // VO's own uncertainty of this frame against its reference, in the chain's axes.
+        // VO's own uncertainty of this frame against its reference, in the chain's axes (turned
+        // by this frame's rotation: the reference's differs by a keyframe's turn at most).
         const Eigen::Matrix3d R = chained_.back().second.getRotationMatrix().asEigen();
         const Eigen::Matrix3d C = motion.cov.asEigen().topLeftCorner<3, 3>();
         chained_covariance_.push_back(R * C * R.transpose());

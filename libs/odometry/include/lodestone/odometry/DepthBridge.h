@@ -13,19 +13,20 @@
 namespace lodestone::odometry {
 
 /** Where the carrier went across a gap in visual odometry: the fading-velocity motion model
- * (FadingVelocity) corrected by the depth of every frame in the gap. Each frame's depth is
- * aligned with the previous frame's (point-to-plane ICP, the gyro's rotation between them
- * held), which measures the translation in the directions the depth pins - walking at a plain
- * wall, the distance to it - and nothing in the others, where the motion model carries on.
+ * (FadingVelocity) corrected by the depth of the gap's frames. Each frame's depth is aligned
+ * (point-to-plane ICP, from the gyro's turn and the predicted translation) with an earlier frame
+ * of the gap - the last tracked frame first, a new one once the carrier moved `anchorDistance`
+ * or turned `anchorAngle` from it - which measures the translation between them in the
+ * directions the depth pins (walking at a plain wall: the distance to it) and nothing in the
+ * others, where the motion model carries on. No alignment counts as surer than one depth
+ * point at the view's median range (the sensor's depth steps are shared by all its points).
  *
- * A frame is aligned with the last frame made the model (while the carrier moved less than
- * `anchorDistance` from it), which measures the translation between them where the depth pins
- * it. A Kalman filter on the robot's position and velocity in the robot frame of the last
- * tracked frame, the position at the last aligned frame cloned beside them (each alignment
- * measures the difference of the two). Its prediction is the Ornstein-Uhlenbeck velocity of
- * FadingVelocity discretized exactly, so with no frame aligned the result is FadingVelocity's
- * mean and variance; an alignment whose translation disagrees with the prediction beyond
- * `gateChi2` (a wrong ICP minimum) is left out. */
+ * A Kalman filter on the robot's position and velocity in the robot frame of the last tracked
+ * frame, the position at that earlier frame cloned beside them (each alignment measures the
+ * difference of the two). Its prediction is FadingVelocity's Ornstein-Uhlenbeck velocity
+ * discretized exactly, so with no frame aligned the result is FadingVelocity's mean and
+ * variance; an alignment whose translation the prediction rules out (`gateChi2`: a wrong ICP
+ * minimum) is left out. */
 class DepthBridge {
   public:
     struct Params {

@@ -42,9 +42,8 @@ namespace lodestone::graphslam {
  * velocity VO's over its last 0.3 s), its covariance growing with the gap - the segment goes
  * on, its edge loose where nothing saw the motion (with `bridge_by_depth`, the translation
  * measured by the gap frames' depth where it pins it: odometry::DepthBridge). The gyro's bias
- * is learnt meanwhile from
- * VO's rotations between reference frames where the features tracked (GyroBiasEstimator) and
- * taken out of its rates. Else a short gap (`bridge_max_seconds`) is bridged by the camera's
+ * is learnt meanwhile from VO's rotations between reference frames where the features tracked
+ * (GyroBiasEstimator) and taken out of its rates. Else a short gap (`bridge_max_seconds`) is bridged by the camera's
  * last velocity, the edge's covariance that of a constant-velocity model with white-noise
  * acceleration over the gap; after a longer one the frame it starts from is the first node of
  * a new segment, tied to the last node by a very weak edge (`lost_edge_sigma`), as after a
@@ -133,7 +132,8 @@ class VisualOdometryNRD : public NodeDecider {
      * velocity. */
     mrpt::poses::CPose3DPDFGaussian bridge(double gap) const;
     /** The same across a gap from the last tracked frame to time t, by the gyro's rotation and
-     * the fading velocity; nothing when the gyro does not cover the gap. */
+     * the fading velocity (or, with `bridgeByDepth`, the depth bridge followed up to t);
+     * nothing when the gyro does not cover the gap. */
     std::optional<mrpt::poses::CPose3DPDFGaussian> bridgeByGyro(double t) const;
     /** VO tracked this frame (or restarted on it): a gap after it starts here. */
     void trackedFrame(const vision::RgbdFrame& frame, const Eigen::Isometry3d& T_robot_optical);
