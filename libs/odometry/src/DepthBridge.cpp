@@ -19,14 +19,14 @@ Eigen::Matrix3d skew(const Eigen::Vector3d& a) {
 /** The sigma an alignment reports where the depth pins nothing: so loose that a hundred such
  * frames in a gap add no information there (the prediction's guess, not a measurement). */
 constexpr double kUnpinnedSigma = 100.0;
-/** One depth point's sigma at the cloud's median range (the sensor's law: DepthSampling). */
-double depthSigmaOf(const vision::DepthCloud& cloud, const vision::DepthSampling& sampling) {
-    std::vector<float> z(static_cast<std::size_t>(cloud.points.cols()));
-    for (Eigen::Index i = 0; i < cloud.points.cols(); ++i) z[static_cast<std::size_t>(i)] = cloud.points(2, i);
-    if (z.empty()) return sampling.noiseFloor;
-    std::nth_element(z.begin(), z.begin() + static_cast<std::ptrdiff_t>(z.size() / 2), z.end());
-    const double range = z[z.size() / 2];
-    return sampling.noiseFloor + sampling.depthNoise * range * range;
+/** One depth point's sigma at the cloud's median range: the median of its points' own sigmas
+ * (DepthSampling's law, rising with range). */
+double depthSigmaOf(const vision::DepthCloud& cloud, double fallback) {
+    if (cloud.sigma.size() == 0) return fallback;
+    std::vector<float> sigma(cloud.sigma.data(), cloud.sigma.data() + cloud.sigma.size());
+    std::nth_element(sigma.begin(), sigma.begin() + static_cast<std::ptrdiff_t>(sigma.size() / 2),
+                     sigma.end());
+    return sigma[sigma.size() / 2];
 }
 }  // namespace
 
@@ -115,7 +115,7 @@ bool DepthBridge::measure(const vision::DepthCloud& cloud, const Eigen::Isometry
     // thousands of points knows their noise, not what they share (the sensor's depth steps,
     // one at each range) - without this floor a few millimetres of it, taken as certain over
     // a frame interval, are a tenth of a metre per second.
-    const double sigma = depthSigmaOf(cloud, params_.sampling);
+    const double sigma = depthSigmaOf(cloud, params_.sampling.noiseFloor);
     const Eigen::Matrix3d C = J * d.covariance * J.transpose() + sigma * sigma * Eigen::Matrix3d::Identity();
     // Back to the robot: its translation is Cm (optical motion) Ck^-1's, the turn the gyro's.
     z = Cm.linear() * t + Cm.translation() - robot.linear() * Ck.translation();
