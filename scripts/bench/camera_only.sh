@@ -1,41 +1,80 @@
 #!/usr/bin/env bash
-# Camera-only SLAM (issue #14): simulated scenarios recorded with the RGB-D camera alone -
-# carried by the robot (lodestone-sim --camera-only: no encoders, wheel drop or magnetometers)
-# and carried by hand (--handheld: 6-DoF, shaking, at 1.35 m) - colour as PNG files beside the
-# rawlog, read from disk as a dataset's are, run with rgbd_only.ini (nodes from VO alone, 6-DoF
-# graph); beside them the robot with its wheels and visual_only.ini. Prints a markdown table.
-# Usage: scripts/bench/camera_only.sh [SCENARIO.ini ...]   (default: office, paper_loop)
+# Camera-only SLAM (issues #14, #30): simulated scenarios recorded to disk with the RGB-D camera
+# carried by the robot with its wheels, by the robot alone (lodestone-sim --camera-only: no
+# encoders, wheel drop or magnetometers) and by hand (--handheld: 6-DoF, shaking, at 1.35 m) -
+# colour as PNG files beside the rawlog, read back as a dataset's are. The camera-only
+# recordings carry a gyro (--gyro: its own noise stream, so every other sample is as without
+# it), and each is run twice with rgbd_only.ini: without the IMU (use_gyro = false) and with it
+# (the INI as it ships). Beside them the robot with its wheels and visual_only.ini. One row per
+# run: ATE, VO's gaps and how they were bridged, closures, the real-time factor; then median and
+# worst over the seeds.
+# Usage: scripts/bench/camera_only.sh ["SEED..."] [SCENARIO.ini ...]
+#        (default: seed 1; office and paper_loop, 640x480 at 30 Hz: about an hour a seed on
+#        2 cores, and up to 13 GB of disk while a recording is in use; REC_DIR=DIR reads
+#        DIR/NAME_{wheels,cam,hand}SEED.rawlog where they exist and keeps what it records there)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 "$root/scripts/build.sh" > /dev/null
 sim="$root/build/apps/lodestone-sim/lodestone-sim"
 slam="$root/build/apps/lodestone-slam/lodestone-slam"
+seeds=${1:-1}
+shift || true
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
+recordings=${REC_DIR:-$out}
 scenarios=("$@")
 [ ${#scenarios[@]} -gt 0 ] || scenarios=("$root/config_ini/scenarios/office.ini" "$root/config_ini/scenarios/paper_loop.ini")
-field() { { grep -o "\"$2\": [0-9.e+-]*" "$1" || true; } | head -1 | awk '{print $2}'; }
-echo "| scenario | camera | carrier | frames | ATE [m] | VO gaps / segments | loop closures kept | real-time factor (one run on 2 cores) |"
-echo "|---|---|---|---|---|---|---|---|"
+base="$root/config_ini/slam/rgbd_only.ini"
+source "$root/scripts/bench/ini_variant.bash"
+variant rgbd_no_imu use_gyro=false bridge_by_depth=false use_gravity=false
+cp "$base" "$out/rgbd_only.ini"
+cp "$root/config_ini/slam/visual_only.ini" "$out/visual_only.ini"
+results="$out/results.txt"
+: > "$results"
+echo "| scenario | camera | seed | carrier | frames | ATE [m] | VO gaps: bridged by the gyro (of them by depth) / relocalized | segments | loop closures kept | real-time factor (one run on 2 cores) |"
+echo "|---|---|---|---|---|---|---|---|---|---|"
 for ini in "${scenarios[@]}"; do
     name=$(basename "$ini" .ini)
     # width x height @ rate from the scenario's [camera] section
     cameraSpec=$(awk '/^\[/{s=($0=="[camera]")} s && /^(width|height|rate) *=/{v[$1]=$3} END{printf "%sx%s@%s", v["width"], v["height"], v["rate"]}' "$ini")
-    for carrier in "robot, wheels + VO (visual_only.ini)" "robot, camera only (rgbd_only.ini)" "hand (rgbd_only.ini)"; do
-        case "$carrier" in
-            hand*) flags=(--handheld); config=rgbd_only.ini; tag=hand ;;
-            *camera*) flags=(--camera-only); config=rgbd_only.ini; tag=cam ;;
-            *) flags=(); config=visual_only.ini; tag=wheels ;;
-        esac
-        "$sim" -c "$ini" -o "$out/${name}_$tag.rawlog" "${flags[@]}" > /dev/null
-        run=$("$slam" -r "$out/${name}_$tag.rawlog" --config "$root/config_ini/slam/$config" \
-            --ground-truth "$out/${name}_$tag.gt.tum" --out "$out/${name}_$tag" --quiet 2>&1 | grep -v "^\[")
-        report="$out/${name}_$tag/report.json"
-        ate=$(echo "$run" | grep -o "ATE RMSE [0-9.]*" | awk '{print $3}')
-        rt=$(echo "$run" | grep -o "([0-9.]*x real time)" | tr -d '()' | awk '{print $1}')
-        closures=$(echo "$run" | grep -o "[0-9]* loop closures ([0-9]* rejected)" | awk '{print $1 - substr($4, 2)}')
-        gaps=$(field "$report" vo_gaps)
-        echo "| $name | $cameraSpec | $carrier | $(field "$report" rgbd_frames) | $ate | ${gaps:--} / $(field "$report" segments) | $closures | $rt |"
-        rm -rf "$out/${name}_$tag"* 
+    for seed in $seeds; do
+        for tag in wheels cam hand; do
+            case $tag in
+                wheels) flags=(); runs=("robot, wheels + VO:visual_only") ;;
+                cam) flags=(--camera-only --gyro)
+                     runs=("robot, camera only:rgbd_no_imu" "robot, camera + gyro:rgbd_only") ;;
+                hand) flags=(--handheld --gyro)
+                      runs=("hand, camera only:rgbd_no_imu" "hand, camera + gyro:rgbd_only") ;;
+            esac
+            rawlog="$recordings/${name}_$tag$seed.rawlog"
+            [[ -f $rawlog ]] || "$sim" -c "$ini" -o "$rawlog" -s "$seed" "${flags[@]}" > /dev/null
+            for r in "${runs[@]}"; do
+                carrier=${r%%:*} config=${r#*:}
+                run="$out/${name}_$tag$seed-$config"
+                log=$("$slam" -r "$rawlog" --config "$out/$config.ini" \
+                    --ground-truth "${rawlog%.rawlog}.gt.tum" --out "$run" --quiet 2>&1 | grep -v "^\[")
+                report="$run/report.json"
+                ate=$(echo "$log" | grep -o "ATE RMSE [0-9.]*" | awk '{print $3}')
+                rt=$(echo "$log" | grep -o "([0-9.]*x real time)" | tr -d '()' | awk '{print $1}')
+                closures=$(echo "$log" | grep -o "[0-9]* loop closures ([0-9]* rejected)" | awk '{print $1 - substr($4, 2)}')
+                gaps=$(field "$report" vo_gaps)
+                gyro=$(field "$report" vo_gaps_bridged_by_gyro)
+                depth=$(field "$report" vo_gaps_bridged_by_depth)
+                bridged="${gaps:--}: ${gyro:-0} (${depth:-0}) / $(field "$report" vo_gaps_relocalized)"
+                [[ $config == visual_only ]] && bridged="-"
+                echo "| $name | $cameraSpec | $seed | $carrier | $(field "$report" rgbd_frames) | $ate | $bridged | $(field "$report" segments) | $closures | $rt |"
+                echo "$name|$carrier|$ate" >> "$results"
+                rm -rf "$run"
+            done
+            [[ -n ${REC_DIR:-} ]] || rm -rf "$rawlog" "${rawlog%.rawlog}"{.gt.tum,.events.txt,_Images}
+        done
     done
 done
+echo
+echo "| scenario | carrier | ATE median / worst over seeds $seeds [m] |"
+echo "|---|---|---|"
+awk -F'|' '{k = $1 "|" $2; if (!(k in n)) order[++m] = k; v[k, ++n[k]] = $3}
+    END {for (i = 1; i <= m; ++i) {k = order[i]; c = n[k];
+            for (a = 1; a <= c; ++a) for (b = a + 1; b <= c; ++b) if (v[k, b] + 0 < v[k, a] + 0) {t = v[k, a]; v[k, a] = v[k, b]; v[k, b] = t}
+            med = c % 2 ? v[k, (c + 1) / 2] : (v[k, c / 2] + v[k, c / 2 + 1]) / 2;
+            split(k, p, "|"); printf "| %s | %s | %.4f / %s |\n", p[1], p[2], med, v[k, c]}}' "$results"
