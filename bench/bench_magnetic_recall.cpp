@@ -7,7 +7,8 @@
 // (eval::evaluateClosures: 2 m revisit passes, a pass found when a closure placing its later node
 // within 0.5 m of the truth ends in it), passes counted apart by direction. Table 1, a row per
 // recording and INI: passes found over all seeds, the worst seed's recall each way, precision,
-// wrong closures (> 0.5 m), ATE median / worst, real-time factor. Table 2, a row per closer
+// wrong closures (> 0.5 m), the share of closures whose error lies inside their own claimed
+// 99.73 % region (and how many of the wrong ones do), ATE median / worst, real-time factor. Table 2, a row per closer
 // with a truth funnel (both magnetic ones): every pass it missed, by the furthest stage its
 // true place reached in any query inside it; how often the truth lay inside its position gate.
 // --drift-scale F scales the drift model's heading bias and noise (0: odometry without error,
@@ -50,6 +51,9 @@ std::string fraction(std::size_t found, std::size_t all) {
 
 struct Row {
     std::size_t passes[2]{0, 0}, found[2]{0, 0}, right{0}, judged{0}, wrong{0}, closures{0};
+    /** Closures judged by their own claimed covariance, inside its 99.73 % region, and of the
+     * wrong ones those inside it. */
+    std::size_t covarianceJudged{0}, insideOwnRegion{0}, wrongInsideOwnRegion{0};
     double worst[2]{INFINITY, INFINITY};  // the worst seed's recall, each direction
     std::vector<double> ate, realtime;
     /** Each closer's funnel over all seeds: the passes it missed by furthest stage, and per
@@ -76,6 +80,9 @@ bool judgeRun(const slamapp::SlamRunOptions& o, Row& row) {
         row.wrong += q.wrong;
         row.right += q.right;
         row.judged += q.judged;
+        row.covarianceJudged += q.covarianceJudged;
+        row.insideOwnRegion += q.insideOwnRegion;
+        row.wrongInsideOwnRegion += q.wrongInsideOwnRegion;
         for (const auto p : q.detectedPasses) found[p] = true;  // by any matcher
     }
     std::size_t all[2] = {0, 0}, hit[2] = {0, 0};
@@ -135,8 +142,8 @@ int main(int argc, char** argv) {
     std::printf(
         "| recording | INI | same-direction passes found | opposite-direction found | "
         "worst seed's recall: same / opposite | precision | closures | wrong (> 0.5 m) | "
-        "ATE median / worst [m] | real-time factor |\n"
-        "|---|---|---|---|---|---|---|---|---|---|\n");
+        "inside their own 99.73 %% (wrong ones) | ATE median / worst [m] | real-time factor |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (const auto& rec : benchRecordings(data)) {
         if (!only.empty() && rec.name.find(only) == std::string::npos) continue;
         const auto recording = rec.read();
@@ -156,13 +163,19 @@ int main(int argc, char** argv) {
                 row.realtime.push_back(imported.duration / run.wallSeconds);
                 judgeRun(run.options, row);
             }
-            std::printf("| %s | %s | %s | %s | %s / %s | %s | %zu | %zu | %.3f / %.3f | %.0fx |\n",
+            char consistency[64] = "-";
+            if (row.covarianceJudged) {
+                std::snprintf(consistency, sizeof consistency, "%.3f (%zu)",
+                              double(row.insideOwnRegion) / double(row.covarianceJudged),
+                              row.wrongInsideOwnRegion);
+            }
+            std::printf("| %s | %s | %s | %s | %s / %s | %s | %zu | %zu | %s | %.3f / %.3f | %.0fx |\n",
                         rec.name.c_str(), ini.c_str(),
                         fraction(row.found[0], row.passes[0]).c_str(),
                         fraction(row.found[1], row.passes[1]).c_str(),
                         worstOf(row.worst[0]).c_str(), worstOf(row.worst[1]).c_str(),
                         row.judged ? worstOf(double(row.right) / double(row.judged)).c_str() : "-",
-                        row.closures, row.wrong, median(row.ate),
+                        row.closures, row.wrong, consistency, median(row.ate),
                         *std::max_element(row.ate.begin(), row.ate.end()), median(row.realtime));
             std::fflush(stdout);
             rows.emplace_back(rec.name + " | " + ini, row);

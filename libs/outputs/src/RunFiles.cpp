@@ -10,7 +10,8 @@ const std::vector<RunFileSpec>& runFiles() {
         {RunFile::Trajectory, "trajectory.tum", "TUM", "every node's optimized pose"},
         {RunFile::Graph, "graph.graph", "MRPT graph text", "the pose graph, loadable by graph-slam"},
         {RunFile::Closures, "closures.csv", "CSV (ClosureTable)",
-         "every closure a loop closer proposed, its score, whether the graph kept it"},
+         "every closure a loop closer proposed: its score, the covariance it claimed, whether "
+         "the graph kept it"},
         {RunFile::Nodes, "nodes.csv", "CSV (NodeTable)",
          "per node: time, segment, keyframe, engine time"},
         {RunFile::Map, "map.ply", "binary PLY", "coloured keyframe clouds on the optimized poses"},

@@ -10,6 +10,7 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include <Eigen/Cholesky>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -84,6 +85,17 @@ bool inGraph(const Graph& graph, const graphslam::LoopClosure& lc) {
     }
     return false;
 }
+
+/** The translation block of a constraint's covariance (its information inverted whole, so the
+ * block is the translation's marginal); NaN where the information is not positive definite. */
+Eigen::Matrix3d translationCovariance(const graphslam::Constraint& c) {
+    const Eigen::Matrix<double, 6, 6> information = c.cov_inv.asEigen();
+    const Eigen::LLT<Eigen::Matrix<double, 6, 6>> llt(information);
+    if (llt.info() != Eigen::Success) return Eigen::Matrix3d::Constant(NAN);
+    const Eigen::Matrix<double, 6, 6> covariance =
+        llt.solve(Eigen::Matrix<double, 6, 6>::Identity());
+    return covariance.topLeftCorner<3, 3>();
+}
 }  // namespace
 
 std::vector<outputs::ClosureRow> closureRows(const graphslam::SlamEngine& engine) {
@@ -103,6 +115,7 @@ std::vector<outputs::ClosureRow> closureRows(const graphslam::SlamEngine& engine
         r.hypothesis = p.hypothesis;
         r.kept = inGraph(engine.graph(), lc);
         r.measured = lc.constraint.mean;
+        r.translationCovariance = translationCovariance(lc.constraint);
         rows.push_back(std::move(r));
     }
     return rows;

@@ -122,6 +122,34 @@ TEST(ClosureEval, ATurnedMeasurementIsWrongWhereItLands) {
     EXPECT_EQ(q[0].wrong, 1u);
 }
 
+TEST(ClosureEval, EachClosureIsWeighedByTheCovarianceItClaims) {
+    TwoLaps run;
+    const auto claiming = [](eval::ReportedClosure c, double sx, double sy) {
+        c.translationCovariance = Eigen::Vector3d(sx * sx, sy * sy, 1e-6).asDiagonal();
+        return c;
+    };
+    // Node 50 faces +y (the square's second side): its errors lie along that node's x, and the
+    // covariance is read in its frame - loose along x, tight across.
+    const auto along = claiming(run.closure(50, 210, 5, 0.3), 0.3, 0.01);
+    EXPECT_NEAR(eval::closureErrorChi2(along, run.truth[50].pose, run.truth[210].pose), 1.0, 1e-9);
+    const std::vector<eval::ReportedClosure> closures = {
+        along,                                             // right, inside: 1
+        claiming(run.closure(10, 170, 5, 0.3), 0.05, 0.05),  // right, claims too much: 36
+        claiming(run.closure(20, 180, 5, 0.6), 0.2, 0.2),    // wrong, inside its claim: 9
+        claiming(run.closure(30, 190, 5, 0.6), 0.1, 0.1),    // wrong, outside: 36
+        run.closure(40, 200, 5, 0.1),                        // claims no covariance: not weighed
+    };
+    const auto q = eval::evaluateClosures(closures, run.truth, run.truth);
+    ASSERT_EQ(q.size(), 1u);
+    EXPECT_EQ(q[0].wrong, 2u);
+    EXPECT_EQ(q[0].covarianceJudged, 4u);
+    EXPECT_EQ(q[0].insideOwnRegion, 2u);
+    EXPECT_EQ(q[0].wrongInsideOwnRegion, 1u);
+    EXPECT_NEAR(q[0].consistency(), 0.5, 1e-12);
+    const auto table = eval::formatClosureQuality(q, {});
+    EXPECT_NE(table.find("| 0.500 (1 of 2) |"), std::string::npos) << table;
+}
+
 TEST(ClosureEval, PassesWalkedBackAreCountedApart) {
     const auto truth = corridorThereBackAndThere();
     const auto closure = [&](int from, int to, double error) {

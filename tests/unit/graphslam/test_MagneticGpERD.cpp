@@ -267,6 +267,34 @@ TEST(MagneticGpERD, ALookAlikeOutsideTheGateIsNotMatchedNorMakesTheTrueOneAmbigu
     }
 }
 
+TEST(MagneticGpERD, AnAlignmentsEdgesShareItsOneError) {
+    // One alignment, subdivided into n node-to-node edges: each as sure as the alignment
+    // (paper 000 §2.3), or, sharing it, each n times looser - together one alignment's worth.
+    Decoy d;
+    d.separation = 20;
+    const auto alone = run(d, kIni);
+    const auto shared = run(d, kIni + "edges_share_alignment = true\n");
+    ASSERT_FALSE(alone.erd->records().empty());
+    ASSERT_FALSE(shared.erd->records().empty());
+    // (the first alignment: nothing the looser edges changed in the graph came before it)
+    const auto& a = alone.erd->records().front();
+    const auto& b = shared.erd->records().front();
+    ASSERT_EQ(a.edges, b.edges);
+    const auto n = static_cast<double>(a.edges.size());
+    ASSERT_GT(n, 2);
+    for (std::size_t k = 0; k < a.edges.size(); ++k) {
+        EXPECT_EQ(a.constraints[k].mean, b.constraints[k].mean);
+        const Eigen::Matrix<double, 6, 6> ia = a.constraints[k].cov_inv.asEigen(),
+                                          ib = b.constraints[k].cov_inv.asEigen();
+        // x, y and yaw carry the alignment's information (z, roll, pitch: the planar stiffness)
+        for (const int r : {0, 1, 3})
+            for (const int c : {0, 1, 3}) EXPECT_NEAR(ib(r, c) * n, ia(r, c), 1e-6 * std::abs(ia(r, c)) + 1e-9);
+    }
+    EXPECT_GT(shared.erd->stats().edges, 10u);
+    const auto v = judge(shared);
+    EXPECT_EQ(v.right, v.closures);
+}
+
 TEST(MagneticGpERD, InsideTheGateTheLikelierPlaceIsChosen) {
     for (const auto& ini : {kIni, kIniWithMap}) {
         Decoy d;

@@ -42,6 +42,7 @@ TEST(ClosureTable, WhatIsWrittenReadsBackAndWritesTheSameBytes) {
     a.strong = true;
     a.kept = true;
     a.measured = mrpt::poses::CPose3D(0.5, -0.25, 0.0, 0.125, 0.0, 0.0);
+    a.translationCovariance << 0.04, 0.01, 0, 0.01, 0.09, 0, 0, 0, 1e-6;
     outputs::ClosureRow b = a;
     b.source = "OrbSubmapERD";
     b.hypothesis = true;
@@ -59,6 +60,8 @@ TEST(ClosureTable, WhatIsWrittenReadsBackAndWritesTheSameBytes) {
     EXPECT_FALSE(rows[1].kept);
     EXPECT_NEAR(rows[0].measured.yaw(), 0.125, 1e-8);
     EXPECT_NEAR(rows[0].measured.y(), -0.25, 1e-6);
+    EXPECT_TRUE(rows[0].translationCovariance.isApprox(a.translationCovariance, 1e-9))
+        << rows[0].translationCovariance;
     const std::string again = ::testing::TempDir() + "closures_round_trip_again.csv";
     outputs::writeClosureTable(again, rows);
     EXPECT_EQ(slurp(path), slurp(again));
@@ -84,6 +87,33 @@ TEST(ClosureTable, AMalformedLogNamesFileAndLine) {
         f << "something else\n";
     }
     EXPECT_THROW(outputs::readClosureTable(path), std::runtime_error);
+}
+
+TEST(ClosureTable, ALogWrittenBeforeTheCovarianceColumnsStillReads) {
+    const std::string path = ::testing::TempDir() + "closures_without_covariance.csv";
+    {
+        std::ofstream f(path);
+        f << "from_node,to_node,from_time,to_time,source,match_id,score,strong,hypothesis,kept,"
+             "x,y,z,yaw,pitch,roll\n"
+          << "1,2,0.5,1.5,A,0,3,0,0,1,0.1,0,0,0,0,0\n";
+    }
+    const auto rows = outputs::readClosureTable(path);
+    ASSERT_EQ(rows.size(), 1u);
+    EXPECT_NEAR(rows[0].measured.x(), 0.1, 1e-12);
+    EXPECT_TRUE(rows[0].translationCovariance.array().isNaN().all());
+    {
+        std::ofstream f(path);  // neither width: named
+        f << "from_node,to_node,from_time,to_time,source,match_id,score,strong,hypothesis,kept,"
+             "x,y,z,yaw,pitch,roll\n"
+          << "1,2,0.5,1.5,A,0,3,0,0,1,0.1,0,0,0,0,0,7\n";
+    }
+    try {
+        outputs::readClosureTable(path);
+        FAIL() << "no error";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find(path + ": line 2: 17 columns"), std::string::npos)
+            << e.what();
+    }
 }
 
 TEST(NodeTable, WhatIsWrittenReadsBackWithAnUntimedNode) {

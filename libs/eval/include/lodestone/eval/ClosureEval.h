@@ -22,6 +22,9 @@ struct ClosureEvalOptions {
     double minPassLength{1.0};  ///< [m] shorter revisits are not counted as passes
     double pieceLength{2.0};    ///< [m] longer revisits are cut into passes this long
     double maxDt{0.02};         ///< [s] timestamp association with the truth
+    /** A closure is consistent when its error's squared Mahalanobis distance under its own
+     * claimed covariance (the horizontal block) is within this: 2 dof, 99.73 %. */
+    double ownRegionChi2{11.83};
 };
 
 /** Which way a revisit pass runs relative to the earlier visit it repeats. A node that repeats
@@ -63,10 +66,23 @@ struct MatcherQuality {
     PassRecall byDirection[2];      ///< the same, by PassDirection
     std::vector<std::size_t> detectedPasses;  ///< their indices in revisitPasses(), ascending
     double threshold{NAN};                    ///< the highest wrong score (none wrong: NaN)
+    /** Consistency: closures with a claimed covariance judged against it, those whose
+     * horizontal error lies inside their own `ownRegionChi2` region, and of the wrong ones
+     * (beyond `radius`) those inside it (a claim loose enough to cover them). */
+    std::size_t covarianceJudged{0}, insideOwnRegion{0}, wrongInsideOwnRegion{0};
     double recall() const { return passes ? double(passesDetected) / double(passes) : NAN; }
     double recallAt100() const { return passes ? double(passesAt100) / double(passes) : NAN; }
     double precision() const { return judged ? double(right) / double(judged) : NAN; }
+    double consistency() const {
+        return covarianceJudged ? double(insideOwnRegion) / double(covarianceJudged) : NAN;
+    }
 };
+
+/** A closure's horizontal error against the truth (`to` measured from `from` against the truth
+ * of both, in the frame of `from`) as a squared Mahalanobis distance under the horizontal
+ * block of the covariance it claims; NaN where it claims none or one not positive definite. */
+double closureErrorChi2(const ReportedClosure& closure, const mrpt::poses::CPose3D& trueFrom,
+                        const mrpt::poses::CPose3D& trueTo);
 
 /** Judges every proposed closure against the truth: the measured pose of `to` composed on the
  * true pose of `from` must land within `radius` of the true pose of `to`. A revisit pass is a
@@ -76,7 +92,8 @@ struct MatcherQuality {
  * right closure ends inside it. Passes are told apart by direction (PassDirection): a node
  * within `revisitYaw` of the earlier node's heading runs the same way, within `revisitYaw` of
  * its reverse the opposite way. Recall at 100 % precision (the DBoW2 / FAB-MAP convention): passes
- * detected by right closures scoring above the highest-scoring wrong one, over all passes. */
+ * detected by right closures scoring above the highest-scoring wrong one, over all passes.
+ * Consistency: each closure's error weighed by its own claimed covariance (closureErrorChi2). */
 std::vector<MatcherQuality> evaluateClosures(const std::vector<ReportedClosure>& closures,
                                              const std::vector<io::TumPose>& trajectory,
                                              const std::vector<io::TumPose>& truth,

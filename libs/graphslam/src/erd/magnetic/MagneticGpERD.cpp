@@ -99,6 +99,7 @@ void MagneticGpERD::configure(const mrpt::config::CConfigFileBase& ini) {
     if (!(p.fieldMap.search.minLogRatio >= 0)) s.fail("map_min_log_ratio", "must be >= 0");
     if (!(p.fieldMap.search.maxSigma > 0)) s.fail("map_max_sigma", "must be > 0");
     p.edgeEvery = s.getInt("edge_every", p.edgeEvery);
+    p.edgesShareAlignment = s.getBool("edges_share_alignment", p.edgesShareAlignment);
     p.sigmaAlong = s.getDouble("sigma_along", p.sigmaAlong);
     p.sigmaCross = s.getDouble("sigma_cross", p.sigmaCross);
     p.sigmaYaw = s.getDouble("sigma_yaw_deg", p.sigmaYaw * 180 / M_PI) * M_PI / 180;
@@ -300,6 +301,7 @@ JsonObject MagneticGpERD::describe() const {
         .set("gp_sigma_c", params_.gp.sigmaC)
         .set("max_shift", params_.shift.maxShift)
         .set("edge_every", params_.edgeEvery)
+        .set("edges_share_alignment", params_.edgesShareAlignment)
         .set("alignment", params_.alignment == Params::Alignment::Plane ? "plane" : "path")
         .set("map_search", params_.fieldMap.enabled)
         .set("map_search_every", params_.fieldMap.every)

@@ -91,7 +91,7 @@ void MagneticGpERD::align(const std::vector<magnetic::BundleMatch>& bundles, con
     } else {
         addPathEdges(b, qBegin, qEnd, shift, rec);
     }
-    if (!rec.edges.empty()) records_.push_back(std::move(rec));
+    commitEdges(rec);
 }
 
 void MagneticGpERD::addPathEdges(const magnetic::BundleMatch& b, std::size_t qBegin,
@@ -121,28 +121,42 @@ void MagneticGpERD::addPathEdges(const magnetic::BundleMatch& b, std::size_t qBe
 void MagneticGpERD::addEdge(TNodeID target, std::size_t queryNode,
                             const mrpt::poses::CPose2D& mean, const Eigen::Matrix2d& positionCov,
                             double yawVariance, Record& rec) {
-    mrpt::poses::CPosePDFGaussian z;
-    z.mean = mean;
-    z.cov.setZero();
-    for (int r = 0; r < 2; ++r)
-        for (int c = 0; c < 2; ++c) z.cov(r, c) = positionCov(r, c);
-    z.cov(2, 2) = yawVariance;
-    const Constraint c = planarConstraint(z);
-    const auto q = static_cast<TNodeID>(queryNode);
-    // The edges of one alignment are one piece of evidence for the relocalizer.
-    // (field-map closures are scored by their evidence and logged apart: closures.csv's
-    // per-matcher precision then tells the two methods apart)
-    if (rec.fieldMap) {
-        registerClosure(target, q, c, records_.size(), false, rec.logRatio, getClassName() + ".map");
-    } else {
-        registerClosure(target, q, c, records_.size(), false, -rec.normalizedRms);
-    }
-    // The query node is now known as well as the closure says (in the map frame).
-    path_.pinClosure(q, m_graph->nodes.at(target).yaw(), positionCov, yawVariance);
-    rec.edges.emplace_back(target, q);
-    rec.constraints.push_back(c);
+    rec.pending.push_back({target, queryNode, mean, positionCov, yawVariance});
     constrained_[queryNode] = true;
-    ++stats_.edges;
+}
+
+void MagneticGpERD::commitEdges(Record& rec) {
+    // One alignment measured one shift, one offset across and one heading for all its edges:
+    // summed as independent they would claim sqrt(n) times what it knows.
+    const double share =
+        params_.edgesShareAlignment ? static_cast<double>(std::max<std::size_t>(1, rec.pending.size()))
+                                    : 1.0;
+    for (const auto& e : rec.pending) {
+        mrpt::poses::CPosePDFGaussian z;
+        z.mean = e.mean;
+        z.cov.setZero();
+        for (int r = 0; r < 2; ++r)
+            for (int c = 0; c < 2; ++c) z.cov(r, c) = share * e.positionCov(r, c);
+        z.cov(2, 2) = share * e.yawVariance;
+        const Constraint c = planarConstraint(z);
+        const auto q = static_cast<TNodeID>(e.queryNode);
+        // The edges of one alignment are one piece of evidence for the relocalizer.
+        // (field-map closures are scored by their evidence and logged apart: closures.csv's
+        // per-matcher precision then tells the two methods apart)
+        if (rec.fieldMap) {
+            registerClosure(e.target, q, c, records_.size(), false, rec.logRatio,
+                            getClassName() + ".map");
+        } else {
+            registerClosure(e.target, q, c, records_.size(), false, -rec.normalizedRms);
+        }
+        // The query node is now known as well as the alignment says (in the map frame).
+        path_.pinClosure(q, m_graph->nodes.at(e.target).yaw(), e.positionCov, e.yawVariance);
+        rec.edges.emplace_back(e.target, q);
+        rec.constraints.push_back(c);
+        ++stats_.edges;
+    }
+    rec.pending.clear();
+    if (!rec.edges.empty()) records_.push_back(std::move(rec));
 }
 
 void MagneticGpERD::addMovedNodeEdge(std::size_t qn, TNodeID target, const Eigen::Vector2d& moved0,

@@ -156,7 +156,7 @@ void MagneticGpERD::addFieldMapEdges(const magnetic::Supernode& q,
         }
         addMovedNodeEdge(qn, static_cast<TNodeID>(nearest), p, 0.0, match.alignment, rec);
     }
-    if (!rec.edges.empty()) records_.push_back(std::move(rec));
+    commitEdges(rec);
 }
 
 }  // namespace lodestone::graphslam

@@ -2,6 +2,8 @@
 
 #include <mrpt/poses/CPose3D.h>
 
+#include <Eigen/Core>
+#include <cmath>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -19,12 +21,17 @@ struct ClosureRow {
     bool hypothesis{false};    ///< a relocation hypothesis (across a kidnap)
     bool kept{false};          ///< an edge of the final graph
     mrpt::poses::CPose3D measured;  ///< `to` in the frame of `from`
+    /** The covariance the closer claimed for `measured`'s translation (in the frame of
+     * `from`; its information's 6 x 6 inverse, the translation block): what a judge of the
+     * closure against the truth weighs its error by. NaN where a log predates it. */
+    Eigen::Matrix3d translationCovariance{Eigen::Matrix3d::Constant(NAN)};
 };
 
 /** Writes closures.csv (a header, then a line per row). Throws naming the file on failure. */
 void writeClosureTable(const std::string& path, const std::vector<ClosureRow>& rows);
 
-/** Reads closures.csv; throws std::runtime_error naming the file and line when malformed. */
+/** Reads closures.csv (also a log written before the covariance columns: NaN there); throws
+ * std::runtime_error naming the file and line when malformed. */
 std::vector<ClosureRow> readClosureTable(const std::string& path);
 
 }  // namespace lodestone::outputs

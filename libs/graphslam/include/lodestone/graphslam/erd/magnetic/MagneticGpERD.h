@@ -97,6 +97,11 @@ class MagneticGpERD : public EdgeDecider {
         } fieldMap;
         int edgeEvery{3};                  ///< [nodes]
         double sigmaAlong{0.03};           ///< [m] floor, added to the GP's shift sigma
+        /** An alignment's edges share its one error (the shift, the pass's offset across, its
+         * heading): each edge's covariance is multiplied by their number, so together they
+         * carry the alignment's information once. false: each edge as sure as the whole
+         * alignment (paper 000 §2.3's subdivision), which the graph sums as independent. */
+        bool edgesShareAlignment{false};
         double sigmaCross{0.20};           ///< [m]
         double sigmaYaw{10 * M_PI / 180};  ///< [rad]
     };
@@ -111,6 +116,15 @@ class MagneticGpERD : public EdgeDecider {
         Eigen::Vector3d planeDelta{Eigen::Vector3d::Zero()};
         std::vector<std::pair<TNodeID, TNodeID>> edges;  ///< (target node, query node)
         std::vector<Constraint> constraints;
+        /** Edges made by the alignment, registered together once it is complete. */
+        struct PendingEdge {
+            TNodeID target{0};
+            std::size_t queryNode{0};
+            mrpt::poses::CPose2D mean;
+            Eigen::Matrix2d positionCov{Eigen::Matrix2d::Zero()};
+            double yawVariance{0};
+        };
+        std::vector<PendingEdge> pending;
     };
     struct Stats {
         std::size_t supernodes{0}, flatSupernodes{0}, matchedSupernodes{0}, gatedOut{0}, bundles{0}, ambiguous{0},
@@ -189,9 +203,12 @@ class MagneticGpERD : public EdgeDecider {
     /** §2.3 along the path: the bundle subdivided into node-to-node edges on the target's path. */
     void addPathEdges(const magnetic::BundleMatch& b, std::size_t qBegin, std::size_t qEnd,
                       const magnetic::ShiftResult& shift, Record& rec);
-    /** One closure edge target -> queryNode, planar, recorded in `rec`. */
+    /** One closure edge target -> queryNode, planar, pending in `rec` until commitEdges. */
     void addEdge(TNodeID target, std::size_t queryNode, const mrpt::poses::CPose2D& mean,
                  const Eigen::Matrix2d& positionCov, double yawVariance, Record& rec);
+    /** The alignment's pending edges registered as closures (edges_share_alignment: each with
+     * its covariance times their number) and `rec` kept when it made any. */
+    void commitEdges(Record& rec);
     /** Plane refinement of an along-the-path alignment, then its edges; false when it does not
      * fit. */
     bool alignInPlane(const std::vector<magnetic::BundleMatch>& bundles, std::size_t qBegin,
