@@ -8,9 +8,10 @@
 // within 0.5 m of the truth ends in it), passes counted apart by direction. Table 1, a row per
 // recording and INI: passes found over all seeds, the worst seed's recall each way, precision,
 // wrong closures (> 0.5 m), the share of closures whose error lies inside their own claimed
-// 99.73 % region (and how many of the wrong ones do), ATE median / worst, real-time factor. Table 2, a row per closer
-// with a truth funnel (both magnetic ones): every pass it missed, by the furthest stage its
-// true place reached in any query inside it; how often the truth lay inside its position gate.
+// 99.73 % region (and how many of the wrong ones do), ATE median / worst, real-time factor.
+// Table 2, a row per closer with a truth funnel (both magnetic ones): every pass it missed, by
+// the furthest stage its true place reached in any query inside it; how often the truth lay
+// inside its position gate.
 // --drift-scale F scales the drift model's heading bias and noise (0: odometry without error,
 // so what is left of the ATE is what the closures themselves do to the reference trajectory).
 #include <lodestone/datasets/MagneticRecordingImport.h>
@@ -169,14 +170,14 @@ int main(int argc, char** argv) {
                               double(row.insideOwnRegion) / double(row.covarianceJudged),
                               row.wrongInsideOwnRegion);
             }
-            std::printf("| %s | %s | %s | %s | %s / %s | %s | %zu | %zu | %s | %.3f / %.3f | %.0fx |\n",
-                        rec.name.c_str(), ini.c_str(),
-                        fraction(row.found[0], row.passes[0]).c_str(),
-                        fraction(row.found[1], row.passes[1]).c_str(),
-                        worstOf(row.worst[0]).c_str(), worstOf(row.worst[1]).c_str(),
-                        row.judged ? worstOf(double(row.right) / double(row.judged)).c_str() : "-",
-                        row.closures, row.wrong, consistency, median(row.ate),
-                        *std::max_element(row.ate.begin(), row.ate.end()), median(row.realtime));
+            std::printf(
+                "| %s | %s | %s | %s | %s / %s | %s | %zu | %zu | %s | %.3f / %.3f | %.0fx |\n",
+                rec.name.c_str(), ini.c_str(), fraction(row.found[0], row.passes[0]).c_str(),
+                fraction(row.found[1], row.passes[1]).c_str(), worstOf(row.worst[0]).c_str(),
+                worstOf(row.worst[1]).c_str(),
+                row.judged ? worstOf(double(row.right) / double(row.judged)).c_str() : "-",
+                row.closures, row.wrong, consistency, median(row.ate),
+                *std::max_element(row.ate.begin(), row.ate.end()), median(row.realtime));
             std::fflush(stdout);
             rows.emplace_back(rec.name + " | " + ini, row);
         }

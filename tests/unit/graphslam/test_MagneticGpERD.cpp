@@ -288,7 +288,8 @@ TEST(MagneticGpERD, AnAlignmentsEdgesShareItsOneError) {
                                           ib = b.constraints[k].cov_inv.asEigen();
         // x, y and yaw carry the alignment's information (z, roll, pitch: the planar stiffness)
         for (const int r : {0, 1, 3})
-            for (const int c : {0, 1, 3}) EXPECT_NEAR(ib(r, c) * n, ia(r, c), 1e-6 * std::abs(ia(r, c)) + 1e-9);
+            for (const int c : {0, 1, 3})
+                EXPECT_NEAR(ib(r, c) * n, ia(r, c), 1e-6 * std::abs(ia(r, c)) + 1e-9);
     }
     EXPECT_GT(shared.erd->stats().edges, 10u);
     const auto v = judge(shared);

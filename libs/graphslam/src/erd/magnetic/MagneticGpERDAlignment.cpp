@@ -128,9 +128,9 @@ void MagneticGpERD::addEdge(TNodeID target, std::size_t queryNode,
 void MagneticGpERD::commitEdges(Record& rec) {
     // One alignment measured one shift, one offset across and one heading for all its edges:
     // summed as independent they would claim sqrt(n) times what it knows.
-    const double share =
-        params_.edgesShareAlignment ? static_cast<double>(std::max<std::size_t>(1, rec.pending.size()))
-                                    : 1.0;
+    const double share = params_.edgesShareAlignment
+                             ? static_cast<double>(std::max<std::size_t>(1, rec.pending.size()))
+                             : 1.0;
     for (const auto& e : rec.pending) {
         mrpt::poses::CPosePDFGaussian z;
         z.mean = e.mean;
