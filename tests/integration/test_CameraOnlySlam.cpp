@@ -7,13 +7,16 @@
 #include <lodestone/io/RawlogWriter.h>
 #include <lodestone/io/TumTrajectory.h>
 #include <lodestone/obs/registerAllClasses.h>
+#include <mrpt/graphs/CNetworkOfPoses.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/obs/CObservationIMU.h>
 
 #include <filesystem>
 #include <fstream>
 #include <opencv2/core.hpp>
+#include <map>
 #include <regex>
+#include <sstream>
 
 #include "StockTools.h"
 #include "TestPaths.h"
@@ -270,4 +273,83 @@ TEST(CameraOnlySlam, AGapTheGyroCoversIsBridgedByIt) {
     const std::string shorter = runWith("short", "2");
     EXPECT_NE(shorter.find("\"vo_gaps_bridged_by_gyro\": 0"), std::string::npos) << shorter;
     EXPECT_NE(shorter.find("\"segments\": 2"), std::string::npos) << shorter;
+}
+
+// No gyro recorded: a 6 s gap where the images hold nothing (VO's own depth alignment off, so
+// it loses track) but the depth still sees the office - the gap's turn and translation are
+// measured by its frames' depth (bridge_turn_by_depth, as rgbd_only.ini ships): one segment,
+// the turn across the gap the truth's. Without it the same gap opens a second segment; and
+// where the lens sees no depth either, nothing measures the turn: a gap, not a guess.
+TEST(CameraOnlySlam, AGapNoGyroCoversIsBridgedByTheDepthsTurn) {
+    lodestone::test::TempDir dir;
+    const int from = 150, to = 240;  // 15 Hz: 6 s
+    const std::string rawlog = cameraOnlyOffice(dir, from, to, true, "--handheld");
+    const auto runWith = [&](const std::string& name, const std::string& turnByDepth) {
+        const auto run = lodestone::test::runCommand(
+            kSlam + " --rawlog " + rawlog + " --config " +
+            rgbdOnlyWith(dir.file(name + ".ini"), {{"relocalize_keyframes", "0"},
+                                                   {"bridge_max_seconds", "0"},
+                                                   {"depth_alignment", "false"},
+                                                   {"bridge_turn_by_depth", turnByDepth}}) +
+            " --out " + dir.file(name) + " --ground-truth " + dir.file("camera.gt.tum") + " --quiet");
+        EXPECT_EQ(run.exitCode, 0) << run.output;
+        return reportOf(dir.file(name));
+    };
+    const std::string report = runWith("turn", "true");
+    EXPECT_NE(report.find("\"frames_with_gyro_rotation\": 0"), std::string::npos) << "no gyro recorded";
+    EXPECT_NE(report.find("\"vo_gaps\": 1"), std::string::npos) << report;
+    EXPECT_NE(report.find("\"vo_gaps_bridged_by_depth_turn\": 1"), std::string::npos) << report;
+    EXPECT_NE(report.find("\"segments\": 1"), std::string::npos) << report;
+    // The edge across the gap (the one between nodes furthest apart in time) against the truth:
+    // the hand turned about 90 deg and walked 1.4 m in it.
+    std::map<mrpt::graphs::TNodeID, double> stamps;
+    std::ifstream nodes(dir.file("turn/nodes.csv"));
+    std::string line;
+    std::getline(nodes, line);  // (header)
+    while (std::getline(nodes, line)) {
+        std::istringstream fields(line);
+        std::string id, stamp;
+        std::getline(fields, id, ',');
+        std::getline(fields, stamp, ',');
+        stamps[std::stoul(id)] = std::stod(stamp);
+    }
+    mrpt::graphs::CNetworkOfPoses3DInf graph;
+    graph.loadFromTextFile(dir.file("turn/graph.graph"));
+    mrpt::graphs::TNodeID gapFrom = 0;
+    double longest = 0;
+    for (const auto& [ids, edge] : graph.edges) {
+        if (ids.second != ids.first + 1 || !stamps.count(ids.first) || !stamps.count(ids.second)) continue;
+        const double seconds = stamps[ids.second] - stamps[ids.first];
+        if (seconds > longest) longest = seconds, gapFrom = ids.first;
+    }
+    EXPECT_GT(longest, 5.0);
+    const auto gt = lodestone::io::readTumTrajectory(dir.file("camera.gt.tum"));
+    const auto* ga = lodestone::io::poseNearest(gt, stamps[gapFrom], 0.01);
+    const auto* gb = lodestone::io::poseNearest(gt, stamps[gapFrom + 1], 0.01);
+    ASSERT_TRUE(ga && gb);
+    const mrpt::poses::CPose3D edge = graph.edges.find({gapFrom, gapFrom + 1})->second.getPoseMean();
+    const mrpt::poses::CPose3D truth = gb->pose - ga->pose;
+    const Eigen::Matrix3d dR =
+        edge.getRotationMatrix().asEigen().transpose() * truth.getRotationMatrix().asEigen();
+    EXPECT_GT(Eigen::AngleAxisd(truth.getRotationMatrix().asEigen()).angle(), 1.0) << "the hand turns";
+    // Measured: 6.9 deg off (the yaw 4.4 deg short of 91.5, the hand's 4.6 deg change of tilt
+    // not seen), claiming 1.5-2.6 deg per axis - this 320x240 camera's depth at 80 columns is
+    // over-sure of its rotations (docs/results/camera-only.md). A turn, not a guess: without
+    // the depth it is the fading turn rate's, tens of degrees.
+    EXPECT_LT(Eigen::AngleAxisd(dR).angle(), 9 * M_PI / 180) << edge << " against " << truth;
+    EXPECT_LT((edge.translation() - truth.translation()).norm(), 0.2) << edge << " against " << truth;
+
+    const std::string without = runWith("without", "false");
+    EXPECT_NE(without.find("\"segments\": 2"), std::string::npos) << without;
+
+    lodestone::test::TempDir blindDir;
+    const std::string blind = cameraOnlyOffice(blindDir, from, to, false, "--handheld");
+    const auto run = lodestone::test::runCommand(
+        kSlam + " --rawlog " + blind + " --config " +
+        rgbdOnlyWith(blindDir.file("blind.ini"), {{"relocalize_keyframes", "0"}, {"bridge_max_seconds", "0"}}) +
+        " --out " + blindDir.file("blind") + " --quiet");
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    const std::string blindReport = reportOf(blindDir.file("blind"));
+    EXPECT_NE(blindReport.find("\"vo_gaps_bridged_by_depth_turn\": 0"), std::string::npos) << blindReport;
+    EXPECT_NE(blindReport.find("\"segments\": 2"), std::string::npos) << blindReport;
 }

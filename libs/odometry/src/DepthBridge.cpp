@@ -1,4 +1,5 @@
 #include <lodestone/odometry/DepthBridge.h>
+#include <lodestone/vision/So3.h>
 
 #include <Eigen/Cholesky>
 
@@ -10,11 +11,7 @@
 namespace lodestone::odometry {
 
 namespace {
-Eigen::Matrix3d skew(const Eigen::Vector3d& a) {
-    Eigen::Matrix3d S;
-    S << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
-    return S;
-}
+using vision::skew;
 
 /** The sigma an alignment reports where the depth pins nothing: so loose that a hundred such
  * frames in a gap add no information there (the prediction's guess, not a measurement). */
@@ -35,6 +32,7 @@ DepthBridge::DepthBridge(const Params& params) : params_(params) {
     // pins none the alignment keeps the prediction, which is then no measurement.
     params_.icp.minObserved = 1;
     params_.icp.unobservedSigma = kUnpinnedSigma;
+    turn_ = DepthTurn(params_.turn);
 }
 
 void DepthBridge::start(double t0, const vision::RgbdFrame& lastTracked,
@@ -48,9 +46,15 @@ void DepthBridge::start(double t0, const vision::RgbdFrame& lastTracked,
     x_.segment<3>(3) = v0;
     P_.setZero();
     P_.block<3, 3>(3, 3) = v0Covariance;
+    turning_ = false;
     model_.clear();
     anchor(vision::sampleDepthCloud(lastTracked, params_.sampling), T_robot_optical,
            Eigen::Matrix3d::Identity());
+}
+
+void DepthBridge::startTurn(const Eigen::Vector3d& w0, const Eigen::Matrix3d& w0Covariance) {
+    turning_ = true;
+    turn_.start(t0_, w0, w0Covariance, up_);
 }
 
 Eigen::Vector3d DepthBridge::displacement() const {
@@ -75,38 +79,68 @@ void DepthBridge::predict(double t) {
     if (dt == 0) return;
     // The Ornstein-Uhlenbeck velocity and its integral over dt, per axis (FadingVelocity's
     // model; its displacement variance is the sum of these steps).
-    const double tau = params_.motion.correlationSeconds, s2 = std::pow(params_.motion.speedSigma, 2);
-    const double u = dt / tau, a = std::exp(-u), carry = tau * -std::expm1(-u);
-    const double bracket =
-        u < 1e-3 ? 2.0 * u * u * u / 3.0 : 2 * u - 3 + 4 * a - a * a;
-    const double qpp = s2 * tau * tau * bracket, qvv = s2 * -std::expm1(-2 * u),
-                 qpv = s2 * tau * std::pow(-std::expm1(-u), 2);
+    const auto s = params_.motion.step(dt);
     Matrix9d F = Matrix9d::Identity();
-    F.block<3, 3>(0, 3) = carry * Eigen::Matrix3d::Identity();
-    F.block<3, 3>(3, 3) = a * Eigen::Matrix3d::Identity();
+    F.block<3, 3>(0, 3) = s.carry * Eigen::Matrix3d::Identity();
+    F.block<3, 3>(3, 3) = s.fade * Eigen::Matrix3d::Identity();
     Matrix9d Q = Matrix9d::Zero();
     const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
-    Q.block<3, 3>(0, 0) = qpp * I;
-    Q.block<3, 3>(3, 3) = qvv * I;
-    Q.block<3, 3>(0, 3) = Q.block<3, 3>(3, 0) = qpv * I;
+    Q.block<3, 3>(0, 0) = s.qxx * I;
+    Q.block<3, 3>(3, 3) = s.qvv * I;
+    Q.block<3, 3>(0, 3) = Q.block<3, 3>(3, 0) = s.qxv * I;
     x_ = F * x_;
     P_ = F * P_ * F.transpose() + Q;
 }
 
-bool DepthBridge::measure(const vision::DepthCloud& cloud, const Eigen::Isometry3d& T_robot_optical,
-                          const Eigen::Matrix3d& R_0, Eigen::Vector3d& z, Eigen::Matrix3d& Z) const {
+bool DepthBridge::align(const vision::DepthCloud& cloud, const Eigen::Isometry3d& T_robot_optical,
+                        const Eigen::Matrix3d& R_0, vision::DepthAlignment& d) const {
     if (model_.empty()) return false;
-    // The predicted robot motion from the model frame, then as the camera's.
-    const Eigen::Isometry3d& Cm = T_robot_optical_m_;
-    const Eigen::Isometry3d& Ck = T_robot_optical;
+    // The predicted robot motion from the model frame, then as the camera's; the turn about
+    // what the depth does not pin stays the prediction's.
     Eigen::Isometry3d robot = Eigen::Isometry3d::Identity();
     robot.linear() = R_0m_.transpose() * R_0;
     robot.translation() = R_0m_.transpose() * (x_.head<3>() - x_.tail<3>());
-    // From the prediction; the gyro's turn about what the depth does not pin stays.
-    const Eigen::Isometry3d initial = Cm.inverse() * robot * Ck;
-    const vision::PointToPlaneIcp icp(params_.icp);
-    const auto d = icp.align(model_, cloud, initial);
-    if (!d.success) return false;
+    const Eigen::Isometry3d initial = T_robot_optical_m_.inverse() * robot * T_robot_optical;
+    d = vision::PointToPlaneIcp(params_.icp).align(model_, cloud, initial);
+    return d.success;
+}
+
+bool DepthBridge::measureTurn(const vision::DepthAlignment& d,
+                              const Eigen::Isometry3d& T_robot_optical) {
+    // The alignment's rotation is sure where the depth pinned it, but its covariance holds the
+    // directions it did not pin at `kUnpinnedSigma` - and a plane's in-plane translations,
+    // taken from noisy normals, carry a thousandth of a radian of rotation with them: metres
+    // of free translation become degrees of free rotation. The carrier cannot have moved
+    // metres since the model frame: the rotation's covariance is the alignment's given the
+    // translation the prediction allows (its information added to the alignment's, on the
+    // translation of exp(xi) T: t - [t]x w + v to first order).
+    using Matrix6d = Eigen::Matrix<double, 6, 6>;
+    const Eigen::Matrix3d Cm = T_robot_optical_m_.linear(), Ck = T_robot_optical.linear();
+    Eigen::Matrix<double, 3, 9> H = Eigen::Matrix<double, 3, 9>::Zero();
+    H.leftCols<3>() = R_0m_.transpose();
+    H.rightCols<3>() = -R_0m_.transpose();
+    const Eigen::Matrix3d predicted = Cm.transpose() * (H * P_ * H.transpose()) * Cm;
+    Eigen::Matrix<double, 3, 6> J;
+    J << -skew(d.T_ref_cur.translation()), Eigen::Matrix3d::Identity();
+    const Matrix6d information = d.covariance.ldlt().solve(Matrix6d::Identity()) +
+                                 J.transpose() * predicted.ldlt().solve(J);
+    const Eigen::Matrix3d rotationCovariance =
+        information.ldlt().solve(Matrix6d::Identity()).topLeftCorner<3, 3>();
+    // The robot's rotation from the model frame: Cm R Ck^T; the covariance is of a left
+    // perturbation in the model's optical frame - in the model robot frame Cm's turn of it,
+    // and as a right perturbation of the rotation, turned back by it.
+    const Eigen::Matrix3d R = Cm * d.T_ref_cur.linear() * Ck.transpose();
+    const Eigen::Matrix3d A = R.transpose() * Cm;
+    if (!turn_.update(R, A * rotationCovariance * A.transpose())) return false;
+    R_0m_ = turn_.anchorRotation();
+    return true;
+}
+
+void DepthBridge::measure(const vision::DepthAlignment& d, const vision::DepthCloud& cloud,
+                          const Eigen::Isometry3d& T_robot_optical, const Eigen::Matrix3d& R_0,
+                          Eigen::Vector3d& z, Eigen::Matrix3d& Z) const {
+    const Eigen::Isometry3d& Cm = T_robot_optical_m_;
+    const Eigen::Isometry3d& Ck = T_robot_optical;
     // The translation of exp(xi) T is R(w) t + v: to first order t - [t]x w + v.
     const Eigen::Vector3d t = d.T_ref_cur.translation();
     Eigen::Matrix<double, 3, 6> J;
@@ -117,10 +151,9 @@ bool DepthBridge::measure(const vision::DepthCloud& cloud, const Eigen::Isometry
     // a frame interval, are a tenth of a metre per second.
     const double sigma = depthSigmaOf(cloud, params_.sampling.noiseFloor);
     const Eigen::Matrix3d C = J * d.covariance * J.transpose() + sigma * sigma * Eigen::Matrix3d::Identity();
-    // Back to the robot: its translation is Cm (optical motion) Ck^-1's, the turn the gyro's.
-    z = Cm.linear() * t + Cm.translation() - robot.linear() * Ck.translation();
+    // Back to the robot: its translation is Cm (optical motion) Ck^-1's, the turn R_0's.
+    z = Cm.linear() * t + Cm.translation() - R_0m_.transpose() * R_0 * Ck.translation();
     Z = Cm.linear() * C * Cm.linear().transpose();
-    return true;
 }
 
 void DepthBridge::anchor(vision::DepthCloud cloud, const Eigen::Isometry3d& T_robot_optical,
@@ -130,6 +163,7 @@ void DepthBridge::anchor(vision::DepthCloud cloud, const Eigen::Isometry3d& T_ro
     model_.addReference(std::move(cloud), Eigen::Isometry3d::Identity());
     T_robot_optical_m_ = T_robot_optical;
     R_0m_ = R_0;
+    if (turning_) turn_.anchor();
     // The clone: the position here, with every correlation it has.
     x_.tail<3>() = x_.head<3>();
     P_.block<3, 9>(6, 0) = P_.block<3, 9>(0, 0);
@@ -138,13 +172,37 @@ void DepthBridge::anchor(vision::DepthCloud cloud, const Eigen::Isometry3d& T_ro
 
 void DepthBridge::add(double t, const vision::RgbdFrame& frame,
                       const Eigen::Isometry3d& T_robot_optical, const Eigen::Matrix3d& R_0) {
+    addFrame(t, frame, T_robot_optical, &R_0);
+}
+
+void DepthBridge::add(double t, const vision::RgbdFrame& frame,
+                      const Eigen::Isometry3d& T_robot_optical) {
+    if (turning_) addFrame(t, frame, T_robot_optical, nullptr);
+}
+
+void DepthBridge::addFrame(double t, const vision::RgbdFrame& frame,
+                           const Eigen::Isometry3d& T_robot_optical, const Eigen::Matrix3d* gyro) {
     if (!active_) return;
     predict(t);
+    if (!gyro) turn_.predict(t);
+    Eigen::Matrix3d R_0 = gyro ? *gyro : turn_.current();
     vision::DepthCloud cloud = vision::sampleDepthCloud(frame, params_.sampling);
-    Eigen::Vector3d z;
-    Eigen::Matrix3d Z;
-    const bool measured = measure(cloud, T_robot_optical, R_0, z, Z);
+    vision::DepthAlignment d;
+    bool measured = align(cloud, T_robot_optical, R_0, d);
+    if (measured && !gyro) {
+        // The turn first (an alignment it rules out is a wrong minimum: left out whole), then
+        // the translation under the turn so measured.
+        if (measureTurn(d, T_robot_optical)) {
+            R_0 = turn_.current();
+        } else {
+            ++rejected_;
+            measured = false;
+        }
+    }
     if (measured) {
+        Eigen::Vector3d z;
+        Eigen::Matrix3d Z;
+        measure(d, cloud, T_robot_optical, R_0, z, Z);
         // z = R_0m^T (p - p_m)
         Eigen::Matrix<double, 3, 9> H = Eigen::Matrix<double, 3, 9>::Zero();
         H.leftCols<3>() = R_0m_.transpose();
@@ -171,4 +229,3 @@ void DepthBridge::add(double t, const vision::RgbdFrame& frame,
 }
 
 }  // namespace lodestone::odometry
-

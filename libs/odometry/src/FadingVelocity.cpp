@@ -19,4 +19,17 @@ double FadingVelocity::displacementVariance(double seconds, double v0Sigma) cons
     return speedSigma * speedSigma * tau * tau * bracket + carried * carried;
 }
 
+FadingVelocity::Step FadingVelocity::step(double seconds) const {
+    const double tau = correlationSeconds, s2 = speedSigma * speedSigma;
+    const double u = std::max(0.0, seconds) / tau, a = std::exp(-u);
+    const double bracket = u < 1e-3 ? 2.0 * u * u * u / 3.0 : 2 * u - 3 + 4 * a - a * a;
+    Step s;
+    s.fade = a;
+    s.carry = tau * -std::expm1(-u);
+    s.qxx = s2 * tau * tau * bracket;
+    s.qvv = s2 * -std::expm1(-2 * u);
+    s.qxv = s2 * tau * std::pow(-std::expm1(-u), 2);
+    return s;
+}
+
 }  // namespace lodestone::odometry

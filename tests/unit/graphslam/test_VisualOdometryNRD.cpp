@@ -21,4 +21,20 @@ TEST(VisualOdometryNRD, ConfigurationMistakesNameTheKey) {
               std::string::npos);
     EXPECT_EQ(errorOf("[VisualOdometryNRD]\nuse_gyro = true\nbridge_by_depth = true\n"), "no error");
     EXPECT_TRUE(nrd.params().bridgeByDepth);
+    // Without a gyro the depth may measure the turn too - from the same frames' depth only.
+    EXPECT_NE(errorOf("[VisualOdometryNRD]\nbridge_by_depth = false\nbridge_turn_by_depth = true\n")
+                  .find("needs bridge_by_depth"),
+              std::string::npos);
+    EXPECT_NE(errorOf("[VisualOdometryNRD]\nbridge_by_depth = true\nbridge_turn_by_depth = true\n"
+                      "bridge_tilt_sigma_deg = -1\n").find("bridge_tilt_sigma_deg"),
+              std::string::npos);
+    EXPECT_NE(errorOf("[VisualOdometryNRD]\nbridge_by_depth = true\nbridge_turn_by_depth = true\n"
+                      "bridge_turn_max_sigma_deg = 0\n").find("bridge_turn_max_sigma_deg"),
+              std::string::npos);
+    EXPECT_EQ(errorOf("[VisualOdometryNRD]\nbridge_by_depth = true\nbridge_turn_by_depth = true\n"
+                      "bridge_turn_rate_sigma_deg = 45\nbridge_tilt_sigma_deg = 3\n"),
+              "no error");
+    EXPECT_TRUE(nrd.params().bridgeTurnByDepth);
+    EXPECT_NEAR(nrd.params().bridgeTurn.rate.speedSigma, 45 * M_PI / 180, 1e-12);
+    EXPECT_NEAR(nrd.params().bridgeTurn.tiltSigma, 3 * M_PI / 180, 1e-12);
 }

@@ -124,3 +124,57 @@ TEST(DepthBridge, TheCarriersHeightHoldsWhereNothingMeasuresIt) {
     EXPECT_NEAR(held.displacement().x(), free.displacement().x(), 1e-12);
     EXPECT_NEAR(held.covariance()(0, 0), free.covariance()(0, 0), 1e-12);
 }
+
+// No gyro: a hand-held camera (1.25 m up) turning a quarter turn in place at a plain corner, 1 m
+// from each wall, its turn rate at the start unknown (zero, spread as a carrier's). The depth
+// sees one wall, then the corner, then the other: it measures the turn to a degree, says how
+// sure it is honestly, and finds the camera where it stood.
+TEST(DepthBridge, WithoutAGyroTheDepthMeasuresAQuarterTurnAtAPlainCorner) {
+    const lodestone::sim::World world(lodestone::test::boxScenario("plain"), 3);
+    const auto at = [](double yaw) { return lodestone::test::cameraPose({7.0, 2.0, 1.25}, yaw); };
+    const Eigen::Isometry3d camera = lodestone::test::opticalInCamera();  // (robot = camera)
+    DepthBridge::Params p;
+    p.turn.tiltSigma = 5 * M_PI / 180;
+    DepthBridge bridge(p);
+    bridge.start(0.0, lodestone::test::render(world, at(0), 1), camera, Eigen::Vector3d::Zero(),
+                 0.03 * 0.03 * Eigen::Matrix3d::Identity());
+    bridge.startTurn(Eigen::Vector3d::Zero(), 0.5 * 0.5 * Eigen::Matrix3d::Identity());
+    ASSERT_TRUE(bridge.turning());
+    const int frames = 75;  // 2.5 s at 36 deg/s
+    for (int k = 1; k <= frames; ++k)
+        bridge.add(k / kRate, lodestone::test::render(world, at(M_PI / 2 * k / frames), 1 + k), camera);
+    EXPECT_GE(bridge.aligned(), frames - 2);
+    const Eigen::Matrix3d truth =
+        Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    const Eigen::AngleAxisd error(truth.transpose() * bridge.rotation());
+    const Eigen::Vector3d e = error.angle() * error.axis();
+    EXPECT_LT(error.angle(), 1.0 * M_PI / 180) << e.transpose();
+    const Eigen::Matrix3d P = bridge.rotationCovariance();
+    EXPECT_LT(std::sqrt(P(2, 2)), 1.0 * M_PI / 180) << P.diagonal().cwiseSqrt().transpose() * 180 / M_PI << " / " << e.transpose() * 180 / M_PI;  // the turn about the vertical: measured
+    EXPECT_LT(e.dot(P.ldlt().solve(e)), 16.27);       // honest: inside its own 99.9 %
+    EXPECT_LT(bridge.displacement().norm(), 0.05) << bridge.displacement().transpose();
+}
+
+// No gyro and no depth: the turn is the fading rate's guess - the rate at the start carried
+// as FadingVelocity carries a velocity, with that model's spread per axis.
+TEST(DepthBridge, WithoutAGyroOrDepthTheTurnIsTheFadingRatesGuess) {
+    lodestone::vision::RgbdFrame blank;
+    blank.intrinsics = {570.3, 570.3, 319.5, 239.5, 640, 480};
+    blank.depth = cv::Mat::zeros(480, 640, CV_32FC1);
+    DepthBridge::Params p;
+    p.turn.rate = FadingVelocity{0.5, 1.0};
+    DepthBridge bridge(p);
+    bridge.start(0.0, blank, lodestone::test::opticalInCamera(), Eigen::Vector3d::Zero(),
+                 0.03 * 0.03 * Eigen::Matrix3d::Identity());
+    const Eigen::Vector3d w0(0, 0, 0.4);
+    const double w0Sigma = 0.05;
+    bridge.startTurn(w0, w0Sigma * w0Sigma * Eigen::Matrix3d::Identity());
+    for (int k = 1; k <= 60; ++k) bridge.add(k / kRate, blank, lodestone::test::opticalInCamera());
+    const double gap = 60 / kRate;
+    const Eigen::AngleAxisd turned(bridge.rotation());
+    EXPECT_NEAR(turned.angle(), p.turn.rate.meanDisplacement(w0, gap).z(), 1e-9);
+    EXPECT_NEAR(turned.axis().z(), 1.0, 1e-9);
+    const double variance = p.turn.rate.displacementVariance(gap, w0Sigma);
+    for (int a = 0; a < 3; ++a) EXPECT_NEAR(bridge.rotationCovariance()(a, a), variance, 1e-9 * variance);
+    EXPECT_EQ(bridge.aligned(), 0);
+}

@@ -1,9 +1,11 @@
 // VisualOdometryNRD across a VO gap: the bridges from the last tracked frame - the last
 // velocity's, the gyro's, and the gyro's corrected by the gap's depth (the frames VO did not
 // track still see walls and floors, which measure the translation the motion model guesses:
-// odometry::DepthBridge).
+// odometry::DepthBridge), or without a gyro the depth's turn and translation both.
 #include <lodestone/graphslam/Se3Pose.h>
 #include <lodestone/graphslam/nrd/VisualOdometryNRD.h>
+
+#include <Eigen/Eigenvalues>
 
 #include <algorithm>
 #include <cmath>
@@ -37,18 +39,21 @@ mrpt::poses::CPose3DPDFGaussian VisualOdometryNRD::bridge(double gap) const {
     return edge;
 }
 
+std::size_t VisualOdometryNRD::windowStart() const {
+    if (chained_.empty()) return 0;
+    const double end = chained_.back().first;
+    std::size_t start = chained_.size() - 1;
+    while (start > 0 && end - chained_[start].first < params_.gravityVelocitySeconds) --start;
+    return start;
+}
+
 VisualOdometryNRD::Velocity VisualOdometryNRD::velocityAtLastTracked() const {
     // Over VO's last gravityVelocitySeconds of tracked frames (from the newest frame that old,
     // else the oldest), not its last step: a step's few millimetres of error in a frame
     // interval are a tenth of a metre per second.
-    std::size_t start = chained_.size();
-    if (!chained_.empty()) {
-        const double end = chained_.back().first;
-        start = chained_.size() - 1;
-        while (start > 0 && end - chained_[start].first < params_.gravityVelocitySeconds) --start;
-    }
+    const std::size_t start = windowStart();
     Velocity v;
-    if (start >= chained_.size() || !(chained_.back().first > chained_[start].first)) {
+    if (chained_.empty() || !(chained_.back().first > chained_[start].first)) {
         // (VO has not tracked since it restarted: the carrier's velocity is its spread)
         v.sigma = params_.bridgeVelocity.speedSigma;
         v.covariance = v.sigma * v.sigma * Eigen::Matrix3d::Identity();
@@ -67,6 +72,50 @@ VisualOdometryNRD::Velocity VisualOdometryNRD::velocityAtLastTracked() const {
                        (dt * dt) +
                    v.sigma * v.sigma * Eigen::Matrix3d::Identity();
     return v;
+}
+
+VisualOdometryNRD::Velocity VisualOdometryNRD::turnRateAtLastTracked() const {
+    // VO's rotations over a window are known no better than its steps' (0.1-0.4 deg RMS at
+    // 640x480, docs/results/camera-only.md): two of them over 0.3 s, about 2 deg/s.
+    constexpr double kRateFloor = 2 * M_PI / 180;
+    const std::size_t start = windowStart();
+    Velocity w;
+    if (chained_.empty() || !(chained_.back().first > chained_[start].first)) {
+        w.sigma = params_.bridgeTurn.rate.speedSigma;  // (not tracked since the restart)
+        w.covariance = w.sigma * w.sigma * Eigen::Matrix3d::Identity();
+        return w;
+    }
+    const Eigen::Matrix3d R0 = chained_[start].second.getRotationMatrix().asEigen();
+    const Eigen::Matrix3d R1 = chained_.back().second.getRotationMatrix().asEigen();
+    const double dt = chained_.back().first - chained_[start].first;
+    const Eigen::AngleAxisd turned(R0.transpose() * R1);  // (its axis the same in either frame)
+    w.mean = turned.angle() * turned.axis() / dt;
+    w.sigma = kRateFloor;
+    w.covariance = R1.transpose() *
+                       (chained_rotation_covariance_.back() + chained_rotation_covariance_[start]) *
+                       R1 / (dt * dt) +
+                   w.sigma * w.sigma * Eigen::Matrix3d::Identity();
+    return w;
+}
+
+std::optional<mrpt::poses::CPose3DPDFGaussian> VisualOdometryNRD::bridgeByDepthTurn(double t) const {
+    if (!depth_bridge_.active() || !depth_bridge_.turning() ||
+        depth_bridge_.startTime() != last_tracked_.t || !(t - last_tracked_.t <= params_.gyroBridgeMaxSeconds))
+        return std::nullopt;
+    const Eigen::Matrix3d turnCovariance = depth_bridge_.rotationCovariance();
+    const double loosest = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(turnCovariance)
+                               .eigenvalues()
+                               .maxCoeff();
+    if (!(loosest <= params_.bridgeTurnMaxSigma * params_.bridgeTurnMaxSigma)) return std::nullopt;
+    Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
+    step.linear() = depth_bridge_.rotation();
+    step.translation() = depth_bridge_.displacement();
+    Eigen::Matrix<double, 6, 6> cov = Eigen::Matrix<double, 6, 6>::Zero();  // (rotation, translation)
+    cov.topLeftCorner<3, 3>() = turnCovariance;
+    cov.bottomRightCorner<3, 3>() = depth_bridge_.covariance();
+    mrpt::poses::CPose3DPDFGaussian edge = last_tracked_.pdf;
+    edge += mrpt::poses::CPose3DPDFGaussian(poseOf3D(step), mrptCovarianceOf(cov));
+    return edge;
 }
 
 std::optional<mrpt::poses::CPose3DPDFGaussian> VisualOdometryNRD::bridgeByGyro(double t) const {
@@ -103,9 +152,13 @@ void VisualOdometryNRD::followGap(const vision::RgbdFrame& frame, double t,
     if (!params_.bridgeByDepth || !last_tracked_frame_ ||
         !(t - last_tracked_.t <= params_.gyroBridgeMaxSeconds))
         return;
-    const auto g = gyro_.between(last_tracked_.t, t);
-    if (!g) return;
-    if (!depth_bridge_.active() || depth_bridge_.startTime() != last_tracked_.t) {
+    std::optional<odometry::GyroIntegrator::Rotation> g;
+    if (params_.useGyro) g = gyro_.between(last_tracked_.t, t);
+    const bool started = depth_bridge_.active() && depth_bridge_.startTime() == last_tracked_.t;
+    // A gap is followed one way to its end: the gyro's turn, or where none covered its start
+    // the depth's.
+    if (started ? (!depth_bridge_.turning() && !g) : (!g && !params_.bridgeTurnByDepth)) return;
+    if (!started) {
         // VO's velocity as a measurement of the carrier's, whose spread the motion model knows:
         // where VO's last frames did not measure an axis (a plain wall ahead leaves the height
         // to a few features), the velocity there is the model's, not VO's drift. Axis by axis:
@@ -120,11 +173,22 @@ void VisualOdometryNRD::followGap(const vision::RgbdFrame& frame, double t,
         depth_bridge_.start(last_tracked_.t, *last_tracked_frame_, last_tracked_optical_,
                             (gain * vo.mean.array()).matrix(), (gain * c).matrix().asDiagonal(),
                             up ? up->up : Eigen::Vector3d::UnitZ());
+        if (!g) {
+            // The turn rate the same way: VO's, weighed against a carrier's spread of them.
+            const auto w = turnRateAtLastTracked();
+            const double r2 = std::pow(params_.bridgeTurn.rate.speedSigma, 2);
+            const Eigen::Array3d cw = w.covariance.diagonal().array(), gw = r2 / (r2 + cw);
+            depth_bridge_.startTurn((gw * w.mean.array()).matrix(), (gw * cw).matrix().asDiagonal());
+        }
     }
-    // The gyro's body rotation in the robot frame: S R S^T, S the gyro's rotation on the robot.
-    const Eigen::Matrix3d S = gyro_.sensorOnRobot().linear();
     const int aligned = depth_bridge_.aligned(), rejected = depth_bridge_.rejected();
-    depth_bridge_.add(t, frame, T_robot_optical, S * g->R * S.transpose());
+    if (depth_bridge_.turning()) {
+        depth_bridge_.add(t, frame, T_robot_optical);
+    } else {
+        // The gyro's body rotation in the robot frame: S R S^T, S the gyro's rotation on the robot.
+        const Eigen::Matrix3d S = gyro_.sensorOnRobot().linear();
+        depth_bridge_.add(t, frame, T_robot_optical, S * g->R * S.transpose());
+    }
     depth_bridge_aligned_ += static_cast<std::size_t>(depth_bridge_.aligned() - aligned);
     depth_bridge_rejected_ += static_cast<std::size_t>(depth_bridge_.rejected() - rejected);
 }

@@ -77,8 +77,23 @@ void VisualOdometryNRD::configure(const mrpt::config::CConfigFileBase& ini) {
     p.bridgeByDepth = s.getBool("bridge_by_depth", p.bridgeByDepth);
     p.bridgeHeightSigma = s.getDouble("bridge_height_sigma", p.bridgeHeightSigma);
     if (!(p.bridgeHeightSigma >= 0)) s.fail("bridge_height_sigma", "must be >= 0");
-    if (p.bridgeByDepth && !p.useGyro)
-        s.fail("bridge_by_depth", "needs use_gyro = true (the depth corrects the gyro's bridge)");
+    p.bridgeTurnByDepth = s.getBool("bridge_turn_by_depth", p.bridgeTurnByDepth);
+    auto& turn = p.bridgeTurn;
+    turn.rate.speedSigma =
+        s.getDouble("bridge_turn_rate_sigma_deg", turn.rate.speedSigma * 180 / M_PI) * M_PI / 180;
+    turn.rate.correlationSeconds = fading.correlationSeconds;
+    turn.tiltSigma = s.getDouble("bridge_tilt_sigma_deg", turn.tiltSigma * 180 / M_PI) * M_PI / 180;
+    p.bridgeTurnMaxSigma =
+        s.getDouble("bridge_turn_max_sigma_deg", p.bridgeTurnMaxSigma * 180 / M_PI) * M_PI / 180;
+    if (!(turn.rate.speedSigma > 0)) s.fail("bridge_turn_rate_sigma_deg", "must be > 0");
+    if (!(turn.tiltSigma >= 0)) s.fail("bridge_tilt_sigma_deg", "must be >= 0");
+    if (!(p.bridgeTurnMaxSigma > 0)) s.fail("bridge_turn_max_sigma_deg", "must be > 0");
+    if (p.bridgeByDepth && !p.useGyro && !p.bridgeTurnByDepth)
+        s.fail("bridge_by_depth",
+               "needs use_gyro = true or bridge_turn_by_depth = true (the depth corrects the "
+               "gyro's bridge, or measures the turn too)");
+    if (p.bridgeTurnByDepth && !p.bridgeByDepth)
+        s.fail("bridge_turn_by_depth", "needs bridge_by_depth = true (the same frames' depth)");
     p.useGravity = s.getBool("use_gravity", p.useGravity);
     auto& g = p.gravity;
     g.biasStd = s.getDouble("accel_bias", g.biasStd);
@@ -104,6 +119,7 @@ void VisualOdometryNRD::configure(const mrpt::config::CConfigFileBase& ini) {
     bridge.sampling = params_.visual.depthSampling;
     bridge.icp = params_.visual.depthIcp;
     bridge.heightSigma = params_.bridgeHeightSigma;
+    bridge.turn = params_.bridgeTurn;
     depth_bridge_ = odometry::DepthBridge(bridge);
 }
 
@@ -193,9 +209,15 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
             gap_seconds_.push_back(gap);
         }
         std::optional<mrpt::poses::CPose3DPDFGaussian> found, byGyro, expected;
-        if (!first && params_.useGyro && gap <= params_.gyroBridgeMaxSeconds) {
+        bool byDepthTurn = false;
+        if (!first && (params_.useGyro || params_.bridgeTurnByDepth) &&
+            gap <= params_.gyroBridgeMaxSeconds) {
             followGap(frame, t, T_robot_optical);
-            byGyro = bridgeByGyro(t);
+            if (params_.useGyro) byGyro = bridgeByGyro(t);
+            if (!byGyro && params_.bridgeTurnByDepth) {
+                byGyro = bridgeByDepthTurn(t);
+                byDepthTurn = byGyro.has_value();
+            }
         }
         // Where the carrier can have gone meanwhile, as far as a motion model knows: what a
         // view found again must agree with (features along one edge - a door frame, a corner -
@@ -211,9 +233,14 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
             ++relocalized_;
             registerAt(*scan, t, r.frameFeatures, *found, false);
         } else if (byGyro) {
-            // The gyro saw every turn of the gap: the segment goes on, loose where it must.
-            ++bridged_by_gyro_;
-            if (depth_bridge_.active() && depth_bridge_.aligned() > 0) ++bridged_by_depth_;
+            // The gyro (or the depth) saw every turn of the gap: the segment goes on, loose
+            // where it must.
+            if (byDepthTurn) {
+                ++bridged_by_depth_turn_;
+            } else {
+                ++bridged_by_gyro_;
+                if (depth_bridge_.active() && depth_bridge_.aligned() > 0) ++bridged_by_depth_;
+            }
             registerAt(*scan, t, r.frameFeatures, *byGyro, false);
         } else if (!first && gap <= params_.bridgeMaxSeconds && last_step_seconds_ > 0) {
             // A short gap: where the last velocity carries the camera, as sure as a
@@ -231,12 +258,13 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
         chained_.clear();  // (VO starts again: its velocity is unknown until it has tracked)
         chained_.emplace_back(t, mrpt::poses::CPose3D());
         chained_covariance_.assign(1, Eigen::Matrix3d::Zero());
+        chained_rotation_covariance_.assign(1, Eigen::Matrix3d::Zero());
         return;
     }
     if (!r.success) {
         ++failed_frames_;  // (VO keeps its reference; once LOST it restarts: NoReference above)
         ++failures_[vision::toString(r.failure)];
-        if (params_.useGyro) followGap(frame, t, T_robot_optical);
+        if (params_.useGyro || params_.bridgeTurnByDepth) followGap(frame, t, T_robot_optical);
         return;
     }
     // The reference is the one VO started from or the last tracked frame, which VO made its
@@ -255,12 +283,18 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
         const Eigen::Matrix3d R = chained_.back().second.getRotationMatrix().asEigen();
         const Eigen::Matrix3d C = motion.cov.asEigen().topLeftCorner<3, 3>();
         chained_covariance_.push_back(R * C * R.transpose());
+        // (its rotation block: MRPT's yaw, pitch, roll are w_z, w_y, w_x to first order)
+        Eigen::Matrix3d Cr;
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) Cr(i, j) = motion.cov(5 - i, 5 - j);
+        chained_rotation_covariance_.push_back(R * Cr * R.transpose());
         // (kept: VO's velocity before a gap; with the accelerometer, the window before a node)
         double old = t - 2 * params_.gravityVelocitySeconds;
         if (params_.useGravity) old -= params_.gravity.windowSeconds;
         while (chained_.size() > 1 && chained_[1].first < old) {
             chained_.pop_front();
             chained_covariance_.pop_front();
+            chained_rotation_covariance_.pop_front();
         }
     }
     last_tracked_ = {t, cur};
@@ -423,6 +457,19 @@ JsonObject VisualOdometryNRD::describe() const {
             .set("bridge_velocity_seconds", params_.bridgeVelocity.correlationSeconds)
             .set("use_gravity", params_.useGravity);
     }
+    if (params_.bridgeTurnByDepth) {
+        if (!params_.useGyro) {
+            params.set("gyro_bridge_max_seconds", params_.gyroBridgeMaxSeconds)
+                .set("bridge_by_depth", params_.bridgeByDepth)
+                .set("bridge_height_sigma", params_.bridgeHeightSigma)
+                .set("bridge_speed_sigma", params_.bridgeVelocity.speedSigma)
+                .set("bridge_velocity_seconds", params_.bridgeVelocity.correlationSeconds);
+        }
+        params.set("bridge_turn_by_depth", true)
+            .set("bridge_turn_rate_sigma_deg", params_.bridgeTurn.rate.speedSigma * 180 / M_PI)
+            .set("bridge_tilt_sigma_deg", params_.bridgeTurn.tiltSigma * 180 / M_PI)
+            .set("bridge_turn_max_sigma_deg", params_.bridgeTurnMaxSigma * 180 / M_PI);
+    }
     if (params_.useGravity) {
         params.set("accel_bias", params_.gravity.biasStd)
             .set("gravity_window_seconds", params_.gravity.windowSeconds)
@@ -452,6 +499,13 @@ JsonObject VisualOdometryNRD::describe() const {
         if (params_.bridgeByDepth) {
             stats.set("vo_gaps_bridged_by_depth", bridged_by_depth_)
                 .set("depth_bridge_frames_aligned", depth_bridge_aligned_)
+                .set("depth_bridge_frames_rejected", depth_bridge_rejected_);
+        }
+    }
+    if (params_.bridgeTurnByDepth) {
+        stats.set("vo_gaps_bridged_by_depth_turn", bridged_by_depth_turn_);
+        if (!params_.useGyro) {
+            stats.set("depth_bridge_frames_aligned", depth_bridge_aligned_)
                 .set("depth_bridge_frames_rejected", depth_bridge_rejected_);
         }
     }

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <lodestone/odometry/DepthTurn.h>
 #include <lodestone/odometry/FadingVelocity.h>
 #include <lodestone/vision/RgbdFrame.h>
 #include <lodestone/vision/depth/DepthCloud.h>
@@ -26,7 +27,11 @@ namespace lodestone::odometry {
  * difference of the two). Its prediction is FadingVelocity's Ornstein-Uhlenbeck velocity
  * discretized exactly, so with no frame aligned the result is FadingVelocity's mean and
  * variance; an alignment whose translation the prediction rules out (`gateChi2`: a wrong ICP
- * minimum) is left out. */
+ * minimum) is left out.
+ *
+ * Where no gyro measured the turn (`startTurn`, then `add` without a rotation), the depth
+ * measures it too: each alignment's rotation corrects a DepthTurn, which predicts the next
+ * frame's, and the translation is measured with the turn so corrected. */
 class DepthBridge {
   public:
     struct Params {
@@ -42,6 +47,7 @@ class DepthBridge {
          * bobbing and swaying: centimetres, not the metres a drifting vertical velocity gives
          * over seconds); 0: no such prior. The result is conditioned on it. */
         double heightSigma{0};
+        DepthTurn::Params turn;  ///< the turn's model, where no gyro measures it
     };
 
     DepthBridge() : DepthBridge(Params{}) {}
@@ -53,10 +59,15 @@ class DepthBridge {
                const Eigen::Isometry3d& T_robot_optical, const Eigen::Vector3d& v0,
                const Eigen::Matrix3d& v0Covariance,
                const Eigen::Vector3d& up = Eigen::Vector3d::UnitZ());
+    /** No gyro: the turn is the depth's too (DepthTurn), from the turn rate at the start
+     * (robot frame, rad/s) and its covariance. After `start`, before the first `add`. */
+    void startTurn(const Eigen::Vector3d& w0, const Eigen::Matrix3d& w0Covariance);
     /** A frame in the gap at `t`: `R_0` the robot's rotation since the gap's start (the gyro's,
      * in the start's robot frame). */
     void add(double t, const vision::RgbdFrame& frame, const Eigen::Isometry3d& T_robot_optical,
              const Eigen::Matrix3d& R_0);
+    /** The same where the turn is the depth's (after `startTurn`). */
+    void add(double t, const vision::RgbdFrame& frame, const Eigen::Isometry3d& T_robot_optical);
     void reset() { active_ = false; }
 
     bool active() const { return active_; }
@@ -66,6 +77,11 @@ class DepthBridge {
      * the height along `up` changed by about that much at most. */
     Eigen::Vector3d displacement() const;
     Eigen::Matrix3d covariance() const;
+    /** Where the turn is the depth's: the robot's rotation since the start and its covariance
+     * (right perturbation; DepthTurn). */
+    bool turning() const { return turning_; }
+    Eigen::Matrix3d rotation() const { return turn_.rotation(); }
+    Eigen::Matrix3d rotationCovariance() const { return turn_.covariance(); }
     /** Frames of this gap whose depth measured the motion, and those left out by the gate. */
     int aligned() const { return aligned_; }
     int rejected() const { return rejected_; }
@@ -73,11 +89,20 @@ class DepthBridge {
   private:
     using Vector9d = Eigen::Matrix<double, 9, 1>;
     using Matrix9d = Eigen::Matrix<double, 9, 9>;
+    void addFrame(double t, const vision::RgbdFrame& frame,
+                  const Eigen::Isometry3d& T_robot_optical, const Eigen::Matrix3d* gyro);
     void predict(double t);
-    /** The depth's translation from the model frame to this one, in the model frame's robot
-     * axes, and its covariance; nothing where the depth did not align. */
-    bool measure(const vision::DepthCloud& cloud, const Eigen::Isometry3d& T_robot_optical,
-                 const Eigen::Matrix3d& R_0, Eigen::Vector3d& z, Eigen::Matrix3d& Z) const;
+    /** The frame's depth aligned with the model frame's, from the predicted motion (`R_0` the
+     * rotation since the start); nothing where it did not align. */
+    bool align(const vision::DepthCloud& cloud, const Eigen::Isometry3d& T_robot_optical,
+               const Eigen::Matrix3d& R_0, vision::DepthAlignment& d) const;
+    /** The alignment's rotation of the robot from the model frame into the DepthTurn. */
+    bool measureTurn(const vision::DepthAlignment& d, const Eigen::Isometry3d& T_robot_optical);
+    /** Its translation from the model frame to this one, in the model frame's robot axes, and
+     * its covariance. */
+    void measure(const vision::DepthAlignment& d, const vision::DepthCloud& cloud,
+                 const Eigen::Isometry3d& T_robot_optical, const Eigen::Matrix3d& R_0,
+                 Eigen::Vector3d& z, Eigen::Matrix3d& Z) const;
     /** The model frame becomes this one: its cloud, and the position cloned. */
     void anchor(vision::DepthCloud cloud, const Eigen::Isometry3d& T_robot_optical,
                 const Eigen::Matrix3d& R_0);
@@ -92,6 +117,8 @@ class DepthBridge {
     Eigen::Isometry3d T_robot_optical_m_{Eigen::Isometry3d::Identity()};
     Eigen::Vector3d up_{Eigen::Vector3d::UnitZ()};
     int aligned_{0}, rejected_{0};
+    bool turning_{false};
+    DepthTurn turn_;
 };
 
 }  // namespace lodestone::odometry

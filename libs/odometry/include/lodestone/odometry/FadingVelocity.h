@@ -19,6 +19,14 @@ struct FadingVelocity {
     /** Its variance per axis [m^2]: sigma^2 tau^2 (2 T/tau - 3 + 4 e^-T/tau - e^-2T/tau), and
      * (tau (1 - e^-T/tau))^2 v0Sigma^2 where the start velocity is known to v0Sigma per axis. */
     double displacementVariance(double seconds, double v0Sigma = 0) const;
+
+    /** The model over one step of `seconds`, per axis, discretized exactly: the displacement
+     * and the velocity move as x' = x + carry v, v' = fade v, plus noise of covariance
+     * [[qxx, qxv], [qxv, qvv]] (summed over steps: displacementVariance). */
+    struct Step {
+        double fade{1}, carry{0}, qxx{0}, qxv{0}, qvv{0};
+    };
+    Step step(double seconds) const;
 };
 
 }  // namespace lodestone::odometry

@@ -41,7 +41,11 @@ namespace lodestone::graphslam {
  * (a first-order Gauss-Markov process: `bridge_speed_sigma`, `bridge_velocity_seconds`; the
  * velocity VO's over its last 0.3 s), its covariance growing with the gap - the segment goes
  * on, its edge loose where nothing saw the motion (with `bridge_by_depth`, the translation
- * measured by the gap frames' depth where it pins it: odometry::DepthBridge). The gyro's bias
+ * measured by the gap frames' depth where it pins it: odometry::DepthBridge). Where no gyro
+ * covers the gap (`bridge_turn_by_depth`), the depth measures the turn as well
+ * (odometry::DepthTurn: VO's last turn rate fading, corrected by each aligned frame's rotation
+ * where the depth pinned it, the carrier's tilt held to `bridge_tilt_sigma_deg`), and the gap is
+ * bridged when that turn is known to `bridge_turn_max_sigma_deg` about every axis. The gyro's bias
  * is learnt meanwhile from VO's rotations between reference frames where the features tracked
  * (GyroBiasEstimator) and taken out of its rates. Else a short gap (`bridge_max_seconds`) is bridged by the camera's
  * last velocity, the edge's covariance that of a constant-velocity model with white-noise
@@ -90,6 +94,14 @@ class VisualOdometryNRD : public NodeDecider {
         /** With it, how far the carrier's height wanders over a gap [m] (the up the
          * accelerometer's, where measured; 0: no such prior): `bridge_height_sigma`. */
         double bridgeHeightSigma{0};
+        /** With it and no gyro over the gap: the turn measured by the same frames' depth
+         * (`bridge_turn_by_depth`; DepthTurn's model in `bridgeTurn`: the turn rate's spread
+         * `bridge_turn_rate_sigma_deg` fading with `bridge_velocity_seconds`, the tilt
+         * `bridge_tilt_sigma_deg`), taken where every axis of it is known to
+         * `bridgeTurnMaxSigma` [rad] (`bridge_turn_max_sigma_deg`). */
+        bool bridgeTurnByDepth{false};
+        odometry::DepthTurn::Params bridgeTurn;
+        double bridgeTurnMaxSigma{10 * M_PI / 180};
         /** With the gyro: the same IMU's accelerometer, averaged over the last second before
          * each node, gives the node's up - a prior on its roll and pitch in the graph
          * (odometry::GravityEstimator; `accel_bias`, `gravity_window_seconds`,
@@ -135,6 +147,9 @@ class VisualOdometryNRD : public NodeDecider {
      * the fading velocity (or, with `bridgeByDepth`, the depth bridge followed up to t);
      * nothing when the gyro does not cover the gap. */
     std::optional<mrpt::poses::CPose3DPDFGaussian> bridgeByGyro(double t) const;
+    /** Where no gyro covers the gap: the turn and translation the depth bridge followed up to
+     * t, if it measured the turn to `bridgeTurnMaxSigma`. */
+    std::optional<mrpt::poses::CPose3DPDFGaussian> bridgeByDepthTurn(double t) const;
     /** VO tracked this frame (or restarted on it): a gap after it starts here. */
     void trackedFrame(const vision::RgbdFrame& frame, const Eigen::Isometry3d& T_robot_optical);
     /** A frame VO did not track, or restarted on: into the gap's depth bridge (started at the
@@ -150,6 +165,11 @@ class VisualOdometryNRD : public NodeDecider {
         Eigen::Matrix3d covariance{Eigen::Matrix3d::Zero()};
     };
     Velocity velocityAtLastTracked() const;
+    /** The tracked frame (in chained_) that window starts at: the newest one that old, else
+     * the oldest. */
+    std::size_t windowStart() const;
+    /** The same for the turn rate [rad/s], from VO's rotation over the same window. */
+    Velocity turnRateAtLastTracked() const;
     /** VO's rotation from its old reference to a frame that became the new one, against the
      * gyro's over the same time: the gyro's bias learnt. */
     void learnGyroBias(const vision::VoResult& r, double t,
@@ -193,6 +213,7 @@ class VisualOdometryNRD : public NodeDecider {
     Eigen::Isometry3d last_tracked_optical_{Eigen::Isometry3d::Identity()};  // its camera on the robot
     odometry::DepthBridge depth_bridge_;  // the gap since the last tracked frame, by its depth
     std::size_t bridged_by_depth_{0};     // gyro bridges the depth corrected (of those taken)
+    std::size_t bridged_by_depth_turn_{0};  // gaps no gyro covered, bridged by the depth's turn
     std::size_t depth_bridge_aligned_{0}, depth_bridge_rejected_{0};  // gap frames, over the run
     std::deque<std::pair<TNodeID, std::shared_ptr<const vision::FrameFeatures>>> recent_keyframes_;
     mrpt::poses::CPose3D since_keyframe_;  // the last node relative to the last keyframe
@@ -204,6 +225,7 @@ class VisualOdometryNRD : public NodeDecider {
     // VO's tracked frames chained (since the last restart), for the window's velocities
     std::deque<std::pair<double, mrpt::poses::CPose3D>> chained_;
     std::deque<Eigen::Matrix3d> chained_covariance_;  // VO's, of each against its reference
+    std::deque<Eigen::Matrix3d> chained_rotation_covariance_;  // (the same for its rotation)
     mrpt::poses::CPose3D last_step_;  // the last motion between tracked frames ...
     double last_step_seconds_{0};      // ... and how long it took
     std::vector<double> gap_seconds_;  // from the last tracked frame to VO's restart

@@ -1,0 +1,99 @@
+#include <lodestone/odometry/DepthTurn.h>
+#include <lodestone/vision/So3.h>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Geometry>
+
+#include <algorithm>
+
+namespace lodestone::odometry {
+
+using vision::expSO3;
+using vision::logSO3;
+using vision::skew;
+
+void DepthTurn::start(double t0, const Eigen::Vector3d& w0, const Eigen::Matrix3d& w0Covariance,
+                      const Eigen::Vector3d& up) {
+    t_ = t0;
+    R_ = Rm_ = Eigen::Matrix3d::Identity();
+    w_ = w0;
+    up_ = up.normalized();
+    P_.setZero();
+    P_.block<3, 3>(3, 3) = w0Covariance;
+}
+
+void DepthTurn::predict(double t) {
+    const double dt = std::max(0.0, t - t_);
+    t_ = std::max(t_, t);
+    if (dt == 0) return;
+    const auto s = params_.rate.step(dt);
+    // The mean: the rate fades, the rotation turns by what it carries (first order in the
+    // error: the rotation's error grows by the rate's, the step's own turn of it neglected).
+    R_ = R_ * expSO3(s.carry * w_);
+    w_ *= s.fade;
+    const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+    Matrix9d F = Matrix9d::Identity();
+    F.block<3, 3>(0, 3) = s.carry * I;
+    F.block<3, 3>(3, 3) = s.fade * I;
+    Matrix9d Q = Matrix9d::Zero();
+    Q.block<3, 3>(0, 0) = s.qxx * I;
+    Q.block<3, 3>(3, 3) = s.qvv * I;
+    Q.block<3, 3>(0, 3) = Q.block<3, 3>(3, 0) = s.qxv * I;
+    P_ = F * P_ * F.transpose() + Q;
+}
+
+void DepthTurn::anchor() {
+    Rm_ = R_;
+    P_.block<3, 9>(6, 0) = P_.block<3, 9>(0, 0);
+    P_.block<9, 3>(0, 6) = P_.block<9, 3>(0, 0);
+}
+
+bool DepthTurn::update(const Eigen::Matrix3d& measured, const Eigen::Matrix3d& covariance) {
+    // R_m^T R with both perturbed on the right: Rhat exp(theta - Rhat^T theta_m), first order.
+    const Eigen::Matrix3d predicted = Rm_.transpose() * R_;
+    const Eigen::Vector3d y = logSO3(predicted.transpose() * measured);
+    Eigen::Matrix<double, 3, 9> H = Eigen::Matrix<double, 3, 9>::Zero();
+    H.leftCols<3>().setIdentity();
+    H.rightCols<3>() = -predicted.transpose();
+    const Eigen::Matrix3d S = H * P_ * H.transpose() + covariance;
+    const Eigen::LDLT<Eigen::Matrix3d> Sl(S);
+    if (!(y.dot(Sl.solve(y)) <= params_.gateChi2)) return false;
+    const Eigen::Matrix<double, 9, 3> K = Sl.solve(H * P_).transpose();
+    const Eigen::Matrix<double, 9, 1> dx = K * y;
+    R_ = R_ * expSO3(dx.head<3>());
+    w_ += dx.segment<3>(3);
+    Rm_ = Rm_ * expSO3(dx.tail<3>());
+    const Matrix9d IKH = Matrix9d::Identity() - K * H;
+    P_ = IKH * P_ * IKH.transpose() + K * covariance * K.transpose();  // (Joseph: stays symmetric)
+    return true;
+}
+
+void DepthTurn::conditioned(Eigen::Matrix3d& R, Eigen::Matrix3d& P) const {
+    R = R_;
+    P = P_.topLeftCorner<3, 3>();
+    if (!(params_.tiltSigma > 0)) return;
+    // The start's up seen from now, R^T u, measured as u itself (the tilt unchanged): its
+    // Jacobian in the right perturbation is [R^T u]x, blind to the turn about the up.
+    const Eigen::Vector3d seen = R.transpose() * up_;
+    const Eigen::Matrix3d H = skew(seen);
+    const Eigen::Matrix3d S =
+        H * P * H.transpose() + params_.tiltSigma * params_.tiltSigma * Eigen::Matrix3d::Identity();
+    const Eigen::Matrix3d K = S.ldlt().solve(H * P).transpose();
+    R = R * expSO3(K * (up_ - seen));
+    P = (Eigen::Matrix3d::Identity() - K * H) * P;
+    P = 0.5 * (P + P.transpose());
+}
+
+Eigen::Matrix3d DepthTurn::rotation() const {
+    Eigen::Matrix3d R, P;
+    conditioned(R, P);
+    return R;
+}
+
+Eigen::Matrix3d DepthTurn::covariance() const {
+    Eigen::Matrix3d R, P;
+    conditioned(R, P);
+    return P;
+}
+
+}  // namespace lodestone::odometry
