@@ -33,4 +33,19 @@ double squaredMahalanobis(const mrpt::poses::CPose3DPDFGaussian& a,
     return d.dot(S.ldlt().solve(d));
 }
 
+mrpt::poses::CPose3DPDFGaussian heightHeld(const mrpt::poses::CPose3DPDFGaussian& pdf, double sigma) {
+    if (!(sigma > 0)) return pdf;
+    const Eigen::Matrix<double, 6, 6> C = pdf.cov.asEigen();  // (x, y, z, yaw, pitch, roll)
+    const Eigen::Matrix<double, 6, 1> Ch = C.col(2);
+    const Eigen::Matrix<double, 6, 1> K = Ch / (C(2, 2) + sigma * sigma);
+    const auto& m = pdf.mean;
+    const Eigen::Matrix<double, 6, 1> x =
+        (Eigen::Matrix<double, 6, 1>() << m.x(), m.y(), m.z(), m.yaw(), m.pitch(), m.roll()).finished() -
+        K * m.z();
+    mrpt::poses::CPose3DPDFGaussian held;
+    held.mean = mrpt::poses::CPose3D(x(0), x(1), x(2), x(3), x(4), x(5));
+    held.cov = mrpt::math::CMatrixDouble66(C - K * Ch.transpose());
+    return held;
+}
+
 }  // namespace lodestone::graphslam

@@ -40,6 +40,7 @@ void DepthTurn::predict(double t) {
     Q.block<3, 3>(3, 3) = s.qvv * I;
     Q.block<3, 3>(0, 3) = Q.block<3, 3>(3, 0) = s.qxv * I;
     P_ = F * P_ * F.transpose() + Q;
+    holdTilt(dt);
 }
 
 void DepthTurn::anchor() {
@@ -68,32 +69,24 @@ bool DepthTurn::update(const Eigen::Matrix3d& measured, const Eigen::Matrix3d& c
     return true;
 }
 
-void DepthTurn::conditioned(Eigen::Matrix3d& R, Eigen::Matrix3d& P) const {
-    R = R_;
-    P = P_.topLeftCorner<3, 3>();
-    if (!(params_.tiltSigma > 0)) return;
-    // The start's up seen from now, R^T u, measured as u itself (the tilt unchanged): its
-    // Jacobian in the right perturbation is [R^T u]x, blind to the turn about the up.
-    const Eigen::Vector3d seen = R.transpose() * up_;
-    const Eigen::Matrix3d H = skew(seen);
-    const Eigen::Matrix3d S =
-        H * P * H.transpose() + params_.tiltSigma * params_.tiltSigma * Eigen::Matrix3d::Identity();
-    const Eigen::Matrix3d K = S.ldlt().solve(H * P).transpose();
-    R = R * expSO3(K * (up_ - seen));
-    P = (Eigen::Matrix3d::Identity() - K * H) * P;
-    P = 0.5 * (P + P.transpose());
-}
-
-Eigen::Matrix3d DepthTurn::rotation() const {
-    Eigen::Matrix3d R, P;
-    conditioned(R, P);
-    return R;
-}
-
-Eigen::Matrix3d DepthTurn::covariance() const {
-    Eigen::Matrix3d R, P;
-    conditioned(R, P);
-    return P;
+void DepthTurn::holdTilt(double dt) {
+    if (!(params_.tiltSigma > 0) || !(dt > 0)) return;
+    // The start's up seen from now, R^T u, measured as u itself (the tilt unchanged), as one
+    // independent sample of a bounded tilt per `tiltSeconds`: each frame's share
+    // of it. Its Jacobian in the right perturbation is [R^T u]x, blind to the turn about up.
+    const Eigen::Vector3d seen = R_.transpose() * up_;
+    Eigen::Matrix<double, 3, 9> H = Eigen::Matrix<double, 3, 9>::Zero();
+    H.leftCols<3>() = skew(seen);
+    const double variance =
+        params_.tiltSigma * params_.tiltSigma * std::max(1.0, params_.tiltSeconds / dt);
+    const Eigen::Matrix3d S = H * P_ * H.transpose() + variance * Eigen::Matrix3d::Identity();
+    const Eigen::Matrix<double, 9, 3> K = S.ldlt().solve(H * P_).transpose();
+    const Eigen::Matrix<double, 9, 1> dx = K * (up_ - seen);
+    R_ = R_ * expSO3(dx.head<3>());
+    w_ += dx.segment<3>(3);
+    Rm_ = Rm_ * expSO3(dx.tail<3>());
+    const Matrix9d IKH = Matrix9d::Identity() - K * H;
+    P_ = IKH * P_ * IKH.transpose() + variance * K * K.transpose();
 }
 
 }  // namespace lodestone::odometry

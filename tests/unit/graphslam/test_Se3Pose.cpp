@@ -46,3 +46,31 @@ TEST(Se3Pose, SquaredMahalanobisWrapsTheAngles) {
     const auto aliased = gaussian(CPose3D(7.4, -2.56, 0, 171 * deg, 0, 0), 0.12, 0.3 * deg);
     EXPECT_GT(squaredMahalanobis(bridge, aliased), 22.458);
 }
+
+// A step whose rise nothing measured (VO's features along one line: 1.7 m loose) is held to the
+// carrier's height bound, and what correlates with the rise moves with it; a step that measured
+// its rise to a millimetre keeps it.
+TEST(Se3Pose, HeightHeldBoundsOnlyARiseNothingMeasured) {
+    mrpt::poses::CPose3DPDFGaussian loose;
+    loose.mean = mrpt::poses::CPose3D(0.10, 0.00, 0.80, 0.05, 0.0, 0.0);
+    loose.cov.setZero();
+    for (int k = 0; k < 6; ++k) loose.cov(k, k) = 1e-6;
+    loose.cov(2, 2) = 1.7 * 1.7;
+    loose.cov(0, 2) = loose.cov(2, 0) = 0.5 * 1.7 * 1e-3;  // (x correlated with the rise)
+    const auto held = lodestone::graphslam::heightHeld(loose, 0.1);
+    EXPECT_LT(std::abs(held.mean.z()), 0.01);
+    EXPECT_NEAR(std::sqrt(held.cov(2, 2)), 0.1, 0.001);
+    EXPECT_LT(held.mean.x(), loose.mean.x()) << "x moves with the rise it correlates with";
+    EXPECT_NEAR(held.mean.yaw(), 0.05, 1e-12);
+    EXPECT_NEAR(held.cov(1, 1), 1e-6, 1e-15);
+
+    mrpt::poses::CPose3DPDFGaussian sure = loose;
+    sure.mean = mrpt::poses::CPose3D(0.10, 0.00, 0.05, 0.05, 0.0, 0.0);
+    sure.cov(2, 2) = 1e-6;
+    sure.cov(0, 2) = sure.cov(2, 0) = 0;
+    const auto kept = lodestone::graphslam::heightHeld(sure, 0.1);
+    EXPECT_NEAR(kept.mean.z(), 0.05, 0.05 * 1e-3);
+    EXPECT_NEAR(kept.cov(2, 2), 1e-6, 1e-9);
+    const auto same = lodestone::graphslam::heightHeld(loose, 0);
+    EXPECT_EQ(same.mean, loose.mean);
+}

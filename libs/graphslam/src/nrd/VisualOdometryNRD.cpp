@@ -77,6 +77,8 @@ void VisualOdometryNRD::configure(const mrpt::config::CConfigFileBase& ini) {
     p.bridgeByDepth = s.getBool("bridge_by_depth", p.bridgeByDepth);
     p.bridgeHeightSigma = s.getDouble("bridge_height_sigma", p.bridgeHeightSigma);
     if (!(p.bridgeHeightSigma >= 0)) s.fail("bridge_height_sigma", "must be >= 0");
+    p.stepHeightSigma = s.getDouble("step_height_sigma", p.stepHeightSigma);
+    if (!(p.stepHeightSigma >= 0)) s.fail("step_height_sigma", "must be >= 0");
     p.bridgeTurnByDepth = s.getBool("bridge_turn_by_depth", p.bridgeTurnByDepth);
     auto& turn = p.bridgeTurn;
     turn.rate.speedSigma =
@@ -102,6 +104,7 @@ void VisualOdometryNRD::configure(const mrpt::config::CConfigFileBase& ini) {
     if (!(g.biasStd > 0)) s.fail("accel_bias", "must be > 0");
     if (!(g.windowSeconds > 0)) s.fail("gravity_window_seconds", "must be > 0");
     if (!(g.motionSeconds > 0)) s.fail("gravity_motion_seconds", "must be > 0");
+    turn.tiltSeconds = g.motionSeconds;  // (the same carrier's motion: a gait's half period)
     p.gravityVelocitySigma = s.getDouble("gravity_velocity_sigma", p.gravityVelocitySigma);
     if (!(p.gravityVelocitySigma > 0)) s.fail("gravity_velocity_sigma", "must be > 0");
     if (p.useGravity && !p.useGyro)
@@ -302,7 +305,7 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
     trackedFrame(frame, T_robot_optical);
     if (cur.mean.norm() < params_.nodeDistance && rotationAngle(cur.mean) < params_.nodeAngle)
         return;
-    registerAt(*scan, t, r.frameFeatures, cur, false);
+    registerAt(*scan, t, r.frameFeatures, heightHeld(cur, params_.stepHeightSigma), false);
     // Seen from the new node, the reference lies where VO measured it - the motion inverted,
     // with the motion's own covariance (not the node's: that is the edge's).
     mrpt::poses::CPose3DPDFGaussian back;
@@ -447,6 +450,7 @@ JsonObject VisualOdometryNRD::describe() const {
         .set("relocalize_keyframes", params_.relocalizeKeyframes)
         .set("edge_cross_covariance", params_.edgeCrossCovariance)
         .set("bridge_max_seconds", params_.bridgeMaxSeconds)
+        .set("step_height_sigma", params_.stepHeightSigma)
         .set("camera_label", params_.cameraLabel);
     if (params_.useGyro) {
         params.set("gyro_label", params_.gyroLabel)

@@ -25,4 +25,10 @@ mrpt::math::CMatrixDouble66 mrptCovarianceOf(const Eigen::Matrix<double, 6, 6>& 
 double squaredMahalanobis(const mrpt::poses::CPose3DPDFGaussian& a,
                           const mrpt::poses::CPose3DPDFGaussian& b);
 
+/** A relative pose given that its rise (z, the first frame's up) is about zero to `sigma`
+ * (a carrier's height over a step: a hand, a robot on its floor) - the pose's z conditioned on
+ * N(0, sigma^2), its other components moving with it by their correlations: nothing where the
+ * rise was measured far better than sigma, a bound where it was not. sigma 0: unchanged. */
+mrpt::poses::CPose3DPDFGaussian heightHeld(const mrpt::poses::CPose3DPDFGaussian& pdf, double sigma);
+
 }  // namespace lodestone::graphslam

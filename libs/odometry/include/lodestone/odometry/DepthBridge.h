@@ -97,7 +97,8 @@ class DepthBridge {
     bool align(const vision::DepthCloud& cloud, const Eigen::Isometry3d& T_robot_optical,
                const Eigen::Matrix3d& R_0, vision::DepthAlignment& d) const;
     /** The alignment's rotation of the robot from the model frame into the DepthTurn. */
-    bool measureTurn(const vision::DepthAlignment& d, const Eigen::Isometry3d& T_robot_optical);
+    bool measureTurn(const vision::DepthAlignment& d, const vision::DepthCloud& cloud,
+                     const Eigen::Isometry3d& T_robot_optical);
     /** Its translation from the model frame to this one, in the model frame's robot axes, and
      * its covariance. */
     void measure(const vision::DepthAlignment& d, const vision::DepthCloud& cloud,

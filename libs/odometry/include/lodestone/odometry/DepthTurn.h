@@ -11,9 +11,10 @@ namespace lodestone::odometry {
  * rotation it integrates corrected by rotations that the gap frames' depth measured against an
  * earlier frame, in the directions the depth pinned them (DepthBridge's alignments: a wall
  * ahead pins the turn about the vertical and the pitch, a floor or a second wall the rest).
- * A carrier keeps itself upright: with `tiltSigma` the result is conditioned on its tilt
- * from the start's up having changed by about that much at most - the roll about a plain
- * wall's normal, which the wall does not see.
+ * A carrier keeps itself upright: with `tiltSigma` its tilt from the start's up is held to
+ * about that much, one independent sample of it every `tiltSeconds` - the roll about a
+ * plain wall's normal, which the wall does not see, stays bounded instead of wandering off
+ * with the turn rate's guess (and with it the next alignments' start).
  *
  * An error-state Kalman filter on the rotation since the start (a right perturbation), the
  * turn rate (in the robot frame) and the rotation at the earlier frame, cloned when it becomes
@@ -28,6 +29,9 @@ class DepthTurn {
         /** [rad] how far the carrier's tilt wanders over a gap (a hand holds a camera level to
          * a few degrees, a robot stands on its floor); 0: no such prior. */
         double tiltSigma{0};
+        /** [s] the tilt counted as one independent sample per this long (a gait's or a hand's
+         * half period). */
+        double tiltSeconds{0.25};
     };
 
     DepthTurn() = default;
@@ -45,18 +49,16 @@ class DepthTurn {
      * rules it out (a wrong ICP minimum). */
     bool update(const Eigen::Matrix3d& measured, const Eigen::Matrix3d& covariance);
 
-    /** The filter's rotation since the start and the anchor's (no tilt prior: for predictions). */
-    const Eigen::Matrix3d& current() const { return R_; }
+    /** The rotation since the start and its covariance (right perturbation), and the
+     * anchor's rotation. */
+    const Eigen::Matrix3d& rotation() const { return R_; }
+    Eigen::Matrix3d covariance() const { return P_.topLeftCorner<3, 3>(); }
     const Eigen::Matrix3d& anchorRotation() const { return Rm_; }
-    /** The rotation since the start and its covariance (right perturbation), with the tilt's
-     * prior applied once. */
-    Eigen::Matrix3d rotation() const;
-    Eigen::Matrix3d covariance() const;
 
   private:
     using Matrix9d = Eigen::Matrix<double, 9, 9>;
-    /** The tilt prior's gain and correction on the current rotation (nothing without one). */
-    void conditioned(Eigen::Matrix3d& R, Eigen::Matrix3d& P) const;
+    /** The tilt's prior over a step of dt (nothing without one). */
+    void holdTilt(double dt);
 
     Params params_;
     double t_{0};

@@ -64,6 +64,10 @@ class VisualOdometryNRD : public NodeDecider {
             keyframeAngle = 15 * M_PI / 180;
         }
         double lostEdgeSigma{100.0};  ///< [m, rad] of the edge across a VO gap
+        /** [m] VO's edge from node to node given that the carrier's height changed by about
+         * this at most (`step_height_sigma`; 0: no such prior) - VO's steps towards a plain wall
+         * can leave the height to a few features, metres loose. */
+        double stepHeightSigma{0};
         /** An edge keeps the correlations of its translation with its rotation that VO's
          * covariance holds (false: each block alone, `edge_cross_covariance`). */
         bool edgeCrossCovariance{true};
