@@ -4,10 +4,11 @@
 # encoders, wheel drop or magnetometers) and by hand (--handheld: 6-DoF, shaking, at 1.35 m) -
 # colour as PNG files beside the rawlog, read back as a dataset's are. The camera-only
 # recordings carry a gyro (--gyro: its own noise stream, so every other sample is as without
-# it), and each is run twice with rgbd_only.ini: without the IMU (use_gyro = false) and with it
-# (the INI as it ships). Beside them the robot with its wheels and visual_only.ini. One row per
-# run: ATE, VO's gaps and how they were bridged, closures, the real-time factor; then median and
-# worst over the seeds.
+# it), and each is run twice with rgbd_only.ini: without the IMU (use_gyro, use_gravity false:
+# the gaps' turns then measured by their frames' depth) and with it (the INI as it ships).
+# Beside them the robot with its wheels and visual_only.ini. One row per run: ATE, VO's gaps
+# and how they were bridged, closures, the real-time factor; then median and worst over the
+# seeds.
 # Usage: scripts/bench/camera_only.sh ["SEED..."] [SCENARIO.ini ...]
 #        (default: seed 1; office and paper_loop, 640x480 at 30 Hz: about an hour a seed on
 #        2 cores, and up to 13 GB of disk while a recording is in use; REC_DIR=DIR reads
@@ -26,12 +27,12 @@ scenarios=("$@")
 [ ${#scenarios[@]} -gt 0 ] || scenarios=("$root/config_ini/scenarios/office.ini" "$root/config_ini/scenarios/paper_loop.ini")
 base="$root/config_ini/slam/rgbd_only.ini"
 source "$root/scripts/bench/ini_variant.bash"
-variant rgbd_no_imu use_gyro=false bridge_by_depth=false use_gravity=false
+variant rgbd_no_imu use_gyro=false use_gravity=false
 cp "$base" "$out/rgbd_only.ini"
 cp "$root/config_ini/slam/visual_only.ini" "$out/visual_only.ini"
 results="$out/results.txt"
 : > "$results"
-echo "| scenario | camera | seed | carrier | frames | ATE [m] | VO gaps: bridged by the gyro (of them by depth) / relocalized | segments | loop closures kept | real-time factor (one run on 2 cores) |"
+echo "| scenario | camera | seed | carrier | frames | ATE [m] | VO gaps: bridged by the gyro (of them by depth) / by the depth's turn / relocalized | segments | loop closures kept | real-time factor (one run on 2 cores) |"
 echo "|---|---|---|---|---|---|---|---|---|---|"
 for ini in "${scenarios[@]}"; do
     name=$(basename "$ini" .ini)
@@ -60,7 +61,8 @@ for ini in "${scenarios[@]}"; do
                 gaps=$(field "$report" vo_gaps)
                 gyro=$(field "$report" vo_gaps_bridged_by_gyro)
                 depth=$(field "$report" vo_gaps_bridged_by_depth)
-                bridged="${gaps:--}: ${gyro:-0} (${depth:-0}) / $(field "$report" vo_gaps_relocalized)"
+                turn=$(field "$report" vo_gaps_bridged_by_depth_turn)
+                bridged="${gaps:--}: ${gyro:-0} (${depth:-0}) / ${turn:-0} / $(field "$report" vo_gaps_relocalized)"
                 [[ $config == visual_only ]] && bridged="-"
                 echo "| $name | $cameraSpec | $seed | $carrier | $(field "$report" rgbd_frames) | $ate | $bridged | $(field "$report" segments) | $closures | $rt |"
                 echo "$name|$carrier|$ate" >> "$results"

@@ -33,10 +33,12 @@ double squaredMahalanobis(const mrpt::poses::CPose3DPDFGaussian& a,
     return d.dot(S.ldlt().solve(d));
 }
 
-mrpt::poses::CPose3DPDFGaussian heightHeld(const mrpt::poses::CPose3DPDFGaussian& pdf, double sigma) {
+mrpt::poses::CPose3DPDFGaussian heightHeld(const mrpt::poses::CPose3DPDFGaussian& pdf, double sigma,
+                                           bool moveRotation) {
     if (!(sigma > 0)) return pdf;
     const Eigen::Matrix<double, 6, 6> C = pdf.cov.asEigen();  // (x, y, z, yaw, pitch, roll)
-    const Eigen::Matrix<double, 6, 1> Ch = C.col(2);
+    Eigen::Matrix<double, 6, 1> Ch = C.col(2);
+    if (!moveRotation) Ch.tail<3>().setZero();
     const Eigen::Matrix<double, 6, 1> K = Ch / (C(2, 2) + sigma * sigma);
     const auto& m = pdf.mean;
     const Eigen::Matrix<double, 6, 1> x =
@@ -44,7 +46,13 @@ mrpt::poses::CPose3DPDFGaussian heightHeld(const mrpt::poses::CPose3DPDFGaussian
         K * m.z();
     mrpt::poses::CPose3DPDFGaussian held;
     held.mean = mrpt::poses::CPose3D(x(0), x(1), x(2), x(3), x(4), x(5));
-    held.cov = mrpt::math::CMatrixDouble66(C - K * Ch.transpose());
+    Eigen::Matrix<double, 6, 6> P = C - K * Ch.transpose();
+    if (!moveRotation) {  // (the rotation's block as it was, and no cross terms left to it)
+        P.topRightCorner<3, 3>().setZero();
+        P.bottomLeftCorner<3, 3>().setZero();
+        P.bottomRightCorner<3, 3>() = C.bottomRightCorner<3, 3>();
+    }
+    held.cov = mrpt::math::CMatrixDouble66(P);
     return held;
 }
 

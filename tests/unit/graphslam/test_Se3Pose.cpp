@@ -73,4 +73,16 @@ TEST(Se3Pose, HeightHeldBoundsOnlyARiseNothingMeasured) {
     EXPECT_NEAR(kept.cov(2, 2), 1e-6, 1e-9);
     const auto same = lodestone::graphslam::heightHeld(loose, 0);
     EXPECT_EQ(same.mean, loose.mean);
+
+    // A rise correlated with a turn (VO's cross terms): held with them the turn moves too;
+    // without, only the translation does and the rotation keeps its mean and covariance.
+    mrpt::poses::CPose3DPDFGaussian turning = loose;
+    turning.cov(3, 2) = turning.cov(2, 3) = 0.5 * 1.7 * 1e-3;  // (yaw with the rise)
+    const auto both = lodestone::graphslam::heightHeld(turning, 0.1);
+    EXPECT_LT(both.mean.yaw(), 0.05 - 1e-4);
+    const auto translationOnly = lodestone::graphslam::heightHeld(turning, 0.1, false);
+    EXPECT_NEAR(translationOnly.mean.yaw(), 0.05, 1e-12);
+    EXPECT_NEAR(translationOnly.cov(3, 3), turning.cov(3, 3), 1e-15);
+    EXPECT_EQ(translationOnly.cov(3, 2), 0.0);
+    EXPECT_LT(std::abs(translationOnly.mean.z()), 0.01);
 }

@@ -305,7 +305,10 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
     trackedFrame(frame, T_robot_optical);
     if (cur.mean.norm() < params_.nodeDistance && rotationAngle(cur.mean) < params_.nodeAngle)
         return;
-    registerAt(*scan, t, r.frameFeatures, heightHeld(cur, params_.stepHeightSigma), false);
+    // (through the rotation only where the edge keeps VO's correlations of the two: a loose
+    // rise correlated with a turn would otherwise turn the step as it is held)
+    registerAt(*scan, t, r.frameFeatures,
+               heightHeld(cur, params_.stepHeightSigma, params_.edgeCrossCovariance), false);
     // Seen from the new node, the reference lies where VO measured it - the motion inverted,
     // with the motion's own covariance (not the node's: that is the edge's).
     mrpt::poses::CPose3DPDFGaussian back;

@@ -28,7 +28,10 @@ double squaredMahalanobis(const mrpt::poses::CPose3DPDFGaussian& a,
 /** A relative pose given that its rise (z, the first frame's up) is about zero to `sigma`
  * (a carrier's height over a step: a hand, a robot on its floor) - the pose's z conditioned on
  * N(0, sigma^2), its other components moving with it by their correlations: nothing where the
- * rise was measured far better than sigma, a bound where it was not. sigma 0: unchanged. */
-mrpt::poses::CPose3DPDFGaussian heightHeld(const mrpt::poses::CPose3DPDFGaussian& pdf, double sigma);
+ * rise was measured far better than sigma, a bound where it was not. sigma 0: unchanged.
+ * `moveRotation` false: only the translation moves, the rotation and its covariance stay and
+ * the cross terms go (for an edge that drops them: VO's are its least sure part). */
+mrpt::poses::CPose3DPDFGaussian heightHeld(const mrpt::poses::CPose3DPDFGaussian& pdf, double sigma,
+                                           bool moveRotation = true);
 
 }  // namespace lodestone::graphslam
