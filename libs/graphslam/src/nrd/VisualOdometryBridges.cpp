@@ -20,6 +20,12 @@ void VisualOdometryNRD::trackedFrame(const vision::RgbdFrame& frame,
     last_tracked_optical_ = T_robot_optical;
 }
 
+mrpt::poses::CPose3DPDFGaussian VisualOdometryNRD::lastTrackedHeld() const {
+    // (VO's steps since the last node, as a step's: a loose rise held to the carrier's bound -
+    // else a gap's edge took VO's 1.4 m sigma in height from the frames before a plain wall)
+    return heightHeld(last_tracked_.pdf, params_.stepHeightSigma, params_.edgeCrossCovariance);
+}
+
 mrpt::poses::CPose3DPDFGaussian VisualOdometryNRD::bridge(double gap) const {
     // The last step scaled to the gap (first order in its angles), from the last tracked frame.
     const double k = gap / last_step_seconds_;
@@ -34,7 +40,7 @@ mrpt::poses::CPose3DPDFGaussian VisualOdometryNRD::bridge(double gap) const {
         motion.cov(i, i) = st * st;
         motion.cov(i + 3, i + 3) = sr * sr;
     }
-    mrpt::poses::CPose3DPDFGaussian edge = last_tracked_.pdf;
+    mrpt::poses::CPose3DPDFGaussian edge = lastTrackedHeld();
     edge += motion;
     return edge;
 }
@@ -113,7 +119,7 @@ std::optional<mrpt::poses::CPose3DPDFGaussian> VisualOdometryNRD::bridgeByDepthT
     Eigen::Matrix<double, 6, 6> cov = Eigen::Matrix<double, 6, 6>::Zero();  // (rotation, translation)
     cov.topLeftCorner<3, 3>() = turnCovariance;
     cov.bottomRightCorner<3, 3>() = depth_bridge_.covariance();
-    mrpt::poses::CPose3DPDFGaussian edge = last_tracked_.pdf;
+    mrpt::poses::CPose3DPDFGaussian edge = lastTrackedHeld();
     edge += mrpt::poses::CPose3DPDFGaussian(poseOf3D(step), mrptCovarianceOf(cov));
     return edge;
 }
@@ -142,7 +148,7 @@ std::optional<mrpt::poses::CPose3DPDFGaussian> VisualOdometryNRD::bridgeByGyro(d
         cov.bottomRightCorner<3, 3>() =
             fading.displacementVariance(gap, v0.sigma) * Eigen::Matrix3d::Identity();
     }
-    mrpt::poses::CPose3DPDFGaussian edge = last_tracked_.pdf;
+    mrpt::poses::CPose3DPDFGaussian edge = lastTrackedHeld();
     edge += mrpt::poses::CPose3DPDFGaussian(poseOf3D(step), mrptCovarianceOf(cov));
     return edge;
 }
