@@ -144,7 +144,7 @@ class VisualOdometryNRD : public NodeDecider {
     /** The gyro's rotation from VO's reference frame to time t, in the optical frame. */
     std::optional<vision::RotationPrior> gyroSinceReference(double t,
                                                             const Eigen::Isometry3d& T_robot_optical) const;
-    /** The last tracked frame relative to the last node, its rise held to `stepHeightSigma`
+    /** The last tracked frame relative to the last node, its rise held to `bridgeHeightSigma`
      * (where a gap's bridge starts). */
     mrpt::poses::CPose3DPDFGaussian lastTrackedHeld() const;
     /** From the last node to a frame `gap` seconds after the last tracked one, by the last
