@@ -86,15 +86,8 @@ void DepthBridge::predict(double t) {
     if (dt == 0) return;
     // The Ornstein-Uhlenbeck velocity and its integral over dt, per axis (FadingVelocity's
     // model; its displacement variance is the sum of these steps).
-    const auto s = params_.motion.step(dt);
-    Matrix9d F = Matrix9d::Identity();
-    F.block<3, 3>(0, 3) = s.carry * Eigen::Matrix3d::Identity();
-    F.block<3, 3>(3, 3) = s.fade * Eigen::Matrix3d::Identity();
-    Matrix9d Q = Matrix9d::Zero();
-    const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
-    Q.block<3, 3>(0, 0) = s.qxx * I;
-    Q.block<3, 3>(3, 3) = s.qvv * I;
-    Q.block<3, 3>(0, 3) = Q.block<3, 3>(3, 0) = s.qxv * I;
+    Matrix9d F, Q;
+    params_.motion.step(dt).matrices(F, Q);
     x_ = F * x_;
     P_ = F * P_ * F.transpose() + Q;
 }

@@ -31,14 +31,8 @@ void DepthTurn::predict(double t) {
     // error: the rotation's error grows by the rate's, the step's own turn of it neglected).
     R_ = R_ * expSO3(s.carry * w_);
     w_ *= s.fade;
-    const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
-    Matrix9d F = Matrix9d::Identity();
-    F.block<3, 3>(0, 3) = s.carry * I;
-    F.block<3, 3>(3, 3) = s.fade * I;
-    Matrix9d Q = Matrix9d::Zero();
-    Q.block<3, 3>(0, 0) = s.qxx * I;
-    Q.block<3, 3>(3, 3) = s.qvv * I;
-    Q.block<3, 3>(0, 3) = Q.block<3, 3>(3, 0) = s.qxv * I;
+    Matrix9d F, Q;
+    s.matrices(F, Q);
     P_ = F * P_ * F.transpose() + Q;
     holdTilt(dt);
 }

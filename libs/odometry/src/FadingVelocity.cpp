@@ -32,4 +32,16 @@ FadingVelocity::Step FadingVelocity::step(double seconds) const {
     return s;
 }
 
+void FadingVelocity::Step::matrices(Eigen::Matrix<double, 9, 9>& F,
+                                    Eigen::Matrix<double, 9, 9>& Q) const {
+    const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+    F.setIdentity();
+    F.block<3, 3>(0, 3) = carry * I;
+    F.block<3, 3>(3, 3) = fade * I;
+    Q.setZero();
+    Q.block<3, 3>(0, 0) = qxx * I;
+    Q.block<3, 3>(3, 3) = qvv * I;
+    Q.block<3, 3>(0, 3) = Q.block<3, 3>(3, 0) = qxv * I;
+}
+
 }  // namespace lodestone::odometry

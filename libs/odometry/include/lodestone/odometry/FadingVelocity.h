@@ -25,6 +25,9 @@ struct FadingVelocity {
      * [[qxx, qxv], [qxv, qvv]] (summed over steps: displacementVariance). */
     struct Step {
         double fade{1}, carry{0}, qxx{0}, qxv{0}, qvv{0};
+        /** As the transition F and noise Q of a state (displacement, velocity, a clone of the
+         * displacement), three axes each - DepthBridge's and DepthTurn's filters. */
+        void matrices(Eigen::Matrix<double, 9, 9>& F, Eigen::Matrix<double, 9, 9>& Q) const;
     };
     Step step(double seconds) const;
 };
