@@ -154,6 +154,29 @@ TEST(PointToPlaneIcp, APlainWallAloneGivesNoMotion) {
     EXPECT_EQ(a.observed, 3);
 }
 
+// Two plain walls meeting in a corner, 1 m away, no floor or ceiling in view: the depth pins
+// all but the rise. A hand pitching the camera 2 deg about itself tilts both walls about their
+// centre 1.4 m ahead - a motion the depth cannot tell from the pitch about the camera's own
+// centre plus a 5 cm rise. Where the depth is silent, the camera keeps its initial motion:
+// the pitch comes back, the rise stays the initial guess's (none), not the surfaces'.
+TEST(PointToPlaneIcp, WhereTheDepthPinsNoRiseTheCameraKeepsItsOwn) {
+    const auto sc = lodestone::test::boxScenario("plain");
+    const lodestone::sim::World world(sc, 3);
+    const Eigen::Isometry3d ref = cameraPose({7.0, 2.0, 1.25}, M_PI / 4);
+    const Eigen::Isometry3d cur = cameraPose({7.0, 2.0, 1.25}, M_PI / 4, 2 * M_PI / 180);
+    const Eigen::Isometry3d truth = opticalMotion(ref, cur);
+    const DepthAlignment a = alignFrames(world, ref, cur, Eigen::Isometry3d::Identity());
+    ASSERT_TRUE(a.success) << toString(a.failure);
+    EXPECT_EQ(a.observed, 5);
+    // Up is the reference's optical -y (the camera level).
+    const Eigen::Vector3d up = -Eigen::Vector3d::UnitY();
+    EXPECT_GT(translationSigma(a, up), 0.5) << "the rise was not measured";
+    EXPECT_LT(std::abs(a.T_ref_cur.translation().dot(up)), 0.005)
+        << "the camera's rise stays the initial guess's: " << a.T_ref_cur.translation().transpose();
+    EXPECT_LT(angleOf(truth.inverse() * a.T_ref_cur), 0.2 * M_PI / 180) << "the pitch is measured";
+    EXPECT_LT((a.T_ref_cur.translation() - truth.translation()).norm(), 0.005);
+}
+
 TEST(PointToPlaneIcp, NoDepthGivesNoMotion) {
     const auto sc = lodestone::test::boxScenario("plain");
     const lodestone::sim::World world(sc, 3);

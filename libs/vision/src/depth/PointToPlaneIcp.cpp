@@ -105,6 +105,25 @@ Geometry geometryOf(const Pass& pass, double noiseChi2, double minStructure) {
     return geo;
 }
 
+/** A step `dx` (the camera's twist) that moves only along the pinned directions fits the depth
+ * as well with any step along the unpinned ones added: of those, the one that moves the camera
+ * least (rotations counted in metres at the spread, as the pinned basis does). The pinned
+ * directions are about the matched surface's centroid: a wall's tilt pinned about its centre a
+ * metre ahead, with the centre's in-plane motion left as it was, turns the camera's pitch into
+ * a rise of the camera (a metre times the pitch, every frame a hand shakes) - the surface
+ * cannot tell, the carrier's motion model can, and it is about the camera. */
+Vector6d keepCameraWherePinnedNothing(const Vector6d& dx, const Geometry& geo) {
+    const auto& N = geo.unobserved;
+    if (N.cols() == 0) return dx;
+    // dx + Ainv N z, least in the camera's own (w L, v) norm.
+    Matrix6d W = Matrix6d::Identity();
+    W.topLeftCorner<3, 3>() *= geo.spread * geo.spread;
+    const Eigen::MatrixXd D = geo.Ainv * N;
+    const Eigen::MatrixXd DtW = D.transpose() * W;
+    const Eigen::VectorXd z = -(DtW * D).ldlt().solve(DtW * dx);
+    return dx + D * z;
+}
+
 /** log(T T0^-1) in leftUpdate's coordinates: T = exp(d) T0. */
 Vector6d leftDifference(const Eigen::Isometry3d& T, const Eigen::Isometry3d& T0) {
     const Eigen::Isometry3d D = T * T0.inverse();
@@ -191,6 +210,7 @@ DepthAlignment PointToPlaneIcp::align(const DepthModel& model, const DepthCloud&
             if (U.cols() == 0) break;
             reducedInverse = (U.transpose() * Hs * U).inverse();
             dx = geo.Ainv * (-U * (reducedInverse * (U.transpose() * gs)));
+            dx = keepCameraWherePinnedNothing(dx, geo);
         }
         T = leftUpdate(dx, T);
         if (gate <= params_.minDistance && dx.head<3>().norm() < 1e-6 && dx.tail<3>().norm() < 1e-6) {
