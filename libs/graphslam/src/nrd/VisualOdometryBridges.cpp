@@ -45,19 +45,22 @@ mrpt::poses::CPose3DPDFGaussian VisualOdometryNRD::bridge(double gap) const {
     return edge;
 }
 
-std::size_t VisualOdometryNRD::windowStart() const {
+std::size_t VisualOdometryNRD::windowStart(double seconds) const {
     if (chained_.empty()) return 0;
     const double end = chained_.back().first;
     std::size_t start = chained_.size() - 1;
-    while (start > 0 && end - chained_[start].first < params_.gravityVelocitySeconds) --start;
+    while (start > 0 && end - chained_[start].first < seconds) --start;
     return start;
 }
 
 VisualOdometryNRD::Velocity VisualOdometryNRD::velocityAtLastTracked() const {
-    // Over VO's last gravityVelocitySeconds of tracked frames (from the newest frame that old,
-    // else the oldest), not its last step: a step's few millimetres of error in a frame
-    // interval are a tenth of a metre per second.
-    const std::size_t start = windowStart();
+    // Over VO's last tracked frames (from the newest frame that old, else the oldest), not its
+    // last step: a step's few millimetres of error in a frame interval are a tenth of a metre
+    // per second. And over as long as the motion model carries a velocity on
+    // (bridge_velocity_seconds): a hand's sway and bob, a few centimetres at 0.3-2 Hz, are
+    // 0.05-0.1 m/s over 0.3 s - carried on for a second, a tenth of a metre sideways at every
+    // gap - and average out over the second; the walk persists.
+    const std::size_t start = windowStart(params_.bridgeVelocity.correlationSeconds);
     Velocity v;
     if (chained_.empty() || !(chained_.back().first > chained_[start].first)) {
         // (VO has not tracked since it restarted: the carrier's velocity is its spread)
@@ -84,7 +87,7 @@ VisualOdometryNRD::Velocity VisualOdometryNRD::turnRateAtLastTracked() const {
     // VO's rotations over a window are known no better than its steps' (0.1-0.4 deg RMS at
     // 640x480, docs/results/camera-only.md): two of them over 0.3 s, about 2 deg/s.
     constexpr double kRateFloor = 2 * M_PI / 180;
-    const std::size_t start = windowStart();
+    const std::size_t start = windowStart(params_.gravityVelocitySeconds);
     Velocity w;
     if (chained_.empty() || !(chained_.back().first > chained_[start].first)) {
         w.sigma = params_.bridgeTurn.rate.speedSigma;  // (not tracked since the restart)

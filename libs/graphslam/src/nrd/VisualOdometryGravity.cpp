@@ -3,17 +3,21 @@
 // tell from a tilt - measured by VO and taken out.
 #include <lodestone/graphslam/nrd/VisualOdometryNRD.h>
 
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
 #include <cmath>
 
 namespace lodestone::graphslam {
 
-const std::pair<double, mrpt::poses::CPose3D>* VisualOdometryNRD::trackedNear(double t) const {
-    const std::pair<double, mrpt::poses::CPose3D>* best = nullptr;
-    for (const auto& c : chained_) {
-        if (!best || std::abs(c.first - t) < std::abs(best->first - t)) best = &c;
+std::optional<std::size_t> VisualOdometryNRD::trackedNear(double t) const {
+    std::optional<std::size_t> best;
+    for (std::size_t i = 0; i < chained_.size(); ++i) {
+        if (!best || std::abs(chained_[i].first - t) < std::abs(chained_[*best].first - t)) best = i;
     }
     // (a frame further off than this: VO did not track there)
-    return best && std::abs(best->first - t) <= 0.1 ? best : nullptr;
+    if (best && std::abs(chained_[*best].first - t) <= 0.1) return best;
+    return std::nullopt;
 }
 
 std::optional<AttitudePrior> VisualOdometryNRD::measuredUp(double t) const {
@@ -22,14 +26,26 @@ std::optional<AttitudePrior> VisualOdometryNRD::measuredUp(double t) const {
     // frame; their difference over W is the window's mean acceleration.
     const auto e1 = trackedNear(t), s1 = trackedNear(t - d), e0 = trackedNear(t - W),
                s0 = trackedNear(t - W - d);
-    if (!e1 || !s1 || !e0 || !s0 || !(e1->first > s1->first) || !(e0->first > s0->first))
+    if (!e1 || !s1 || !e0 || !s0 || !(chained_[*e1].first > chained_[*s1].first) ||
+        !(chained_[*e0].first > chained_[*s0].first))
         return std::nullopt;
-    const auto velocity = [](const auto* a, const auto* b) {
-        const Eigen::Vector3d pa(a->second.x(), a->second.y(), a->second.z()),
-            pb(b->second.x(), b->second.y(), b->second.z());
-        return Eigen::Vector3d((pb - pa) / (b->first - a->first));
+    const auto position = [&](std::size_t i) {
+        const auto& p = chained_[i].second;
+        return Eigen::Vector3d(p.x(), p.y(), p.z());
     };
-    const Eigen::Vector3d dv = velocity(e1, s1) - velocity(e0, s0);  // (chain's frame)
+    const auto seconds = [&](std::size_t a, std::size_t b) { return chained_[b].first - chained_[a].first; };
+    const Eigen::Vector3d dv = (position(*e1) - position(*s1)) / seconds(*s1, *e1) -
+                               (position(*e0) - position(*s0)) / seconds(*s0, *e0);  // (chain's frame)
+    // How well VO knew those velocities: its own uncertainty of each end (against its
+    // reference, at most their sum), never better than gravityVelocitySigma. Where VO's steps
+    // left a direction to the depth's loose axes (a plain wall ahead: the height), the
+    // velocity there is unknown and the window says nothing of the carrier's acceleration -
+    // an up taken from it at 0.03 m/s would tilt the node by degrees, and surely.
+    const Eigen::Matrix3d velocityCovariance =
+        (chained_covariance_[*e1] + chained_covariance_[*s1]) / std::pow(seconds(*s1, *e1), 2) +
+        (chained_covariance_[*e0] + chained_covariance_[*s0]) / std::pow(seconds(*s0, *e0), 2);
+    const double vo = std::sqrt(std::max(
+        0.0, Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(velocityCovariance).eigenvalues().maxCoeff()));
     // Those velocities are the middles' (d / 2 before each end): the accelerometer's window is
     // taken between the same instants, its up then turned to t by the gyro.
     const double tm = t - 0.5 * d;
@@ -39,9 +55,9 @@ std::optional<AttitudePrior> VisualOdometryNRD::measuredUp(double t) const {
     // Into the sensor's frame at tm: the robot's there (the chain's frame nearest), then the
     // sensor's on the robot.
     const Eigen::Matrix3d S = gravity_.sensorOnRobot().linear();
-    const Eigen::Matrix3d R = m->second.getRotationMatrix().asEigen();
+    const Eigen::Matrix3d R = chained_[*m].second.getRotationMatrix().asEigen();
     const Eigen::Vector3d acceleration = S.transpose() * (R.transpose() * dv) / W;
-    const double sigma = std::sqrt(2.0) * params_.gravityVelocitySigma / W;
+    const double sigma = std::hypot(std::sqrt(2.0) * params_.gravityVelocitySigma, vo) / W;
     const auto g = gravity_.at(tm, acceleration, sigma);
     if (!g) return std::nullopt;
     // (the gyro's body rotation from tm to t: the sensor's frame; then the robot's)

@@ -292,7 +292,8 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
             for (int j = 0; j < 3; ++j) Cr(i, j) = motion.cov(5 - i, 5 - j);
         chained_rotation_covariance_.push_back(R * Cr * R.transpose());
         // (kept: VO's velocity before a gap; with the accelerometer, the window before a node)
-        double old = t - 2 * params_.gravityVelocitySeconds;
+        double old = t - std::max(2 * params_.gravityVelocitySeconds,
+                                  params_.bridgeVelocity.correlationSeconds);
         if (params_.useGravity) old -= params_.gravity.windowSeconds;
         while (chained_.size() > 1 && chained_[1].first < old) {
             chained_.pop_front();

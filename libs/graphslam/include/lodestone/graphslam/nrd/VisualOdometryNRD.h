@@ -163,7 +163,7 @@ class VisualOdometryNRD : public NodeDecider {
      * last tracked frame), where the gyro covers the gap. */
     void followGap(const vision::RgbdFrame& frame, double t, const Eigen::Isometry3d& T_robot_optical);
     /** The carrier's velocity at the last tracked frame, in that frame [m/s]: VO's
-     * displacement over `gravityVelocitySeconds`, trusted to `gravityVelocitySigma` per axis
+     * displacement over the bridge's velocity time constant, trusted to `gravityVelocitySigma` per axis
      * (`sigma`) or to VO's own covariance of its ends, floored there (`covariance`); where VO
      * has not tracked since it restarted, zero and the carrier's speed spread. */
     struct Velocity {
@@ -172,10 +172,10 @@ class VisualOdometryNRD : public NodeDecider {
         Eigen::Matrix3d covariance{Eigen::Matrix3d::Zero()};
     };
     Velocity velocityAtLastTracked() const;
-    /** The tracked frame (in chained_) that window starts at: the newest one that old, else
-     * the oldest. */
-    std::size_t windowStart() const;
-    /** The same for the turn rate [rad/s], from VO's rotation over the same window. */
+    /** The tracked frame (in chained_) a window of `seconds` back from the last starts at: the
+     * newest one that old, else the oldest. */
+    std::size_t windowStart(double seconds) const;
+    /** The same for the turn rate [rad/s], from VO's rotation over `gravityVelocitySeconds`. */
     Velocity turnRateAtLastTracked() const;
     /** VO's rotation from its old reference to a frame that became the new one, against the
      * gyro's over the same time: the gyro's bias learnt. */
@@ -185,8 +185,8 @@ class VisualOdometryNRD : public NodeDecider {
      * window taken out; nothing where VO did not track the whole window. */
     std::optional<AttitudePrior> measuredUp(double t) const;
     /** VO's tracked frame nearest to t (within a frame interval or two), in the frame
-     * VO's steps are chained in since the segment's last restart. */
-    const std::pair<double, mrpt::poses::CPose3D>* trackedNear(double t) const;
+     * VO's steps are chained in since the segment's last restart: its index in chained_. */
+    std::optional<std::size_t> trackedNear(double t) const;
     /** The restart frame aligned with a recent frame of the segment: the edge from the last
      * node to it, if one aligns and agrees with `expected` (the gap's motion model, when one
      * knows the carrier's motion: chi-square 99.9 %, 6 dof). */
