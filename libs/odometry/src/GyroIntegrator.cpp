@@ -30,7 +30,17 @@ std::optional<GyroIntegrator::Rotation> GyroIntegrator::between(double t0, doubl
         const double a = std::max(samples_[i].t, t0), b = std::min(next, t1);
         if (b <= a) continue;
         if (next - samples_[i].t > params_.maxGap) return std::nullopt;
-        const Eigen::Vector3d w = samples_[i].w - bias_;  // held over its interval
+        // A sample is the rate at its instant: between two, the rate runs linearly from one to
+        // the next, and [a, b] turns at its value at the middle (exact for a steady change of
+        // rate). Held forward from each sample instead, a turn's rotation lags half a sample:
+        // at a gap's end in a 40 deg/s turn, 0.2 deg short and sure of it. After the last
+        // sample the rate is held.
+        Eigen::Vector3d w = samples_[i].w;
+        if (i + 1 < samples_.size()) {
+            const double u = (0.5 * (a + b) - samples_[i].t) / (next - samples_[i].t);
+            w += u * (samples_[i + 1].w - samples_[i].w);
+        }
+        w -= bias_;
         const double dt = b - a;
         if (w.norm() > 0) r.R = r.R * Eigen::AngleAxisd(w.norm() * dt, w.normalized()).toRotationMatrix();
         // White rate noise of a sample held for its interval h: variance noise^2 dt h.
