@@ -43,7 +43,8 @@ TEST(GyroIntegrator, ConstantRatesGiveTheirRotation) {
 TEST(GyroIntegrator, ATurnSpeedingUpIsNotHalfASampleBehind) {
     GyroIntegrator g;
     const double accel = 60 * M_PI / 180;  // [rad/s^2] about z
-    for (int k = 0; k <= 120; ++k) ASSERT_TRUE(g.add(sample(1000 + 0.01 * k, {0, 0, accel * 0.01 * k})));
+    for (int k = 0; k <= 120; ++k)
+        ASSERT_TRUE(g.add(sample(1000 + 0.01 * k, {0, 0, accel * 0.01 * k})));
     const double t0 = 0.253, t1 = 0.987;  // (from the first sample)
     const auto r = g.between(1000 + t0, 1000 + t1);
     ASSERT_TRUE(r);

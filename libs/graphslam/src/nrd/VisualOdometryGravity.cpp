@@ -13,7 +13,8 @@ namespace lodestone::graphslam {
 std::optional<std::size_t> VisualOdometryNRD::trackedNear(double t) const {
     std::optional<std::size_t> best;
     for (std::size_t i = 0; i < chained_.size(); ++i) {
-        if (!best || std::abs(chained_[i].first - t) < std::abs(chained_[*best].first - t)) best = i;
+        if (!best || std::abs(chained_[i].first - t) < std::abs(chained_[*best].first - t))
+            best = i;
     }
     // (a frame further off than this: VO did not track there)
     if (best && std::abs(chained_[*best].first - t) <= 0.1) return best;
@@ -33,9 +34,12 @@ std::optional<AttitudePrior> VisualOdometryNRD::measuredUp(double t) const {
         const auto& p = chained_[i].second;
         return Eigen::Vector3d(p.x(), p.y(), p.z());
     };
-    const auto seconds = [&](std::size_t a, std::size_t b) { return chained_[b].first - chained_[a].first; };
-    const Eigen::Vector3d dv = (position(*e1) - position(*s1)) / seconds(*s1, *e1) -
-                               (position(*e0) - position(*s0)) / seconds(*s0, *e0);  // (chain's frame)
+    const auto seconds = [&](std::size_t a, std::size_t b) {
+        return chained_[b].first - chained_[a].first;
+    };
+    const Eigen::Vector3d dv =
+        (position(*e1) - position(*s1)) / seconds(*s1, *e1) -
+        (position(*e0) - position(*s0)) / seconds(*s0, *e0);  // (chain's frame)
     // How well VO knew those velocities: its own uncertainty of each end (against its
     // reference, at most their sum), never better than gravityVelocitySigma. Where VO's steps
     // left a direction to the depth's loose axes (a plain wall ahead: the height), the
@@ -44,8 +48,10 @@ std::optional<AttitudePrior> VisualOdometryNRD::measuredUp(double t) const {
     const Eigen::Matrix3d velocityCovariance =
         (chained_covariance_[*e1] + chained_covariance_[*s1]) / std::pow(seconds(*s1, *e1), 2) +
         (chained_covariance_[*e0] + chained_covariance_[*s0]) / std::pow(seconds(*s0, *e0), 2);
-    const double vo = std::sqrt(std::max(
-        0.0, Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(velocityCovariance).eigenvalues().maxCoeff()));
+    const double vo =
+        std::sqrt(std::max(0.0, Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(velocityCovariance)
+                                    .eigenvalues()
+                                    .maxCoeff()));
     // Those velocities are the middles' (d / 2 before each end): the accelerometer's window is
     // taken between the same instants, its up then turned to t by the gyro.
     const double tm = t - 0.5 * d;

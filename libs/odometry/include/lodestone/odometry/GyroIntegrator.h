@@ -10,8 +10,8 @@ namespace lodestone::odometry {
 
 /** A rate gyro's samples (CObservationIMU's IMU_WX..WZ, sensor frame) integrated between two
  * instants: the rotation of the sensor's body from t0 to t1 (R_t0_t1, each sample the rate at
- * its instant, linear between two, held after the last), and how uncertain it is - the white noise summed over the
- * interval, plus the bias left after `bias` grown with time. */
+ * its instant, linear between two, held after the last), and how uncertain it is - the white
+ * noise summed over the interval, plus the bias left after `bias` grown with time. */
 class GyroIntegrator {
   public:
     struct Params {

@@ -163,9 +163,9 @@ class VisualOdometryNRD : public NodeDecider {
      * last tracked frame), where the gyro covers the gap. */
     void followGap(const vision::RgbdFrame& frame, double t, const Eigen::Isometry3d& T_robot_optical);
     /** The carrier's velocity at the last tracked frame, in that frame [m/s]: VO's
-     * displacement over the bridge's velocity time constant, trusted to `gravityVelocitySigma` per axis
-     * (`sigma`) or to VO's own covariance of its ends, floored there (`covariance`); where VO
-     * has not tracked since it restarted, zero and the carrier's speed spread. */
+     * displacement over the bridge's velocity time constant, trusted to `gravityVelocitySigma`
+     * per axis (`sigma`) or to VO's own covariance of its ends, floored there (`covariance`);
+     * where VO has not tracked since it restarted, zero and the carrier's speed spread. */
     struct Velocity {
         Eigen::Vector3d mean{Eigen::Vector3d::Zero()};
         double sigma{0};
