@@ -80,14 +80,15 @@ Eigen::Matrix3d DepthBridge::covariance() const {
     return P - Pu * Pu.transpose() / (up_.dot(Pu) + params_.heightSigma * params_.heightSigma);
 }
 
-void DepthBridge::predict(double t) {
+void DepthBridge::predict(double t, const Eigen::Matrix3d& R_0) {
     const double dt = std::max(0.0, t - t_);
     t_ = std::max(t_, t);
     if (dt == 0) return;
     // The Ornstein-Uhlenbeck velocity and its integral over dt, per axis (FadingVelocity's
-    // model; its displacement variance is the sum of these steps).
+    // model; its displacement variance is the sum of these steps) - the carrier's axes now
+    // R_0's, where the velocity across its heading fades sooner.
     Matrix9d F, Q;
-    params_.motion.step(dt).matrices(F, Q);
+    params_.motion.matrices(dt, R_0, F, Q);
     x_ = F * x_;
     P_ = F * P_ * F.transpose() + Q;
 }
@@ -188,9 +189,9 @@ void DepthBridge::add(double t, const vision::RgbdFrame& frame,
 void DepthBridge::addFrame(double t, const vision::RgbdFrame& frame,
                            const Eigen::Isometry3d& T_robot_optical, const Eigen::Matrix3d* gyro) {
     if (!active_) return;
-    predict(t);
     if (!gyro) turn_.predict(t);
     Eigen::Matrix3d R_0 = gyro ? *gyro : turn_.rotation();
+    predict(t, R_0);
     vision::DepthCloud cloud = vision::sampleDepthCloud(frame, params_.sampling);
     vision::DepthAlignment d;
     bool measured = align(cloud, T_robot_optical, R_0, d);

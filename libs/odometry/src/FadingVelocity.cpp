@@ -7,10 +7,23 @@ namespace lodestone::odometry {
 
 Eigen::Vector3d FadingVelocity::meanDisplacement(const Eigen::Vector3d& v0, double seconds) const {
     const double tau = correlationSeconds, T = std::max(0.0, seconds);
-    return v0 * (tau * -std::expm1(-T / tau));
+    if (!(acrossSeconds > 0)) return v0 * (tau * -std::expm1(-T / tau));
+    const double c = acrossSeconds;
+    return Eigen::Vector3d(v0.x() * (tau * -std::expm1(-T / tau)),
+                           v0.y() * (c * -std::expm1(-T / c)), v0.z() * (c * -std::expm1(-T / c)));
+}
+
+FadingVelocity FadingVelocity::across() const {
+    return {speedSigma, acrossSeconds > 0 ? acrossSeconds : correlationSeconds};
+}
+
+Eigen::Vector3d FadingVelocity::displacementVariances(double seconds, double v0Sigma) const {
+    const double across = this->across().displacementVariance(seconds, v0Sigma);
+    return Eigen::Vector3d(displacementVariance(seconds, v0Sigma), across, across);
 }
 
 double FadingVelocity::displacementVariance(double seconds, double v0Sigma) const {
+    // (along the heading: `correlationSeconds`)
     const double tau = correlationSeconds, u = std::max(0.0, seconds) / tau;
     // For small u the bracket cancels to 2 u^3 / 3: take the series there (no cancellation).
     const double bracket =
@@ -42,6 +55,28 @@ void FadingVelocity::Step::matrices(Eigen::Matrix<double, 9, 9>& F,
     Q.block<3, 3>(0, 0) = qxx * I;
     Q.block<3, 3>(3, 3) = qvv * I;
     Q.block<3, 3>(0, 3) = Q.block<3, 3>(3, 0) = qxv * I;
+}
+
+
+void FadingVelocity::matrices(double seconds, const Eigen::Matrix3d& R,
+                              Eigen::Matrix<double, 9, 9>& F, Eigen::Matrix<double, 9, 9>& Q) const {
+    const Step along = step(seconds);
+    if (!(acrossSeconds > 0)) {
+        along.matrices(F, Q);
+        return;
+    }
+    const Step side = across().step(seconds);
+    // Each of the step's terms is diagonal in the carrier's axes: R diag R^T in the state's.
+    const auto turned = [&R](double a, double s) -> Eigen::Matrix3d {
+        return R * Eigen::Vector3d(a, s, s).asDiagonal() * R.transpose();
+    };
+    F.setIdentity();
+    F.block<3, 3>(0, 3) = turned(along.carry, side.carry);
+    F.block<3, 3>(3, 3) = turned(along.fade, side.fade);
+    Q.setZero();
+    Q.block<3, 3>(0, 0) = turned(along.qxx, side.qxx);
+    Q.block<3, 3>(3, 3) = turned(along.qvv, side.qvv);
+    Q.block<3, 3>(0, 3) = Q.block<3, 3>(3, 0) = turned(along.qxv, side.qxv);
 }
 
 }  // namespace lodestone::odometry

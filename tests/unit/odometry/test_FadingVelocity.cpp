@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 #include <lodestone/odometry/FadingVelocity.h>
 
+#include <Eigen/Geometry>
+
 #include <cmath>
 #include <random>
 
@@ -67,4 +69,50 @@ TEST(FadingVelocity, AnUncertainStartVelocityWidensTheDisplacement) {
         EXPECT_NEAR(model.displacementVariance(T, model.speedSigma),
                     2 * 0.25 * (u - 1 + std::exp(-u)), 1e-12);
     }
+}
+
+// Across the carrier's heading the velocity fades with its own time constant: in the carrier's
+// axes each of the step's terms is the along or the across model's, turned with the carrier
+// into the state's frame; without it, every axis is the along model's, exactly as before.
+TEST(FadingVelocity, AcrossTheHeadingTheVelocityFadesSooner) {
+    using Matrix9d = Eigen::Matrix<double, 9, 9>;
+    FadingVelocity model{0.5, 1.0};
+    const double dt = 0.2;
+    const Eigen::Matrix3d quarter =
+        Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    Matrix9d F, Q, F0, Q0;
+    model.step(dt).matrices(F0, Q0);
+    model.matrices(dt, quarter, F, Q);
+    EXPECT_EQ((F - F0).norm(), 0.0);
+    EXPECT_EQ((Q - Q0).norm(), 0.0);
+
+    model.acrossSeconds = 0.25;
+    const auto along = model.step(dt), across = FadingVelocity{0.5, 0.25}.step(dt);
+    model.matrices(dt, Eigen::Matrix3d::Identity(), F, Q);
+    EXPECT_NEAR(F(3, 3), along.fade, 1e-15);
+    EXPECT_NEAR(F(4, 4), across.fade, 1e-15);
+    EXPECT_NEAR(F(5, 5), across.fade, 1e-15);
+    EXPECT_NEAR(F(1, 4), across.carry, 1e-15);
+    EXPECT_NEAR(Q(0, 0), along.qxx, 1e-15);
+    EXPECT_NEAR(Q(1, 4), across.qxv, 1e-15);
+    EXPECT_NEAR(Q(2, 2), across.qxx, 1e-15);
+    // Turned a quarter about up, the carrier's heading is the state's y: a velocity along the
+    // state's x is now across the heading and fades as such.
+    model.matrices(dt, quarter, F, Q);
+    EXPECT_NEAR(F(3, 3), across.fade, 1e-15);
+    EXPECT_NEAR(F(4, 4), along.fade, 1e-15);
+    EXPECT_NEAR(F(3, 4), 0.0, 1e-15);
+    EXPECT_NEAR(Q(1, 1), along.qxx, 1e-15);
+    EXPECT_LT(across.fade, 0.5);  // (0.2 s of 0.25: e^-0.8)
+    EXPECT_GT(along.fade, 0.8);
+
+    // The closed forms per axis agree: along x, across y and z.
+    const Eigen::Vector3d v0(0.3, 0.13, 0.05);
+    const Eigen::Vector3d mean = model.meanDisplacement(v0, 4.0);
+    EXPECT_NEAR(mean.x(), (FadingVelocity{0.5, 1.0}.meanDisplacement(v0, 4.0).x()), 1e-15);
+    EXPECT_NEAR(mean.y(), 0.13 * 0.25 * (1 - std::exp(-16.0)), 1e-12);
+    const Eigen::Vector3d var = model.displacementVariances(4.0, 0.03);
+    EXPECT_EQ(var.x(), model.displacementVariance(4.0, 0.03));
+    EXPECT_EQ(var.y(), FadingVelocity({0.5, 0.25}).displacementVariance(4.0, 0.03));
+    EXPECT_EQ(var.z(), var.y());
 }

@@ -148,8 +148,7 @@ std::optional<mrpt::poses::CPose3DPDFGaussian> VisualOdometryNRD::bridgeByGyro(d
         const auto& fading = params_.bridgeVelocity;
         const auto v0 = velocityAtLastTracked();
         step.translation() = fading.meanDisplacement(v0.mean, gap);
-        cov.bottomRightCorner<3, 3>() =
-            fading.displacementVariance(gap, v0.sigma) * Eigen::Matrix3d::Identity();
+        cov.bottomRightCorner<3, 3>() = fading.displacementVariances(gap, v0.sigma).asDiagonal();
     }
     mrpt::poses::CPose3DPDFGaussian edge = lastTrackedHeld();
     edge += mrpt::poses::CPose3DPDFGaussian(poseOf3D(step), mrptCovarianceOf(cov));

@@ -105,6 +105,7 @@ void VisualOdometryNRD::configure(const mrpt::config::CConfigFileBase& ini) {
     if (!(g.windowSeconds > 0)) s.fail("gravity_window_seconds", "must be > 0");
     if (!(g.motionSeconds > 0)) s.fail("gravity_motion_seconds", "must be > 0");
     turn.tiltSeconds = g.motionSeconds;  // (the same carrier's motion: a gait's half period)
+    fading.acrossSeconds = g.motionSeconds;  // (its sway and bob turn back as often)
     p.gravityVelocitySigma = s.getDouble("gravity_velocity_sigma", p.gravityVelocitySigma);
     if (!(p.gravityVelocitySigma > 0)) s.fail("gravity_velocity_sigma", "must be > 0");
     if (p.useGravity && !p.useGyro)
@@ -463,6 +464,7 @@ JsonObject VisualOdometryNRD::describe() const {
             .set("bridge_height_sigma", params_.bridgeHeightSigma)
             .set("bridge_speed_sigma", params_.bridgeVelocity.speedSigma)
             .set("bridge_velocity_seconds", params_.bridgeVelocity.correlationSeconds)
+            .set("bridge_across_seconds", params_.bridgeVelocity.acrossSeconds)
             .set("use_gravity", params_.useGravity);
     }
     if (params_.bridgeTurnByDepth) {
@@ -471,7 +473,8 @@ JsonObject VisualOdometryNRD::describe() const {
                 .set("bridge_by_depth", params_.bridgeByDepth)
                 .set("bridge_height_sigma", params_.bridgeHeightSigma)
                 .set("bridge_speed_sigma", params_.bridgeVelocity.speedSigma)
-                .set("bridge_velocity_seconds", params_.bridgeVelocity.correlationSeconds);
+                .set("bridge_velocity_seconds", params_.bridgeVelocity.correlationSeconds)
+                .set("bridge_across_seconds", params_.bridgeVelocity.acrossSeconds);
         }
         params.set("bridge_turn_by_depth", true)
             .set("bridge_turn_rate_sigma_deg", params_.bridgeTurn.rate.speedSigma * 180 / M_PI)

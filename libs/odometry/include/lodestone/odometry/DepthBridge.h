@@ -91,7 +91,8 @@ class DepthBridge {
     using Matrix9d = Eigen::Matrix<double, 9, 9>;
     void addFrame(double t, const vision::RgbdFrame& frame,
                   const Eigen::Isometry3d& T_robot_optical, const Eigen::Matrix3d* gyro);
-    void predict(double t);
+    /** The motion model to `t`, the carrier turned by `R_0` since the start. */
+    void predict(double t, const Eigen::Matrix3d& R_0);
     /** The frame's depth aligned with the model frame's, from the predicted motion (`R_0` the
      * rotation since the start); nothing where it did not align. */
     bool align(const vision::DepthCloud& cloud, const Eigen::Isometry3d& T_robot_optical,
