@@ -1,4 +1,5 @@
 #include <lodestone/config/IniSection.h>
+#include <lodestone/vision/JoinRotation.h>
 #include <lodestone/vision/RgbdVisualOdometry.h>
 
 #include <algorithm>
@@ -78,6 +79,16 @@ void RgbdVisualOdometry::Params::loadFromConfigFile(const mrpt::config::CConfigF
     depthSampling.depthNoise = ransac.depthNoise;
     depthIcp.minObserved = s.getInt("depth_min_observed", depthIcp.minObserved);
     gyroDepthMinObserved = s.getInt("gyro_depth_min_observed", gyroDepthMinObserved);
+    const std::string join = s.getString("gyro_with_features", "off");
+    if (join == "off") {
+        gyroWithFeatures = GyroJoin::Off;
+    } else if (join == "tilt") {
+        gyroWithFeatures = GyroJoin::Tilt;
+    } else if (join == "all") {
+        gyroWithFeatures = GyroJoin::All;
+    } else {
+        s.fail("gyro_with_features", "must be off, tilt or all");
+    }
     if (gyroDepthMinObserved < 0 || gyroDepthMinObserved > 6) {
         s.fail("gyro_depth_min_observed", "must be 0..6 (0: off; directions of a rigid motion)");
     }
@@ -115,7 +126,10 @@ void RgbdVisualOdometry::Params::dumpToTextStream(std::ostream& out) const {
         << "depth_model_keyframes = " << depthModelKeyframes << "\n"
         << "depth_grid_columns = " << depthSampling.columns << "\n"
         << "depth_min_observed = " << depthIcp.minObserved << "  [of 6 directions]\n"
-        << "gyro_depth_min_observed = " << gyroDepthMinObserved << "  [of 6; 0: off]\n";
+        << "gyro_depth_min_observed = " << gyroDepthMinObserved << "  [of 6; 0: off]\n"
+        << "gyro_with_features = "
+        << (gyroWithFeatures == GyroJoin::All ? "all" : gyroWithFeatures == GyroJoin::Tilt ? "tilt" : "off")
+        << "\n";
 }
 
 RgbdVisualOdometry::RgbdVisualOdometry() : RgbdVisualOdometry(Params()) {}
@@ -410,6 +424,23 @@ VoResult RgbdVisualOdometry::processFrame(const RgbdFrame& frame, const MotionPr
                 r.depthJoined = true;
                 r.depthObserved = d.observed;
             }
+        }
+    }
+    r.T_ref_cur_camera = est.transform;
+    r.covariance_camera = est.covariance;
+    const bool tilt = params_.gyroWithFeatures == Params::GyroJoin::Tilt;
+    if (rotation && params_.gyroWithFeatures != Params::GyroJoin::Off && !r.depthAligned &&
+        (!tilt || rotation->vertical.norm() > 0)) {
+        // (where the depth alone aligned, the rotation already started and measured it)
+        const MotionPrior joined =
+            joinRotation({est.transform, est.covariance}, rotation->R_ref_cur, rotation->sigma,
+                         tilt ? rotation->vertical : Eigen::Vector3d::Zero());
+        RigidEstimate withGyro = est;
+        withGyro.transform = joined.T_ref_cur;
+        withGyro.covariance = joined.covariance;
+        if (plausibility(withGyro, frame.timestamp) == VoFailure::None) {
+            est = withGyro;
+            r.gyroJoined = true;
         }
     }
     const double angle = Eigen::AngleAxisd(est.transform.rotation()).angle();

@@ -316,3 +316,52 @@ TEST(RgbdVisualOdometry, WhereFeaturesFailTheGyroRotationStartsTheDepth) {
     const auto bad = b.process(second, nullptr, &wrong);
     EXPECT_FALSE(bad.success && std::abs(Eigen::AngleAxisd(bad.T_ref_cur.rotation()).angle() - 0.05) < 0.003);
 }
+
+// A gyro's rotation joins the features' motion where asked: in tilt only, a heading 1 deg off
+// leaves the features' heading alone; all of it, as sure as the features, the heading meets it
+// half way. The camera's own motion stays reported apart.
+TEST(RgbdVisualOdometry, TheGyrosRotationJoinsTheFeaturesWhereAsked) {
+    const auto sc = lodestone::test::boxScenario("posters");
+    const lodestone::sim::World world(sc, 3);
+    lodestone::sim::CameraSpec cam;
+    RotationPrior gyro;  // the truth's 1.7 deg left (-y in the optical frame), and 1 deg more
+    gyro.R_ref_cur = Eigen::AngleAxisd(-0.03 - M_PI / 180, Eigen::Vector3d::UnitY()).toRotationMatrix();
+    gyro.vertical = -Eigen::Vector3d::UnitY();
+    const auto run = [&](RgbdVisualOdometry::Params::GyroJoin join) {
+        RgbdVisualOdometry::Params p;
+        p.gyroWithFeatures = join;
+        RgbdVisualOdometry vo(p);
+        vo.process(simulatedFrame(world, cam, 5.0, 0.0), nullptr, &gyro);
+        return vo.process(simulatedFrame(world, cam, 5.08, 0.03), nullptr, &gyro);
+    };
+    const auto heading = [](const Eigen::Isometry3d& T) {  // about optical y
+        const Eigen::AngleAxisd aa(T.rotation());
+        return aa.angle() * aa.axis().y();
+    };
+    const auto off = run(RgbdVisualOdometry::Params::GyroJoin::Off);
+    ASSERT_TRUE(off.success);
+    gyro.sigma = std::sqrt(off.covariance(1, 1));  // (as sure as the features about y)
+    const auto tilt = run(RgbdVisualOdometry::Params::GyroJoin::Tilt);
+    const auto all = run(RgbdVisualOdometry::Params::GyroJoin::All);
+    ASSERT_TRUE(tilt.success && all.success);
+    EXPECT_FALSE(off.gyroJoined);
+    EXPECT_TRUE(tilt.gyroJoined);
+    EXPECT_TRUE(all.gyroJoined);
+    // (the tilt it takes moves the heading only by their correlation in the features' fit)
+    EXPECT_NEAR(heading(tilt.T_ref_cur), heading(off.T_ref_cur), 0.02 * M_PI / 180);
+    const double gap = heading(Eigen::Isometry3d(gyro.R_ref_cur)) - heading(off.T_ref_cur);
+    EXPECT_NEAR(heading(all.T_ref_cur) - heading(off.T_ref_cur), gap / 2, 0.1 * std::abs(gap));
+    EXPECT_LT(all.covariance(1, 1), 0.6 * off.covariance(1, 1));
+    EXPECT_TRUE(all.T_ref_cur_camera.isApprox(off.T_ref_cur));
+    EXPECT_TRUE(all.covariance_camera.isApprox(off.covariance));
+}
+
+TEST(RgbdVisualOdometryParams, TheGyroJoinIsOffTiltOrAll) {
+    RgbdVisualOdometry::Params p;
+    mrpt::config::CConfigFileMemory ini("[vo]\ngyro_with_features = tilt\n");
+    p.loadFromConfigFile(ini, "vo");
+    EXPECT_EQ(p.gyroWithFeatures, RgbdVisualOdometry::Params::GyroJoin::Tilt);
+    mrpt::config::CConfigFileMemory bad("[vo]\ngyro_with_features = yes\n");
+    RgbdVisualOdometry::Params q;
+    EXPECT_THROW(q.loadFromConfigFile(bad, "vo"), std::exception);
+}

@@ -168,9 +168,14 @@ std::optional<vision::RotationPrior> VisualOdometryNRD::gyroSinceReference(
     const Eigen::Matrix3d C = gyro_.sensorOnRobot().linear().transpose() * T_robot_optical.linear();
     // How far the carrier may have gone meanwhile: the fading velocity's spread over the time.
     const auto& fading = params_.bridgeVelocity;
+    // The vertical, where the accelerometer's up holds the tilt at each node (VO's
+    // gyro_with_features = tilt): the robot's z in the optical frame (a hand-held camera is the
+    // robot, level to a few degrees).
+    Eigen::Vector3d vertical = Eigen::Vector3d::Zero();
+    if (params_.useGravity) vertical = T_robot_optical.linear().transpose() * Eigen::Vector3d::UnitZ();
     return vision::RotationPrior{C.transpose() * r->R * C, r->sigma,
                                  std::sqrt(fading.displacementVariance(t - *since)),
-                                 fading.correlationSeconds};
+                                 fading.correlationSeconds, vertical};
 }
 
 void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& scan) {
@@ -325,8 +330,9 @@ void VisualOdometryNRD::learnGyroBias(const vision::VoResult& r, double t,
     if (!g) return;
     // VO's rotation in the gyro's body frame: C R C^T, C the optical frame's rotation in it.
     const Eigen::Matrix3d C = gyro_.sensorOnRobot().linear().transpose() * T_robot_optical.linear();
-    const Eigen::Matrix3d measured = C * r.T_ref_cur.linear() * C.transpose();
-    const double sigma = std::sqrt(r.covariance.topLeftCorner<3, 3>().trace() / 3);
+    // (the camera's own rotation, not the one the gyro joined)
+    const Eigen::Matrix3d measured = C * r.T_ref_cur_camera.linear() * C.transpose();
+    const double sigma = std::sqrt(r.covariance_camera.topLeftCorner<3, 3>().trace() / 3);
     if (gyro_bias_.update(g->R, measured, sigma, t - r.referenceTimestamp))
         gyro_.setBias(gyro_bias_.bias(), gyro_bias_.sigma());
 }

@@ -72,6 +72,9 @@ struct RotationPrior {
      * the depth does not pin follows the last measured velocity, fading with this time
      * constant (a first-order Gauss-Markov velocity, as odometry::FadingVelocity). */
     double velocitySeconds{1.0};
+    /** The vertical in the reference's optical frame (zero: not known), for a rotation that
+     * joins the features only in tilt (Params::GyroJoin::Tilt). */
+    Eigen::Vector3d vertical{Eigen::Vector3d::Zero()};
 };
 
 /** What one frame gave. */
@@ -93,6 +96,13 @@ struct VoResult {
     int depthObserved{0};
     /** The features aligned and the depth was solved with them (`depthWithFeatures`). */
     bool depthJoined{false};
+    /** The features aligned and the caller's rotation (a gyro's) joined them
+     * (`gyroWithFeatures`): `T_ref_cur` and `covariance` are the joined motion's, and these
+     * the camera's own before it (for whoever learns the gyro's bias from them). Otherwise
+     * the same as `T_ref_cur` and `covariance`. */
+    bool gyroJoined{false};
+    Eigen::Isometry3d T_ref_cur_camera{Eigen::Isometry3d::Identity()};
+    Eigen::Matrix<double, 6, 6> covariance_camera{Eigen::Matrix<double, 6, 6>::Identity()};
     /** This frame's features (optical frame), for whoever keeps keyframes (the SLAM node
      * decider, loop closers). */
     std::shared_ptr<const FrameFeatures> frameFeatures;
@@ -150,6 +160,14 @@ class RgbdVisualOdometry {
          * depth pins this many directions (3: a plain wall - with the rotation, 4 of 6
          * measured); 0: the rotation only starts the alignment. */
         int gyroDepthMinObserved{0};
+        /** Where the features aligned and a rotation prior is given, the rotation joins their
+         * motion as a measurement (joinRotation): a gyro pins the turn that far features
+         * trade against a shift along the view. `Tilt`: only about the horizontal axes (the
+         * prior's `vertical` left free) - a gyro's bias error is shared by every step, and
+         * about the vertical nothing bounds what it adds up to, while the tilt is held at each
+         * node by the accelerometer's up. */
+        enum class GyroJoin { Off, Tilt, All };
+        GyroJoin gyroWithFeatures{GyroJoin::Off};
         int depthModelKeyframes{1};  ///< keyframes in the local model depth aligns with (1: see docs/results/camera-only.md)
         DepthSampling depthSampling;  ///< columns from `depth_grid_columns`; noise from RANSAC's
         PointToPlaneIcp::Params depthIcp;
@@ -166,7 +184,7 @@ class RgbdVisualOdometry {
     /** Processes the next frame. With a `prior` (where the frame is relative to the current
      * reference, `referenceTimestamp()`) and `guidedMatching`, matching is guided by it. With
      * a `rotation` (a gyro's since the reference), depth alignment where the features fail
-     * starts from it. */
+     * starts from it, and with `gyroWithFeatures` it joins the features' motion. */
     VoResult process(const RgbdFrame& frame, const MotionPrior* prior = nullptr,
                      const RotationPrior* rotation = nullptr);
     /** The timestamp of the frame the next one will be aligned with, if any. */
