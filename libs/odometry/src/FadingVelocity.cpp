@@ -57,7 +57,6 @@ void FadingVelocity::Step::matrices(Eigen::Matrix<double, 9, 9>& F,
     Q.block<3, 3>(0, 3) = Q.block<3, 3>(3, 0) = qxv * I;
 }
 
-
 void FadingVelocity::matrices(double seconds, const Eigen::Matrix3d& R,
                               Eigen::Matrix<double, 9, 9>& F, Eigen::Matrix<double, 9, 9>& Q) const {
     const Step along = step(seconds);

@@ -229,6 +229,17 @@ VoFailure RgbdVisualOdometry::plausibility(const RigidEstimate& est, double time
     return VoFailure::None;
 }
 
+bool RgbdVisualOdometry::replaceIfPlausible(RigidEstimate& est, const Eigen::Isometry3d& T,
+                                            const Eigen::Matrix<double, 6, 6>& covariance,
+                                            double timestamp) const {
+    RigidEstimate candidate = est;
+    candidate.transform = T;
+    candidate.covariance = covariance;
+    if (plausibility(candidate, timestamp) != VoFailure::None) return false;
+    est = candidate;
+    return true;
+}
+
 VoResult RgbdVisualOdometry::process(const RgbdFrame& frame, const MotionPrior* prior,
                                      const RotationPrior* rotation) {
     VoResult r = processFrame(frame, prior, rotation);
@@ -415,15 +426,9 @@ VoResult RgbdVisualOdometry::processFrame(const RgbdFrame& frame, const MotionPr
         measured.covariance = est.covariance;
         const DepthAlignment d = icp_.align(depth_model_, points, est.transform, &measured);
         r.timing.depth += msSince(td);
-        if (d.success) {
-            RigidEstimate joined = est;
-            joined.transform = d.T_ref_cur;
-            joined.covariance = d.covariance;
-            if (plausibility(joined, frame.timestamp) == VoFailure::None) {
-                est = joined;
-                r.depthJoined = true;
-                r.depthObserved = d.observed;
-            }
+        if (d.success && replaceIfPlausible(est, d.T_ref_cur, d.covariance, frame.timestamp)) {
+            r.depthJoined = true;
+            r.depthObserved = d.observed;
         }
     }
     r.T_ref_cur_camera = est.transform;
@@ -435,13 +440,7 @@ VoResult RgbdVisualOdometry::processFrame(const RgbdFrame& frame, const MotionPr
         const MotionPrior joined =
             joinRotation({est.transform, est.covariance}, rotation->R_ref_cur, rotation->sigma,
                          tilt ? rotation->vertical : Eigen::Vector3d::Zero());
-        RigidEstimate withGyro = est;
-        withGyro.transform = joined.T_ref_cur;
-        withGyro.covariance = joined.covariance;
-        if (plausibility(withGyro, frame.timestamp) == VoFailure::None) {
-            est = withGyro;
-            r.gyroJoined = true;
-        }
+        r.gyroJoined = replaceIfPlausible(est, joined.T_ref_cur, joined.covariance, frame.timestamp);
     }
     const double angle = Eigen::AngleAxisd(est.transform.rotation()).angle();
     r.success = true;

@@ -230,6 +230,9 @@ class RgbdVisualOdometry {
     /** None, or why the motion is implausible: beyond the reference bounds, or faster than the
      * carrier since the last tracked frame (at `timestamp`). */
     VoFailure plausibility(const RigidEstimate& estimate, double timestamp) const;
+    /** `est` becomes T with that covariance if that is plausible (true), else stays. */
+    bool replaceIfPlausible(RigidEstimate& est, const Eigen::Isometry3d& T,
+                            const Eigen::Matrix<double, 6, 6>& covariance, double timestamp) const;
 
     Params params_;
     OrbExtractor extractor_;
