@@ -6,8 +6,10 @@
 // covariance is honest) and the rest (the initial guess: the prior or constant velocity).
 // The length error: each step's estimate along its true direction, summed, against the true
 // lengths summed (with its standard error), as a bias in VO's steps hides in RMS errors.
-// Prints a markdown table row per group; every failed frame is counted by why.
-//   bench_depth_alignment RAWLOG GROUND_TRUTH.tum SLAM.ini [NAME]
+// Prints a markdown table row per group; every failed frame is counted by why. With STEPS.csv,
+// every tracked frame's step is written there too (a corridor's steps, summed over the
+// keyframes - rows whose time is a later row's reference - show a bias the table averages out).
+//   bench_depth_alignment RAWLOG GROUND_TRUTH.tum SLAM.ini [NAME [STEPS.csv]]
 #include <lodestone/io/RawlogSource.h>
 #include <lodestone/io/TumTrajectory.h>
 #include <lodestone/obs/registerAllClasses.h>
@@ -21,6 +23,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <iomanip>
+#include <stdexcept>
 #include <iostream>
 #include <algorithm>
 #include <map>
@@ -56,7 +61,7 @@ Eigen::Isometry3d toIsometry(const mrpt::poses::CPose3D& p) {
 
 int main(int argc, char** argv) {
     if (argc < 4) {
-        std::cerr << "usage: bench_depth_alignment RAWLOG GROUND_TRUTH.tum SLAM.ini [NAME]\n";
+        std::cerr << "usage: bench_depth_alignment RAWLOG GROUND_TRUTH.tum SLAM.ini [NAME [STEPS.csv]]\n";
         return 2;
     }
     try {
@@ -71,6 +76,17 @@ int main(int argc, char** argv) {
         std::map<std::string, Group> groups;
         std::map<std::string, std::size_t> failed;
         std::size_t frames = 0;
+        std::ofstream steps;
+        if (argc > 5) {
+            steps.open(argv[5]);
+            if (!steps) throw std::runtime_error(std::string("cannot write ") + argv[5]);
+            // (the optical frame: x right, y down, z along the view; errors estimate - truth)
+            steps << "t,reference_t,how,inliers,true_length,estimate_along,error_x,error_y,error_z,"
+                     "sigma_x,sigma_y,sigma_z,rotation_error_x_deg,rotation_error_y_deg,"
+                     "rotation_error_z_deg,rotation_sigma_x_deg,rotation_sigma_y_deg,"
+                     "rotation_sigma_z_deg\n";
+            steps << std::fixed << std::setprecision(6);
+        }
         while (auto obs = source.next()) {
             auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(obs);
             if (!scan) continue;
@@ -106,6 +122,18 @@ int main(int argc, char** argv) {
             gr.sumT2 += e.tail<3>().squaredNorm();
             gr.translationErrors.push_back(e.tail<3>().norm());
             const double length = T_true.translation().norm();
+            if (steps.is_open()) {
+                const Eigen::Vector3d d = r.T_ref_cur.translation() - T_true.translation();
+                const double deg = 180 / M_PI;
+                steps << t << ',' << r.referenceTimestamp << ",\"" << key << "\"," << r.inliers << ','
+                      << length << ','
+                      << (length > 0 ? r.T_ref_cur.translation().dot(T_true.translation()) / length : 0.0);
+                for (int k = 0; k < 3; ++k) steps << ',' << d(k);
+                for (int k = 3; k < 6; ++k) steps << ',' << std::sqrt(r.covariance(k, k));
+                for (int k = 0; k < 3; ++k) steps << ',' << e(k) * deg;
+                for (int k = 0; k < 3; ++k) steps << ',' << std::sqrt(r.covariance(k, k)) * deg;
+                steps << '\n';
+            }
             if (length >= 0.005) {
                 const double along = r.T_ref_cur.translation().dot(T_true.translation()) / length;
                 gr.trueLength += length;
