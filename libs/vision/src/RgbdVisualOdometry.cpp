@@ -68,6 +68,14 @@ void RgbdVisualOdometry::Params::loadFromConfigFile(const mrpt::config::CConfigF
     seed = static_cast<std::uint64_t>(s.getInt("seed", static_cast<int>(seed)));
     keyframeDistance = s.getDouble("keyframe_distance", keyframeDistance);
     keyframeAngle = s.getDouble("keyframe_angle_deg", keyframeAngle * 180 / M_PI) * M_PI / 180;
+    const std::string by = s.getString("keyframe_by", "measured");
+    if (by == "measured") {
+        keyframeBy = KeyframeBy::Measured;
+    } else if (by == "predicted") {
+        keyframeBy = KeyframeBy::Predicted;
+    } else {
+        s.fail("keyframe_by", "must be measured or predicted");
+    }
     guidedMatching = s.getBool("guided_matching", guidedMatching);
     guidedGateChi2 = s.getDouble("guided_gate_chi2", guidedGateChi2);
     guidedKeypointSigma = s.getDouble("guided_keypoint_sigma", guidedKeypointSigma);
@@ -117,6 +125,7 @@ void RgbdVisualOdometry::Params::dumpToTextStream(std::ostream& out) const {
         << "seed               = " << seed << "\n"
         << "keyframe_distance  = " << keyframeDistance << "  [m]\n"
         << "keyframe_angle_deg = " << keyframeAngle * 180 / M_PI << "  [deg]\n"
+        << "keyframe_by        = " << (keyframeBy == KeyframeBy::Predicted ? "predicted" : "measured") << "\n"
         << "guided_matching    = " << (guidedMatching ? "true" : "false") << "\n"
         << "guided_gate_chi2   = " << guidedGateChi2 << "  (2 dof)\n"
         << "guided_keypoint_sigma = " << guidedKeypointSigma << "  [px]\n"
@@ -252,6 +261,23 @@ VoResult RgbdVisualOdometry::process(const RgbdFrame& frame, const MotionPrior* 
     if (r.depthAligned) ++totals_.depthAligned;
     if (r.depthJoined) ++totals_.depthJoined;
     return r;
+}
+
+bool RgbdVisualOdometry::isKeyframe(const Eigen::Isometry3d& measured,
+                                    const MotionPrior* prior,
+                                    const RotationPrior* rotation) const {
+    const auto beyond = [&](const Eigen::Isometry3d& T, double factor) {
+        return T.translation().norm() >= factor * params_.keyframeDistance ||
+               Eigen::AngleAxisd(T.rotation()).angle() >= factor * params_.keyframeAngle;
+    };
+    if (params_.keyframeBy == Params::KeyframeBy::Measured) return beyond(measured, 1);
+    // Chosen on what was known before this frame was measured, so its own error does not
+    // choose it (that would keep the frames whose error lengthens their step): the prior, else
+    // the last tracked frame's motion - one frame late (constant velocity from it adds the
+    // last step's noise and doubled the keyframes, measured).
+    Eigen::Isometry3d predicted = prior ? prior->T_ref_cur : last_in_ref_;
+    if (rotation) predicted.linear() = rotation->R_ref_cur;
+    return beyond(predicted, 1) || beyond(measured, 2);
 }
 
 Eigen::Isometry3d RgbdVisualOdometry::constantVelocity(double timestamp) const {
@@ -442,15 +468,13 @@ VoResult RgbdVisualOdometry::processFrame(const RgbdFrame& frame, const MotionPr
                          tilt ? rotation->vertical : Eigen::Vector3d::Zero());
         r.gyroJoined = replaceIfPlausible(est, joined.T_ref_cur, joined.covariance, frame.timestamp);
     }
-    const double angle = Eigen::AngleAxisd(est.transform.rotation()).angle();
+    const bool keyframe = isKeyframe(est.transform, prior, rotation);
     r.success = true;
     r.T_ref_cur = est.transform;
     r.covariance = est.covariance;
     failures_ = 0;
     state_ = VoState::Tracking;
     r.state = state_;
-    const bool keyframe = est.transform.translation().norm() >= params_.keyframeDistance ||
-                          angle >= params_.keyframeAngle;
     trackedAt(est.transform, frame.timestamp, keyframe, !r.depthAligned,
               rotation ? rotation->velocitySeconds : 1.0);
     if (keyframe) becomeReference(est.transform, !r.depthAligned || r.depthObserved == 6);

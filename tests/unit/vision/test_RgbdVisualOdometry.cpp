@@ -131,6 +131,71 @@ TEST(RgbdVisualOdometry, AStepFasterThanTheCarrierIsRefused) {
     EXPECT_TRUE(after(0.2, turn).success);
 }
 
+TEST(RgbdVisualOdometry, AFrameIsNotChosenAsKeyframeByItsOwnMeasurement) {
+    const auto sc = lodestone::test::boxScenario("posters");
+    const lodestone::sim::World world(sc, 3);
+    lodestone::sim::CameraSpec cam;
+    const auto at = [&](double x, double t) {
+        auto f = simulatedFrame(world, cam, x, 0.0);
+        f.timestamp = t;
+        return f;
+    };
+    const auto first = at(5.0, 10.0), on12 = at(5.12, 10.2), on14 = at(5.14, 10.3),
+               on25 = at(5.25, 10.2);
+    RgbdVisualOdometry::Params measured;  // keyframes every 10 cm (the default)
+    RgbdVisualOdometry::Params predicted = measured;
+    predicted.keyframeBy = RgbdVisualOdometry::Params::KeyframeBy::Predicted;
+    // 12 cm measured: by its measurement the frame replaces the reference ...
+    {
+        RgbdVisualOdometry vo(measured);
+        vo.process(first);
+        ASSERT_TRUE(vo.process(on12).success);
+        EXPECT_EQ(vo.referenceTimestamp(), std::optional<double>(10.2));
+    }
+    // ... by the prediction it does not: nothing moved before it (the first step after the
+    // start), and a prior saying 5 cm keeps the reference too ...
+    {
+        RgbdVisualOdometry vo(predicted);
+        vo.process(first);
+        const auto r = vo.process(on12);
+        ASSERT_TRUE(r.success) << toString(r.failure);
+        EXPECT_NEAR(r.T_ref_cur.translation().z(), 0.12, 0.01) << "the step itself is as measured";
+        EXPECT_EQ(vo.referenceTimestamp(), std::optional<double>(10.0));
+        // ... and the next frame, predicted from it (12 cm and on), is the keyframe.
+        ASSERT_TRUE(vo.process(on14).success);
+        EXPECT_EQ(vo.referenceTimestamp(), std::optional<double>(10.3));
+    }
+    {
+        RgbdVisualOdometry vo(predicted);
+        vo.process(first);
+        MotionPrior prior;
+        prior.T_ref_cur.translation() = Eigen::Vector3d(0, 0, 0.05);
+        prior.covariance = 1e-2 * Eigen::Matrix<double, 6, 6>::Identity();
+        ASSERT_TRUE(vo.process(on12, &prior).success);
+        EXPECT_EQ(vo.referenceTimestamp(), std::optional<double>(10.0));
+    }
+    // Measured beyond twice the spacing, it is one anyway (the next frames need the overlap).
+    {
+        RgbdVisualOdometry vo(predicted);
+        vo.process(first);
+        ASSERT_TRUE(vo.process(on25).success);
+        EXPECT_EQ(vo.referenceTimestamp(), std::optional<double>(10.2));
+    }
+}
+
+TEST(RgbdVisualOdometryParams, KeyframesByMeasurementOrPrediction) {
+    RgbdVisualOdometry::Params p;
+    EXPECT_EQ(p.keyframeBy, RgbdVisualOdometry::Params::KeyframeBy::Measured);
+    p.loadFromConfigFile(mrpt::config::CConfigFileMemory("[vo]\nkeyframe_by = predicted\n"), "vo");
+    EXPECT_EQ(p.keyframeBy, RgbdVisualOdometry::Params::KeyframeBy::Predicted);
+    try {
+        p.loadFromConfigFile(mrpt::config::CConfigFileMemory("[vo]\nkeyframe_by = predictd\n"), "vo");
+        FAIL() << "a misspelt keyframe_by was accepted";
+    } catch (const std::exception& e) {
+        EXPECT_NE(std::string(e.what()).find("keyframe_by"), std::string::npos) << e.what();
+    }
+}
+
 TEST(RgbdVisualOdometryParams, TheCarrierBoundsAreReadAndChecked) {
     RgbdVisualOdometry::Params p;
     mrpt::config::CConfigFileMemory ini(

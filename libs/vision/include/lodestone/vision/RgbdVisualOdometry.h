@@ -138,6 +138,15 @@ class RgbdVisualOdometry {
          * turned this much [rad]: fewer, longer steps accumulate less error. 0, 0: every frame. */
         double keyframeDistance{0.10};
         double keyframeAngle{5 * M_PI / 180};
+        /** What decides that a frame becomes the reference. `Measured`: its own motion, as
+         * measured. A frame whose error happens to lengthen its step crosses the spacing a frame
+         * early, and its error stays in the chain: the chosen steps are long by about a step's
+         * noise (docs/results/camera-only.md). `Predicted`: the motion known before the frame is
+         * measured (the caller's prior, else the last tracked frame's - a frame late; a gyro's
+         * rotation), so the choice is blind to the frame's own error; a frame measured beyond
+         * twice the spacing still becomes one (the next frames need the overlap). */
+        enum class KeyframeBy { Measured, Predicted };
+        KeyframeBy keyframeBy{KeyframeBy::Measured};
         std::uint64_t seed{1};  ///< RANSAC seed (deterministic results)
         /** With a motion prior, match each reference feature only against the keypoints in
          * its predicted gate (GuidedMatcher); brute force when that fails. */
@@ -219,6 +228,10 @@ class RgbdVisualOdometry {
                               const RotationPrior* rotation) const;
     /** The frame's pose in the reference by constant velocity since the last tracked frame. */
     Eigen::Isometry3d constantVelocity(double timestamp) const;
+    /** Whether a tracked frame, measured at `measured` from the reference, replaces it
+     * (`keyframeDistance`, `keyframeAngle`, `keyframeBy`). */
+    bool isKeyframe(const Eigen::Isometry3d& measured, const MotionPrior* prior,
+                    const RotationPrior* rotation) const;
     /** Remembers a tracked frame's pose in the reference, for constant velocity; and the
      * carrier's velocity - measured since the reference where the features aligned, faded by
      * `velocitySeconds` where only the depth did. */
