@@ -6,6 +6,8 @@
 // covariance is honest) and the rest (the initial guess: the prior or constant velocity).
 // The length error: each step's estimate along its true direction, summed, against the true
 // lengths summed (with its standard error), as a bias in VO's steps hides in RMS errors.
+// The keyframe chain: the same over the steps that became references - the ones VO's motion is
+// chained through; a step chosen for its own length error shows here and not in the groups.
 // Prints a markdown table row per group; every failed frame is counted by why. With STEPS.csv,
 // every tracked frame's step is written there too (a corridor's steps, summed over the
 // keyframes - rows whose time is a later row's reference - show a bias the table averages out).
@@ -29,6 +31,7 @@
 #include <iostream>
 #include <algorithm>
 #include <map>
+#include <set>
 
 using namespace lodestone;
 
@@ -87,6 +90,8 @@ int main(int argc, char** argv) {
                      "rotation_sigma_z_deg\n";
             steps << std::fixed << std::setprecision(6);
         }
+        std::map<double, std::pair<double, double>> stepAt;  // t -> true length, estimate along
+        std::set<double> references;
         while (auto obs = source.next()) {
             auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(obs);
             if (!scan) continue;
@@ -134,6 +139,8 @@ int main(int argc, char** argv) {
                 for (int k = 0; k < 3; ++k) steps << ',' << std::sqrt(r.covariance(k, k)) * deg;
                 steps << '\n';
             }
+            stepAt[t] = {length, length > 0 ? r.T_ref_cur.translation().dot(T_true.translation()) / length : 0.0};
+            references.insert(r.referenceTimestamp);
             if (length >= 0.005) {
                 const double along = r.T_ref_cur.translation().dot(T_true.translation()) / length;
                 gr.trueLength += length;
@@ -170,6 +177,24 @@ int main(int argc, char** argv) {
                         1000 * std::sqrt(g.pinnedT2 / n),
                         g.looseDims > 0 ? std::to_string(static_cast<int>(1000 * std::sqrt(g.looseT2 / n))).c_str() : "-",
                         g.pinnedDims > 0 ? g.nees / static_cast<double>(g.pinnedDims) : 0.0);
+        }
+        {
+            // (a reference that was not a tracked frame - a start - has no step)
+            double chainLength = 0, chainAlong = 0, chainDiff2 = 0;
+            std::size_t chainSteps = 0;
+            for (const double ref : references) {
+                const auto it = stepAt.find(ref);
+                if (it == stepAt.end()) continue;
+                ++chainSteps;
+                chainLength += it->second.first;
+                chainAlong += it->second.second;
+                chainDiff2 += (it->second.second - it->second.first) * (it->second.second - it->second.first);
+            }
+            if (chainLength > 0) {
+                std::printf("| %s | keyframe chain (steps that became references) | %zu |  |  | %+.2f +- %.2f |  |  |  |\n",
+                            name.c_str(), chainSteps, 100 * (chainAlong / chainLength - 1),
+                            100 * std::sqrt(chainDiff2) / chainLength);
+            }
         }
         for (const auto& [why, count] : failed) {
             std::printf("| %s | failed: %s | %zu |  |  |  |  |  |  |\n", name.c_str(), why.c_str(), count);

@@ -274,7 +274,7 @@ bool RgbdVisualOdometry::isKeyframe(const Eigen::Isometry3d& measured,
     // Chosen on what was known before this frame was measured, so its own error does not
     // choose it (that would keep the frames whose error lengthens their step): the prior, else
     // the last tracked frame's motion - one frame late (constant velocity from it adds the
-    // last step's noise and doubled the keyframes, measured).
+    // last step's noise: a fifth to twice as many keyframes, measured).
     Eigen::Isometry3d predicted = prior ? prior->T_ref_cur : last_in_ref_;
     if (rotation) predicted.linear() = rotation->R_ref_cur;
     return beyond(predicted, 1) || beyond(measured, 2);
