@@ -161,7 +161,7 @@ TEST(RgbdVisualOdometry, AFrameIsNotChosenAsKeyframeByItsOwnMeasurement) {
         ASSERT_TRUE(r.success) << toString(r.failure);
         EXPECT_NEAR(r.T_ref_cur.translation().z(), 0.12, 0.01) << "the step itself is as measured";
         EXPECT_EQ(vo.referenceTimestamp(), std::optional<double>(10.0));
-        // ... and the next frame, predicted from it (12 cm and on), is the keyframe.
+        // ... and the next frame, the last one having been measured 12 cm on, is the keyframe.
         ASSERT_TRUE(vo.process(on14).success);
         EXPECT_EQ(vo.referenceTimestamp(), std::optional<double>(10.3));
     }
