@@ -139,10 +139,10 @@ int main(int argc, char** argv) {
                 for (int k = 0; k < 3; ++k) steps << ',' << std::sqrt(r.covariance(k, k)) * deg;
                 steps << '\n';
             }
-            stepAt[t] = {length, length > 0 ? r.T_ref_cur.translation().dot(T_true.translation()) / length : 0.0};
+            const double along = length > 0 ? r.T_ref_cur.translation().dot(T_true.translation()) / length : 0.0;
+            stepAt[t] = {length, along};
             references.insert(r.referenceTimestamp);
             if (length >= 0.005) {
-                const double along = r.T_ref_cur.translation().dot(T_true.translation()) / length;
                 gr.trueLength += length;
                 gr.estAlong += along;
                 gr.lengthDiff2 += (along - length) * (along - length);
