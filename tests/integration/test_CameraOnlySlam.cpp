@@ -352,3 +352,46 @@ TEST(CameraOnlySlam, AGapNoGyroCoversIsBridgedByTheDepthsTurn) {
     EXPECT_NE(blindReport.find("\"vo_gaps_bridged_by_depth_turn\": 0"), std::string::npos) << blindReport;
     EXPECT_NE(blindReport.find("\"segments\": 2"), std::string::npos) << blindReport;
 }
+
+// Without an IMU, `carrier_tilt_sigma_deg` gives every node the carrier's level up (its robot
+// frame's z) as a prior in the graph; where the accelerometer measured a node's up, the
+// measurement stays and the carrier's fills in only the nodes it left.
+TEST(CameraOnlySlam, ACarriersLevelUpHoldsTheNodesNoAccelerometerMeasured) {
+    lodestone::test::TempDir dir;
+    const auto sim = lodestone::test::runCommand(kSim + " -c " + kConfigDir + "/scenarios/office.ini -o " +
+                                                 dir.file("hand.rawlog") +
+                                                 " --camera 320x240@15 --embedded-images --handheld --gyro");
+    ASSERT_EQ(sim.exitCode, 0) << sim.output;
+    const auto runWith = [&](const std::string& name,
+                             const std::vector<std::pair<std::string, std::string>>& keys) {
+        const auto run = lodestone::test::runCommand(
+            kSlam + " --rawlog " + dir.file("hand.rawlog") + " --config " +
+            rgbdOnlyWith(dir.file(name + ".ini"), keys) + " --out " + dir.file(name) +
+            " --ground-truth " + dir.file("hand.gt.tum") + " --quiet");
+        EXPECT_EQ(run.exitCode, 0) << run.output;
+        std::smatch nodes;
+        EXPECT_TRUE(std::regex_search(run.output, nodes, std::regex("([0-9]+) nodes"))) << run.output;
+        return std::make_pair(reportOf(dir.file(name)), nodes.size() > 1 ? std::stoi(nodes[1]) : -1);
+    };
+    const auto count = [](const std::string& report, const std::string& key) {
+        std::smatch m;
+        return std::regex_search(report, m, std::regex("\"" + key + "\": ([0-9]+)")) ? std::stoi(m[1]) : -1;
+    };
+    const auto [noImu, noImuNodes] = runWith(
+        "no_imu", {{"use_gyro", "false"}, {"use_gravity", "false"}, {"carrier_tilt_sigma_deg", "5"}});
+    ASSERT_GT(noImuNodes, 50);
+    EXPECT_EQ(count(noImu, "nodes_with_carrier_up"), noImuNodes) << noImu;
+    EXPECT_EQ(count(noImu, "attitude_priors"), noImuNodes) << "each one held by the optimizer";
+    EXPECT_EQ(count(noImu, "nodes_with_measured_up"), -1) << "no accelerometer used";
+
+    const auto [imu, imuNodes] = runWith("imu", {{"carrier_tilt_sigma_deg", "5"}});
+    const int measured = count(imu, "nodes_with_measured_up"), carried = count(imu, "nodes_with_carrier_up");
+    EXPECT_GT(measured, 0.8 * imuNodes) << imu;
+    EXPECT_GT(carried, 0) << "VO's first 1.3 s: no window for the accelerometer yet";
+    EXPECT_EQ(measured + carried, imuNodes) << imu;
+    EXPECT_EQ(count(imu, "attitude_priors"), imuNodes);
+
+    const auto [off, offNodes] = runWith("off", {{"use_gyro", "false"}, {"use_gravity", "false"}});
+    EXPECT_EQ(count(off, "nodes_with_carrier_up"), -1) << "0: no such prior";
+    EXPECT_EQ(count(off, "attitude_priors"), 0) << off;
+}

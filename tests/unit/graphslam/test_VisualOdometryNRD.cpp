@@ -37,4 +37,9 @@ TEST(VisualOdometryNRD, ConfigurationMistakesNameTheKey) {
     EXPECT_TRUE(nrd.params().bridgeTurnByDepth);
     EXPECT_NEAR(nrd.params().bridgeTurn.rate.speedSigma, 45 * M_PI / 180, 1e-12);
     EXPECT_NEAR(nrd.params().bridgeTurn.tiltSigma, 3 * M_PI / 180, 1e-12);
+    // A carrier's level up, where no accelerometer measures one.
+    EXPECT_NE(errorOf("[VisualOdometryNRD]\ncarrier_tilt_sigma_deg = -2\n").find("carrier_tilt_sigma_deg"),
+              std::string::npos);
+    EXPECT_EQ(errorOf("[VisualOdometryNRD]\ncarrier_tilt_sigma_deg = 4\n"), "no error");
+    EXPECT_NEAR(nrd.params().carrierTiltSigma, 4 * M_PI / 180, 1e-12);
 }

@@ -108,6 +108,9 @@ void VisualOdometryNRD::configure(const mrpt::config::CConfigFileBase& ini) {
     fading.acrossSeconds = g.motionSeconds;  // (its sway and bob turn back as often)
     p.gravityVelocitySigma = s.getDouble("gravity_velocity_sigma", p.gravityVelocitySigma);
     if (!(p.gravityVelocitySigma > 0)) s.fail("gravity_velocity_sigma", "must be > 0");
+    p.carrierTiltSigma =
+        s.getDouble("carrier_tilt_sigma_deg", p.carrierTiltSigma * 180 / M_PI) * M_PI / 180;
+    if (!(p.carrierTiltSigma >= 0)) s.fail("carrier_tilt_sigma_deg", "must be >= 0");
     if (p.useGravity && !p.useGyro)
         s.fail("use_gravity",
                "needs use_gyro = true (the gyro turns the window's samples into one frame)");
@@ -415,6 +418,10 @@ void VisualOdometryNRD::registerAt(const mrpt::obs::CObservation3DRangeScan& sca
             rec.attitude = measuredUp(t);
             if (rec.attitude) ++attitude_priors_;
         }
+        if (!rec.attitude && params_.carrierTiltSigma > 0) {
+            rec.attitude = AttitudePrior{Eigen::Vector3d::UnitZ(), params_.carrierTiltSigma};
+            ++carrier_ups_;
+        }
         if (restart) {
             rec.liftTime = lostAfter;  // tracking lost after this frame ...
             rec.putDownTime = t;       // ... and found again at this one
@@ -487,6 +494,8 @@ JsonObject VisualOdometryNRD::describe() const {
             .set("bridge_tilt_sigma_deg", params_.bridgeTurn.tiltSigma * 180 / M_PI)
             .set("bridge_turn_max_sigma_deg", params_.bridgeTurnMaxSigma * 180 / M_PI);
     }
+    if (params_.carrierTiltSigma > 0)
+        params.set("carrier_tilt_sigma_deg", params_.carrierTiltSigma * 180 / M_PI);
     if (params_.useGravity) {
         params.set("accel_bias", params_.gravity.biasStd)
             .set("gravity_window_seconds", params_.gravity.windowSeconds)
@@ -527,6 +536,7 @@ JsonObject VisualOdometryNRD::describe() const {
         }
     }
     if (params_.useGravity) stats.set("nodes_with_measured_up", attitude_priors_);
+    if (params_.carrierTiltSigma > 0) stats.set("nodes_with_carrier_up", carrier_ups_);
     JsonObject why;
     for (const auto& [reason, count] : failures_) why.set(reason, count);
     stats.set("failed_frames_by_reason", why);

@@ -112,6 +112,13 @@ class VisualOdometryNRD : public NodeDecider {
          * `gravity_motion_seconds`). */
         bool useGravity{false};
         odometry::GravityEstimator::Params gravity;
+        /** Where no accelerometer measures it, each node's up is taken to be its robot frame's
+         * z to within this [rad] per axis (`carrier_tilt_sigma_deg`; 0: no such prior): a
+         * carrier that holds its camera level - a robot on its floor, a walker holding it
+         * ahead. Without it nothing bounds the tilt VO's steps chain, and a degree of it is
+         * centimetres of height per metre walked. Not for a camera that scans (pointed at a
+         * table, a shelf): its tilt is no carrier's. */
+        double carrierTiltSigma{0};
         /** The carrier's velocity change over the window, taken out of the mean, is VO's: its
          * displacement over `gravityVelocitySeconds` at each end of the window, trusted to
          * `gravityVelocitySigma` per axis [m/s] (`gravity_velocity_sigma`). The same is the
@@ -212,6 +219,7 @@ class VisualOdometryNRD : public NodeDecider {
     odometry::GyroBiasEstimator gyro_bias_;  // learnt where VO tracks on features
     odometry::GravityEstimator gravity_;
     std::size_t attitude_priors_{0};  // nodes given the accelerometer's up
+    std::size_t carrier_ups_{0};      // nodes given the carrier's level up instead
     std::size_t gyro_priors_{0};  // frames given the gyro's rotation
     Anchor reference_;    // VO's reference frame
     Anchor last_tracked_;  // the last frame VO tracked (it may become the reference)
