@@ -354,8 +354,9 @@ TEST(CameraOnlySlam, AGapNoGyroCoversIsBridgedByTheDepthsTurn) {
 }
 
 // Without an IMU, `carrier_tilt_sigma_deg` gives every node the carrier's level up (its robot
-// frame's z) as a prior in the graph; where the accelerometer measured a node's up, the
-// measurement stays and the carrier's fills in only the nodes it left.
+// frame's z) as a prior in the graph (and `carrier_height_sigma` its height on one floor);
+// where the accelerometer measured a node's up, the measurement stays and the carrier's fills
+// in only the nodes it left.
 TEST(CameraOnlySlam, ACarriersLevelUpHoldsTheNodesNoAccelerometerMeasured) {
     lodestone::test::TempDir dir;
     const auto sim = lodestone::test::runCommand(kSim + " -c " + kConfigDir + "/scenarios/office.ini -o " +
@@ -378,11 +379,13 @@ TEST(CameraOnlySlam, ACarriersLevelUpHoldsTheNodesNoAccelerometerMeasured) {
         return std::regex_search(report, m, std::regex("\"" + key + "\": ([0-9]+)")) ? std::stoi(m[1]) : -1;
     };
     const auto [noImu, noImuNodes] = runWith(
-        "no_imu", {{"use_gyro", "false"}, {"use_gravity", "false"}, {"carrier_tilt_sigma_deg", "5"}});
+        "no_imu", {{"use_gyro", "false"}, {"use_gravity", "false"}, {"carrier_tilt_sigma_deg", "5"},
+                   {"carrier_height_sigma", "0.05"}});
     ASSERT_GT(noImuNodes, 50);
     EXPECT_EQ(count(noImu, "nodes_with_carrier_up"), noImuNodes) << noImu;
     EXPECT_EQ(count(noImu, "attitude_priors"), noImuNodes) << "each one held by the optimizer";
     EXPECT_EQ(count(noImu, "nodes_with_measured_up"), -1) << "no accelerometer used";
+    EXPECT_NE(noImu.find("\"carrier_height_sigma\": 0.05"), std::string::npos) << "and their heights";
 
     const auto [imu, imuNodes] = runWith("imu", {{"carrier_tilt_sigma_deg", "5"}});
     const int measured = count(imu, "nodes_with_measured_up"), carried = count(imu, "nodes_with_carrier_up");

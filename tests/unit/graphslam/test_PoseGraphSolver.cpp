@@ -226,6 +226,53 @@ TEST(PoseGraphSolver, MeasuredUpsLevelAChainWhoseEdgesTilt) {
     EXPECT_LT(std::abs(w.nodes.at(5).pitch()), 1e-12) << "outside the window";
 }
 
+TEST(PoseGraphSolver, ACarriersHeightStraightensAChainItsUpsAloneLeaveBent) {
+    const int n = 21;
+    PoseGraphSolver::Options o;
+    o.planar = false;
+    std::vector<LoopClosure> none;
+    // How far the chain bends out of its chord: the level walk's is zero.
+    const auto at = [](const mrpt::poses::CPose3D& p) { return Eigen::Vector3d(p.x(), p.y(), p.z()); };
+    const auto bend = [n, at](const Graph& g) {
+        const Eigen::Vector3d a = at(g.nodes.at(0)), b = at(g.nodes.at(n - 1)), d = (b - a).normalized();
+        double worst = 0;
+        for (const auto& [id, p] : g.nodes) {
+            const Eigen::Vector3d v = at(p) - a;
+            worst = std::max(worst, (v - v.dot(d) * d).norm());
+        }
+        return worst;
+    };
+    // A carrier held level to 5 deg: each node's up a weak prior against 1 deg edges.
+    AttitudePriors ups;
+    for (int k = 0; k < n; ++k) ups.nodes[k] = AttitudePrior{{0, 0, 1}, 5 * M_PI / 180};
+    Graph upsOnly = driftingChain(n, 1.0 * M_PI / 180);
+    PoseGraphSolver(o).solve(upsOnly, none, {}, true, &ups);
+    const double bent = bend(upsOnly);
+    EXPECT_GT(bent, 0.1) << "the drift stays an arc (0.15 m out of its chord)";
+    // The same carrier on one floor: every height held to 5 cm about a common one, solved with
+    // the map's up. A straight walk's floor may tilt with its up (nothing here says which is
+    // level but the weak ups), so what the heights can judge is the shape: a line, not an arc.
+    AttitudePriors floor = ups;
+    for (auto& [id, prior] : floor.nodes) prior.heightSigma = 0.05;
+    floor.mapHeight = 0.3;  // (a wrong start: solved with the nodes)
+    Graph g = driftingChain(n, 1.0 * M_PI / 180);
+    PoseGraphSolver(o).solve(g, none, {}, true, &floor);
+    EXPECT_LT(bend(g), 0.3 * bent) << "within the heights' 5 cm (measured 0.04 m)";
+    double worst = 0;
+    for (const auto& [id, p] : g.nodes) {
+        worst = std::max(worst, std::abs(floor.mapUp.dot(at(p)) - floor.mapHeight));
+    }
+    EXPECT_LT(worst, 0.05) << "every node on the solved floor";
+    EXPECT_LT(std::abs(floor.mapHeight), 0.05) << "the root is on it";
+    // A local window holds the common height, as it holds the up.
+    Graph w = driftingChain(n, 0);
+    AttitudePriors held = floor;
+    held.mapHeight = 0.5;
+    PoseGraphSolver(o).solve(w, none, {10, 11, 12}, false, &held);
+    EXPECT_EQ(held.mapHeight, 0.5);
+    EXPECT_GT(w.nodes.at(11).z(), 0.01) << "the window's nodes drawn towards the held height";
+}
+
 TEST(PoseGraphSolver, WheelScalesAreEstimatedAndTheirArcTakenOutOfALoop) {
     // The wheels 0.3 % apart in scale: 0.75 deg of heading per metre, the same every lap.
     const Eigen::Vector2d scale(0.002, -0.001);

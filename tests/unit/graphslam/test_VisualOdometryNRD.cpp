@@ -42,4 +42,13 @@ TEST(VisualOdometryNRD, ConfigurationMistakesNameTheKey) {
               std::string::npos);
     EXPECT_EQ(errorOf("[VisualOdometryNRD]\ncarrier_tilt_sigma_deg = 4\n"), "no error");
     EXPECT_NEAR(nrd.params().carrierTiltSigma, 4 * M_PI / 180, 1e-12);
+    EXPECT_NE(errorOf("[VisualOdometryNRD]\ncarrier_tilt_sigma_deg = 0\ncarrier_height_sigma = 0.05\n").find("needs use_gravity"),
+              std::string::npos)
+        << "a height with no up";
+    EXPECT_NE(errorOf("[VisualOdometryNRD]\ncarrier_tilt_sigma_deg = 4\ncarrier_height_sigma = -1\n")
+                  .find("carrier_height_sigma"),
+              std::string::npos);
+    EXPECT_EQ(errorOf("[VisualOdometryNRD]\ncarrier_tilt_sigma_deg = 4\ncarrier_height_sigma = 0.05\n"),
+              "no error");
+    EXPECT_EQ(nrd.params().carrierHeightSigma, 0.05);
 }

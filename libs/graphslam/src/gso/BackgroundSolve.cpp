@@ -45,7 +45,10 @@ PoseGraphSolver::Report BackgroundSolve::mergeInto(Graph& graph, std::vector<Loo
         *waitedSeconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     }
-    if (attitude && o.attitude) attitude->mapUp = o.attitude->mapUp;
+    if (attitude && o.attitude) {
+        attitude->mapUp = o.attitude->mapUp;
+        attitude->mapHeight = o.attitude->mapHeight;
+    }
     if (wheels && o.wheels) wheels->scale = o.wheels->scale;
     // Nodes added since the snapshot keep their pose relative to its last node.
     const mrpt::poses::CPose3D lastBefore = graph.nodes.at(last_);

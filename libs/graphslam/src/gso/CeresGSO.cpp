@@ -53,11 +53,14 @@ void CeresGSO::holdFixed(TNodeID count) {
 }
 
 void CeresGSO::addAttitudePrior(TNodeID id, const AttitudePrior& prior) {
-    if (params_.solver.planar || !(prior.sigma > 0)) return;
-    // The map's up starts as the first prior's, turned into the map frame by its node's pose;
-    // full solves refine it.
-    if (attitude_.nodes.empty() && m_graph && m_graph->nodes.count(id))
-        attitude_.mapUp = m_graph->nodes.at(id).getRotationMatrix().asEigen() * prior.up;
+    if (params_.solver.planar || !(prior.sigma > 0 || prior.heightSigma > 0)) return;
+    // The map's up starts as the first prior's, turned into the map frame by its node's pose,
+    // and the carrier's height as that node's along it; full solves refine both.
+    if (attitude_.nodes.empty() && m_graph && m_graph->nodes.count(id)) {
+        const auto& pose = m_graph->nodes.at(id);
+        attitude_.mapUp = pose.getRotationMatrix().asEigen() * prior.up;
+        attitude_.mapHeight = attitude_.mapUp.dot(Eigen::Vector3d(pose.x(), pose.y(), pose.z()));
+    }
     attitude_.nodes[id] = prior;
 }
 

@@ -141,7 +141,8 @@ struct GraphProblem {
     TNodeID gauge{std::numeric_limits<TNodeID>::max()};  // held fixed when nothing else is
     // (on the heap: Ceres keeps its address, and the problem is moved out of buildProblem)
     std::unique_ptr<double[]> mapUp{new double[3]{0, 0, 1}};
-    bool mapUpFree{false};
+    std::unique_ptr<double[]> mapHeight{new double[1]{0}};
+    bool mapUpFree{false}, mapHeightUsed{false};
     std::unique_ptr<double[]> wheelScale{new double[2]{0, 0}};  // (left, right)
     bool wheelScaleUsed{false}, wheelScaleFree{false};
 
@@ -205,21 +206,33 @@ std::vector<EdgeIt> edgesOf(const Graph& graph, const std::vector<LoopClosure>& 
 void addAttitudePriors(GraphProblem& gp, const AttitudePriors& priors, bool solveMapUp) {
     auto& problem = *gp.problem;
     for (int k = 0; k < 3; ++k) gp.mapUp[k] = priors.mapUp[k];
+    gp.mapHeight[0] = priors.mapHeight;
     bool any = false;
     for (auto& [id, st] : gp.states) {
         const auto p = priors.nodes.find(id);
-        if (p == priors.nodes.end() || !(p->second.sigma > 0)) continue;
-        if (problem.IsParameterBlockConstant(st.q) && !solveMapUp) continue;
-        problem.AddResidualBlock(
-            new ceres::AutoDiffCostFunction<detail::AttitudePriorCost, 3, 4, 3>(
-                new detail::AttitudePriorCost(p->second.up, p->second.sigma)),
-            nullptr, st.q, gp.mapUp.get());
-        any = true;
+        if (p == priors.nodes.end()) continue;
+        if (p->second.sigma > 0 && (solveMapUp || !problem.IsParameterBlockConstant(st.q))) {
+            problem.AddResidualBlock(
+                new ceres::AutoDiffCostFunction<detail::AttitudePriorCost, 3, 4, 3>(
+                    new detail::AttitudePriorCost(p->second.up, p->second.sigma)),
+                nullptr, st.q, gp.mapUp.get());
+            any = true;
+        }
+        if (p->second.heightSigma > 0 && (solveMapUp || !problem.IsParameterBlockConstant(st.t))) {
+            problem.AddResidualBlock(
+                new ceres::AutoDiffCostFunction<detail::HeightPriorCost, 1, 3, 3, 1>(
+                    new detail::HeightPriorCost(p->second.heightSigma)),
+                nullptr, st.t, gp.mapUp.get(), gp.mapHeight.get());
+            any = gp.mapHeightUsed = true;
+        }
     }
     if (!any) return;
     problem.SetManifold(gp.mapUp.get(), new ceres::SphereManifold<3>);
     gp.mapUpFree = solveMapUp;
-    if (!solveMapUp) problem.SetParameterBlockConstant(gp.mapUp.get());
+    if (!solveMapUp) {
+        problem.SetParameterBlockConstant(gp.mapUp.get());
+        if (gp.mapHeightUsed) problem.SetParameterBlockConstant(gp.mapHeight.get());
+    }
 }
 
 template <typename Moves>
@@ -349,8 +362,10 @@ PoseGraphSolver::Report PoseGraphSolver::solve(Graph& graph, std::vector<LoopClo
             ++report.solves;
             report.edges = gp.edges;
             report.variableNodes = report.fixedNodes = 0;
-            if (gp.mapUpFree)
+            if (gp.mapUpFree) {
                 attitude->mapUp = Eigen::Map<const Eigen::Vector3d>(gp.mapUp.get()).normalized();
+                if (gp.mapHeightUsed) attitude->mapHeight = gp.mapHeight[0];
+            }
             if (gp.wheelScaleFree)
                 wheels->scale = Eigen::Map<const Eigen::Vector2d>(gp.wheelScale.get());
             for (const auto& [id, st] : gp.states) {

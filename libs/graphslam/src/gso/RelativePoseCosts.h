@@ -186,6 +186,21 @@ struct AttitudePriorCost {
     double inv_sigma_;
 };
 
+/** A node's height along the map's up against the carrier's common height (a carrier on one
+ * floor): the residual u_map . t - h, whitened by its sigma. */
+struct HeightPriorCost {
+    explicit HeightPriorCost(double sigma) : inv_sigma_(1 / sigma) {}
+
+    template <typename T>
+    bool operator()(const T* t, const T* mapUp, const T* height, T* residual) const {
+        residual[0] = T(inv_sigma_) * (mapUp[0] * t[0] + mapUp[1] * t[1] + mapUp[2] * t[2] - height[0]);
+        return true;
+    }
+
+  private:
+    double inv_sigma_;
+};
+
 /** S with S^T S = info, for an information matrix that may be only semi-definite (a weak or
  * partly unobserved edge): eigenvalues below zero are treated as zero. */
 template <int N>

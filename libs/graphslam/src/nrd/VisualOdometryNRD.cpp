@@ -111,6 +111,12 @@ void VisualOdometryNRD::configure(const mrpt::config::CConfigFileBase& ini) {
     p.carrierTiltSigma =
         s.getDouble("carrier_tilt_sigma_deg", p.carrierTiltSigma * 180 / M_PI) * M_PI / 180;
     if (!(p.carrierTiltSigma >= 0)) s.fail("carrier_tilt_sigma_deg", "must be >= 0");
+    p.carrierHeightSigma = s.getDouble("carrier_height_sigma", p.carrierHeightSigma);
+    if (!(p.carrierHeightSigma >= 0)) s.fail("carrier_height_sigma", "must be >= 0");
+    if (p.carrierHeightSigma > 0 && !(p.useGravity || p.carrierTiltSigma > 0))
+        s.fail("carrier_height_sigma",
+               "needs use_gravity = true or carrier_tilt_sigma_deg > 0 (a height is along an up: "
+               "with none, the nodes' own plane could stand on its edge)");
     if (p.useGravity && !p.useGyro)
         s.fail("use_gravity",
                "needs use_gyro = true (the gyro turns the window's samples into one frame)");
@@ -422,6 +428,10 @@ void VisualOdometryNRD::registerAt(const mrpt::obs::CObservation3DRangeScan& sca
             rec.attitude = AttitudePrior{Eigen::Vector3d::UnitZ(), params_.carrierTiltSigma};
             ++carrier_ups_;
         }
+        if (params_.carrierHeightSigma > 0) {
+            if (!rec.attitude) rec.attitude = AttitudePrior{};  // (a height, no up)
+            rec.attitude->heightSigma = params_.carrierHeightSigma;
+        }
         if (restart) {
             rec.liftTime = lostAfter;  // tracking lost after this frame ...
             rec.putDownTime = t;       // ... and found again at this one
@@ -496,6 +506,7 @@ JsonObject VisualOdometryNRD::describe() const {
     }
     if (params_.carrierTiltSigma > 0)
         params.set("carrier_tilt_sigma_deg", params_.carrierTiltSigma * 180 / M_PI);
+    if (params_.carrierHeightSigma > 0) params.set("carrier_height_sigma", params_.carrierHeightSigma);
     if (params_.useGravity) {
         params.set("accel_bias", params_.gravity.biasStd)
             .set("gravity_window_seconds", params_.gravity.windowSeconds)

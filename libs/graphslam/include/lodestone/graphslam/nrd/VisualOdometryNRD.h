@@ -119,6 +119,11 @@ class VisualOdometryNRD : public NodeDecider {
          * centimetres of height per metre walked. Not for a camera that scans (pointed at a
          * table, a shelf): its tilt is no carrier's. */
         double carrierTiltSigma{0};
+        /** Each node's height along the map's up held to the carrier's common height within
+         * this [m] (`carrier_height_sigma`; 0: no such prior): a carrier on one floor - a robot,
+         * a walker's hand bobbing a few centimetres. The up is the accelerometer's where
+         * measured, else the one the nodes' positions lie level in. Not for stairs or ramps. */
+        double carrierHeightSigma{0};
         /** The carrier's velocity change over the window, taken out of the mean, is VO's: its
          * displacement over `gravityVelocitySeconds` at each end of the window, trusted to
          * `gravityVelocitySigma` per axis [m/s] (`gravity_velocity_sigma`). The same is the
