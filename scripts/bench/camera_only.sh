@@ -4,13 +4,15 @@
 # encoders, wheel drop or magnetometers) and by hand (--handheld: 6-DoF, shaking, at 1.35 m) -
 # colour as PNG files beside the rawlog, read back as a dataset's are. The camera-only
 # recordings carry a gyro (--gyro: its own noise stream, so every other sample is as without
-# it), and each is run twice with rgbd_only.ini: without the IMU (use_gyro, use_gravity false:
-# the gaps' turns then measured by their frames' depth) and with it (the INI as it ships).
+# it), and each is run four times with rgbd_only.ini: without the IMU (use_gyro, use_gravity
+# false: the gaps' turns then measured by their frames' depth) and with it (the INI as it
+# ships), each also as a level carrier on one floor (carrier_tilt_sigma_deg = 5 where no
+# accelerometer gives the up, carrier_height_sigma = 0.05: opt-in, a walker's or a robot's).
 # Beside them the robot with its wheels and visual_only.ini. One row per run: ATE, VO's gaps
 # and how they were bridged, closures, the real-time factor; then median and worst over the
 # seeds.
 # Usage: scripts/bench/camera_only.sh ["SEED..."] [SCENARIO.ini ...]
-#        (default: seed 1; office and paper_loop, 640x480 at 30 Hz: about an hour a seed on
+#        (default: seed 1; office and paper_loop, 640x480 at 30 Hz: about 1.5 hours a seed on
 #        2 cores, and up to 13 GB of disk while a recording is in use; REC_DIR=DIR reads
 #        DIR/NAME_{wheels,cam,hand}SEED.rawlog where they exist and keeps what it records there)
 set -euo pipefail
@@ -28,6 +30,8 @@ scenarios=("$@")
 base="$root/config_ini/slam/rgbd_only.ini"
 source "$root/scripts/bench/ini_variant.bash"
 variant rgbd_no_imu use_gyro=false use_gravity=false
+variant rgbd_level_no_imu use_gyro=false use_gravity=false carrier_tilt_sigma_deg=5 carrier_height_sigma=0.05
+variant rgbd_floor carrier_height_sigma=0.05
 cp "$base" "$out/rgbd_only.ini"
 cp "$root/config_ini/slam/visual_only.ini" "$out/visual_only.ini"
 results="$out/results.txt"
@@ -43,9 +47,11 @@ for ini in "${scenarios[@]}"; do
             case $tag in
                 wheels) flags=(); runs=("robot, wheels + VO:visual_only") ;;
                 cam) flags=(--camera-only --gyro)
-                     runs=("robot, camera only:rgbd_no_imu" "robot, camera + gyro:rgbd_only") ;;
+                     runs=("robot, camera only:rgbd_no_imu" "robot, camera only, level on one floor:rgbd_level_no_imu"
+                           "robot, camera + gyro:rgbd_only" "robot, camera + gyro, one floor:rgbd_floor") ;;
                 hand) flags=(--handheld --gyro)
-                      runs=("hand, camera only:rgbd_no_imu" "hand, camera + gyro:rgbd_only") ;;
+                      runs=("hand, camera only:rgbd_no_imu" "hand, camera only, level on one floor:rgbd_level_no_imu"
+                            "hand, camera + gyro:rgbd_only" "hand, camera + gyro, one floor:rgbd_floor") ;;
             esac
             rawlog="$recordings/${name}_$tag$seed.rawlog"
             [[ -f $rawlog ]] || "$sim" -c "$ini" -o "$rawlog" -s "$seed" "${flags[@]}" > /dev/null

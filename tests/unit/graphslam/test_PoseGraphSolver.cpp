@@ -271,6 +271,13 @@ TEST(PoseGraphSolver, ACarriersHeightStraightensAChainItsUpsAloneLeaveBent) {
     PoseGraphSolver(o).solve(w, none, {10, 11, 12}, false, &held);
     EXPECT_EQ(held.mapHeight, 0.5);
     EXPECT_GT(w.nodes.at(11).z(), 0.01) << "the window's nodes drawn towards the held height";
+    // Heights with no up anywhere (an accelerometer asked for that never reported): none taken.
+    AttitudePriors heightsOnly;
+    for (int k = 0; k < n; ++k) heightsOnly.nodes[k] = AttitudePrior{{0, 0, 1}, 0, 0.05};
+    Graph h = driftingChain(n, 1.0 * M_PI / 180);
+    const Graph before = h;
+    PoseGraphSolver(o).solve(h, none, {}, true, &heightsOnly);
+    EXPECT_NEAR(h.nodes.at(n - 1).z(), before.nodes.at(n - 1).z(), 1e-6) << "the chain as it was";
 }
 
 TEST(PoseGraphSolver, WheelScalesAreEstimatedAndTheirArcTakenOutOfALoop) {

@@ -207,6 +207,10 @@ void addAttitudePriors(GraphProblem& gp, const AttitudePriors& priors, bool solv
     auto& problem = *gp.problem;
     for (int k = 0; k < 3; ++k) gp.mapUp[k] = priors.mapUp[k];
     gp.mapHeight[0] = priors.mapHeight;
+    // Heights are along the map's up: with no node's up to hold it, the nodes' own plane could
+    // stand on its edge (a straight walk), so they wait for one (an IMU that never reported).
+    const bool anyUp = std::any_of(priors.nodes.begin(), priors.nodes.end(),
+                                   [](const auto& p) { return p.second.sigma > 0; });
     bool any = false;
     for (auto& [id, st] : gp.states) {
         const auto p = priors.nodes.find(id);
@@ -218,7 +222,8 @@ void addAttitudePriors(GraphProblem& gp, const AttitudePriors& priors, bool solv
                 nullptr, st.q, gp.mapUp.get());
             any = true;
         }
-        if (p->second.heightSigma > 0 && (solveMapUp || !problem.IsParameterBlockConstant(st.t))) {
+        if (anyUp && p->second.heightSigma > 0 &&
+            (solveMapUp || !problem.IsParameterBlockConstant(st.t))) {
             problem.AddResidualBlock(
                 new ceres::AutoDiffCostFunction<detail::HeightPriorCost, 1, 3, 3, 1>(
                     new detail::HeightPriorCost(p->second.heightSigma)),
