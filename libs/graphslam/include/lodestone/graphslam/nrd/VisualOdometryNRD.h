@@ -121,8 +121,9 @@ class VisualOdometryNRD : public NodeDecider {
         double carrierTiltSigma{0};
         /** Each node's height along the map's up held to the carrier's common height within
          * this [m] (`carrier_height_sigma`; 0: no such prior): a carrier on one floor - a robot,
-         * a walker's hand bobbing a few centimetres. The up is the accelerometer's where
-         * measured, else the one the nodes' positions lie level in. Not for stairs or ramps. */
+         * a walker's hand bobbing a few centimetres. Along the map's up, which the nodes' ups
+         * (the accelerometer's, or the carrier's) hold: a node's height counts once one of
+         * them has an up. Not for stairs or ramps. */
         double carrierHeightSigma{0};
         /** The carrier's velocity change over the window, taken out of the mean, is VO's: its
          * displacement over `gravityVelocitySeconds` at each end of the window, trusted to
