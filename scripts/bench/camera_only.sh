@@ -7,7 +7,8 @@
 # it), and each is run four times with rgbd_only.ini: without the IMU (use_gyro, use_gravity
 # false: the gaps' turns then measured by their frames' depth) and with it (the INI as it
 # ships), each also as a level carrier on one floor (carrier_tilt_sigma_deg = 5 where no
-# accelerometer gives the up, carrier_height_sigma = 0.05: opt-in, a walker's or a robot's).
+# accelerometer gives the up, carrier_height_sigma = 0.05: opt-in; it helps the hand-held
+# loop and, measured, not the robot's camera).
 # Beside them the robot with its wheels and visual_only.ini. One row per run: ATE, VO's gaps
 # and how they were bridged, closures, the real-time factor; then median and worst over the
 # seeds.
