@@ -117,7 +117,8 @@ class VisualOdometryNRD : public NodeDecider {
          * carrier that holds its camera level - a robot on its floor, a walker holding it
          * ahead. Without it nothing bounds the tilt VO's steps chain, and a degree of it is
          * centimetres of height per metre walked. Not for a camera that scans (pointed at a
-         * table, a shelf): its tilt is no carrier's. */
+         * table, a shelf): its tilt is no carrier's. Measured with `carrierHeightSigma`: the
+         * hand-held loop gains, the robot's camera loses (docs/results/camera-only.md). */
         double carrierTiltSigma{0};
         /** Each node's height along the map's up held to the carrier's common height within
          * this [m] (`carrier_height_sigma`; 0: no such prior): a carrier on one floor - a robot,
