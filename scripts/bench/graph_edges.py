@@ -7,7 +7,10 @@ does a covariance lie? Two markdown tables:
      position ellipse;
   2. odometry edges (node k to k + 1), by the heading sigma they claimed: the heading error's
      RMS and sum, its NEES (mean; 1 if honest), and their length against the truth's (a scale
-     bias: summed lengths, measured over true, minus one).
+     bias: summed lengths, measured over true, minus one);
+  3. the same edges split by whether they claim under half the truth's length (of those that
+     moved 2 cm or more): how much of a run's shortness a few edges hold (a bridge from a
+     standstill) and how much is spread over every step.
 Errors are taken in the edge's own frame (planar: x, y, yaw). Kidnap edges (sigma > 1) are
 left out.
 Usage: scripts/bench/graph_edges.py RUN_DIR GROUND_TRUTH.tum"""
@@ -115,6 +118,7 @@ def main():
     node_time = {int(r["node"]): float(r["timestamp"]) for r in csv.DictReader(open(run + "/nodes.csv"))}
     classes = [(0, 0.02), (0.02, 0.05), (0.05, 0.1), (0.1, 0.2), (0.2, 0.5), (0.5, 1e9)]
     stats = {c: [] for c in classes}
+    halves = {"under half the truth's length": [], "the rest": []}
     for k, t in node_time.items():
         if (k, k + 1) not in edges or k + 1 not in node_time:
             continue
@@ -125,6 +129,8 @@ def main():
         yaw_err = error_of(measured, truth)[2]
         sigma = math.degrees(math.sqrt(cov[2][2]))
         lengths = (math.hypot(measured[0], measured[1]), math.hypot(truth[0], truth[1]))
+        if lengths[1] >= 0.02:
+            halves["under half the truth's length" if lengths[0] < 0.5 * lengths[1] else "the rest"].append(lengths)
         for c in classes:
             if c[0] <= sigma < c[1]:
                 stats[c].append((math.degrees(yaw_err), yaw_err * yaw_err / cov[2][2], lengths))
@@ -139,6 +145,13 @@ def main():
                 c[0], c[1] if c[1] < 1e9 else "", len(v), math.sqrt(sum(a * a for a, _, _ in v) / len(v)),
                 sum(a for a, _, _ in v), sum(n for _, n, _ in v) / len(v),
                 100 * (sum(l[0] for _, _, l in v) / true_length - 1) if true_length > 0 else 0, true_length))
+    print()
+    print("| odometry edges that moved >= 2 cm | edges | true length [m] | measured [m] | length against the truth's |")
+    print("|---|---|---|---|---|")
+    for name, v in halves.items():
+        true_length, length = sum(l[1] for l in v), sum(l[0] for l in v)
+        print("| %s | %d | %.2f | %.2f | %+.2f %% |" % (
+            name, len(v), true_length, length, 100 * (length / true_length - 1) if true_length > 0 else 0))
 
 
 if __name__ == "__main__":

@@ -29,10 +29,11 @@ const std::string kConfigDir = LODESTONE_CONFIG_INI_DIR;
 
 /** The office seen by the camera alone at 320x240 / 15 Hz (its RGB-D frames kept, and a gyro's
  * samples when `simFlags` asks for one; the ground truth beside); frames [blankFrom, blankTo)
- * covered: a plain grey image and, unless `keepDepth`, no depth either (a covered sensor).
- * Returns the camera-only rawlog's path. */
+ * covered: a plain grey image and, unless `keepDepth`, no depth either (a covered sensor) - or
+ * with `noise`, each frame a new picture of noise (features, none of which match the next
+ * frame's). Returns the camera-only rawlog's path. */
 std::string cameraOnlyOffice(const lodestone::test::TempDir& dir, int blankFrom = -1, int blankTo = -1,
-                             bool keepDepth = false, const std::string& simFlags = "") {
+                             bool keepDepth = false, const std::string& simFlags = "", bool noise = false) {
     const auto sim = lodestone::test::runCommand(kSim + " -c " + kConfigDir + "/scenarios/office.ini -o " +
                                                  dir.file("office.rawlog") +
                                                  " --camera 320x240@15 --embedded-images " + simFlags);
@@ -50,9 +51,10 @@ std::string cameraOnlyOffice(const lodestone::test::TempDir& dir, int blankFrom 
         }
         if (frame >= blankFrom && frame < blankTo) {
             // A lens covered: a plain grey image, nothing for VO to track.
-            const cv::Mat grey(static_cast<int>(scan->cameraParams.nrows),
-                               static_cast<int>(scan->cameraParams.ncols), CV_8UC3, cv::Scalar(128, 128, 128));
-            scan->intensityImage = mrpt::img::CImage(grey, mrpt::img::DEEP_COPY);
+            cv::Mat image(static_cast<int>(scan->cameraParams.nrows),
+                          static_cast<int>(scan->cameraParams.ncols), CV_8UC3, cv::Scalar(128, 128, 128));
+            if (noise) cv::RNG(static_cast<std::uint64_t>(frame)).fill(image, cv::RNG::UNIFORM, 0, 256);
+            scan->intensityImage = mrpt::img::CImage(image, mrpt::img::DEEP_COPY);
             if (!keepDepth) scan->rangeImage.setZero();
         }
         writer.write(*scan);
@@ -120,6 +122,22 @@ bool handHeldOfficeWithImu(const lodestone::test::TempDir& dir) {
 std::string reportOf(const std::string& dir) {
     std::ifstream in(dir + "/report.json");
     return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+/** A run's node timestamps, from its nodes.csv. */
+std::map<mrpt::graphs::TNodeID, double> nodeStamps(const std::string& dir) {
+    std::map<mrpt::graphs::TNodeID, double> stamps;
+    std::ifstream nodes(dir + "/nodes.csv");
+    std::string line;
+    std::getline(nodes, line);  // (header)
+    while (std::getline(nodes, line)) {
+        std::istringstream fields(line);
+        std::string id, stamp;
+        std::getline(fields, id, ',');
+        std::getline(fields, stamp, ',');
+        stamps[std::stoul(id)] = std::stod(stamp);
+    }
+    return stamps;
 }
 }  // namespace
 
@@ -282,6 +300,71 @@ TEST(CameraOnlySlam, AGapTheGyroCoversIsBridgedByIt) {
     EXPECT_NE(shorter.find("\"segments\": 2"), std::string::npos) << shorter;
 }
 
+// A 3 s stretch whose every frame is a new picture of noise, the depth still the office's: VO
+// restarts on each (it has features) and loses track again five frames later, so the stretch
+// is a chain of gaps of 0.4 s. With a gyro, each is bridged by its rotation and the fading
+// velocity (the gaps' depth left out: the motion model alone). Each restart starts its gap
+// from the velocity the one before carried to it, so the chain goes as far as one gap over the
+// whole stretch does (the same recording with a grey picture instead: no restart) - not, as
+// from a standstill at every restart, a third as far.
+TEST(CameraOnlySlam, RestartsInAStretchVoCannotTrackCarryTheVelocityOn) {
+    const int from = 150, to = 195;  // 15 Hz: 3 s
+    const auto stretch = [&](bool noise, double& estimated, double& truth) {
+        lodestone::test::TempDir dir;
+        const std::string rawlog = cameraOnlyOffice(dir, from, to, true, "--handheld --gyro", noise);
+        const auto run = lodestone::test::runCommand(
+            kSlam + " --rawlog " + rawlog + " --config " +
+            rgbdOnlyWith(dir.file("run.ini"), {{"relocalize_keyframes", "0"},
+                                               {"bridge_max_seconds", "0"},
+                                               {"depth_alignment", "false"},
+                                               {"bridge_by_depth", "false"},
+                                               {"bridge_turn_by_depth", "false"}}) +
+            " --out " + dir.file("out") + " --quiet");
+        ASSERT_EQ(run.exitCode, 0) << run.output;
+        const std::string report = reportOf(dir.file("out"));
+        std::smatch gaps;
+        ASSERT_TRUE(std::regex_search(report, gaps, std::regex("\"vo_gaps_bridged_by_gyro\": ([0-9]+)")));
+        if (noise) {
+            EXPECT_GE(std::stoi(gaps[1]), 5) << "a restart every 6 frames";
+        } else {
+            EXPECT_EQ(std::stoi(gaps[1]), 1) << report;
+        }
+        EXPECT_NE(report.find("\"segments\": 1"), std::string::npos) << report;
+        // The graph's odometry edges chained across the stretch, against the truth.
+        const auto stamps = nodeStamps(dir.file("out"));
+        const double t0 = stamps.begin()->second;
+        mrpt::graphs::TNodeID a = 0, b = 0;
+        for (const auto& [id, t] : stamps) {
+            if (t <= t0 + (from - 1) / 15.0) a = id;
+            if (t >= t0 + to / 15.0 && b == 0) b = id;
+        }
+        ASSERT_GT(b, a);
+        mrpt::graphs::CNetworkOfPoses3DInf graph;
+        graph.loadFromTextFile(dir.file("out/graph.graph"));
+        mrpt::poses::CPose3D chained;
+        for (auto id = a; id < b; ++id) {
+            const auto edge = graph.edges.find({id, id + 1});
+            ASSERT_NE(edge, graph.edges.end()) << id;
+            chained = chained + edge->second.getPoseMean();
+        }
+        const auto gt = lodestone::io::readTumTrajectory(dir.file("camera.gt.tum"));
+        const auto* ga = lodestone::io::poseNearest(gt, stamps.at(a), 0.01);
+        const auto* gb = lodestone::io::poseNearest(gt, stamps.at(b), 0.01);
+        ASSERT_TRUE(ga && gb);
+        estimated = chained.translation().norm();
+        truth = (gb->pose - ga->pose).translation().norm();
+    };
+    double oneGap = 0, oneGapTruth = 0, chain = 0, chainTruth = 0;
+    stretch(false, oneGap, oneGapTruth);
+    stretch(true, chain, chainTruth);
+    EXPECT_GT(oneGapTruth, 0.5) << "the hand walks on through the stretch";
+    EXPECT_NEAR(chainTruth, oneGapTruth, 0.05) << "the same stretch, its ends the nearest nodes";
+    // (the fading velocity over 3 s carries a third of a walk at constant speed: both short of
+    // the truth alike)
+    EXPECT_GT(oneGap, 0.2 * oneGapTruth);
+    EXPECT_NEAR(chain, oneGap, 0.25 * oneGap) << "truth " << chainTruth;
+}
+
 // No gyro recorded: a 6 s gap where the images hold nothing (VO's own depth alignment off, so
 // it loses track) but the depth still sees the office - the gap's turn and translation are
 // measured by its frames' depth (bridge_turn_by_depth, as rgbd_only.ini ships): one segment,
@@ -309,17 +392,7 @@ TEST(CameraOnlySlam, AGapNoGyroCoversIsBridgedByTheDepthsTurn) {
     EXPECT_NE(report.find("\"segments\": 1"), std::string::npos) << report;
     // The edge across the gap (the one between nodes furthest apart in time) against the truth:
     // the hand turned about 90 deg and walked 1.4 m in it.
-    std::map<mrpt::graphs::TNodeID, double> stamps;
-    std::ifstream nodes(dir.file("turn/nodes.csv"));
-    std::string line;
-    std::getline(nodes, line);  // (header)
-    while (std::getline(nodes, line)) {
-        std::istringstream fields(line);
-        std::string id, stamp;
-        std::getline(fields, id, ',');
-        std::getline(fields, stamp, ',');
-        stamps[std::stoul(id)] = std::stod(stamp);
-    }
+    auto stamps = nodeStamps(dir.file("turn"));
     mrpt::graphs::CNetworkOfPoses3DInf graph;
     graph.loadFromTextFile(dir.file("turn/graph.graph"));
     mrpt::graphs::TNodeID gapFrom = 0;

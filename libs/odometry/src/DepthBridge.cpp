@@ -80,6 +80,21 @@ Eigen::Matrix3d DepthBridge::covariance() const {
     return P - Pu * Pu.transpose() / (up_.dot(Pu) + params_.heightSigma * params_.heightSigma);
 }
 
+Eigen::Vector3d DepthBridge::velocity() const {
+    const Eigen::Vector3d v = x_.segment<3>(3);
+    if (!(params_.heightSigma > 0)) return v;
+    // (the height's measurement as in displacement(), its gain on the velocity)
+    const Eigen::Vector3d Pu = P_.topLeftCorner<3, 3>() * up_, Pvu = P_.block<3, 3>(3, 0) * up_;
+    return v - Pvu * (up_.dot(x_.head<3>()) / (up_.dot(Pu) + params_.heightSigma * params_.heightSigma));
+}
+
+Eigen::Matrix3d DepthBridge::velocityCovariance() const {
+    const Eigen::Matrix3d P = P_.block<3, 3>(3, 3);
+    if (!(params_.heightSigma > 0)) return P;
+    const Eigen::Vector3d Pu = P_.topLeftCorner<3, 3>() * up_, Pvu = P_.block<3, 3>(3, 0) * up_;
+    return P - Pvu * Pvu.transpose() / (up_.dot(Pu) + params_.heightSigma * params_.heightSigma);
+}
+
 void DepthBridge::predict(double t, const Eigen::Matrix3d& R_0) {
     const double dt = std::max(0.0, t - t_);
     t_ = std::max(t_, t);

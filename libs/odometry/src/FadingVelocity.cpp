@@ -13,6 +13,14 @@ Eigen::Vector3d FadingVelocity::meanDisplacement(const Eigen::Vector3d& v0, doub
                            v0.y() * (c * -std::expm1(-T / c)), v0.z() * (c * -std::expm1(-T / c)));
 }
 
+void FadingVelocity::fadeVelocity(double seconds, Eigen::Vector3d& v, Eigen::Matrix3d& C) const {
+    const Step along = step(seconds), side = across().step(seconds);
+    const Eigen::Vector3d fade(along.fade, side.fade, side.fade);
+    v = fade.cwiseProduct(v);
+    C = fade.asDiagonal() * C * fade.asDiagonal();
+    C.diagonal() += Eigen::Vector3d(along.qvv, side.qvv, side.qvv);
+}
+
 FadingVelocity FadingVelocity::across() const {
     return {speedSigma, acrossSeconds > 0 ? acrossSeconds : correlationSeconds};
 }

@@ -38,6 +38,13 @@ TEST(DepthBridge, WithoutDepthItIsTheFadingVelocitysBridge) {
         EXPECT_NEAR(bridge.covariance()(a, a), variance, 1e-9 * variance);
     }
     EXPECT_EQ(bridge.aligned(), 0);
+    // The velocity it ends with (what a gap after a restart on this frame starts from): the
+    // model's too.
+    Eigen::Vector3d v = v0;
+    Eigen::Matrix3d C = v0Sigma * v0Sigma * Eigen::Matrix3d::Identity();
+    p.motion.fadeVelocity(gap, v, C);
+    EXPECT_NEAR((bridge.velocity() - v).norm(), 0, 1e-9);
+    EXPECT_NEAR((bridge.velocityCovariance() - C).norm(), 0, 1e-9);
 }
 
 // Walking 1 m at a plain wall (2 m from it to 1 m, nothing else in view) while drifting 0.2 m
@@ -155,6 +162,13 @@ TEST(DepthBridge, TheCarriersHeightHoldsWhereNothingMeasuresIt) {
     EXPECT_LT(std::sqrt(held.covariance()(2, 2)), 0.1);
     EXPECT_NEAR(held.displacement().x(), free.displacement().x(), 1e-12);
     EXPECT_NEAR(held.covariance()(0, 0), free.covariance()(0, 0), 1e-12);
+    // The velocity the bridge hands on to a gap after it is conditioned alike (the two are
+    // correlated): held at its height, the carrier is not still climbing as the free model
+    // has it, and its vertical velocity is surer.
+    EXPECT_GT(free.velocity().z(), 0.0);
+    EXPECT_LT(held.velocity().z(), free.velocity().z());
+    EXPECT_LT(held.velocityCovariance()(2, 2), free.velocityCovariance()(2, 2));
+    EXPECT_NEAR(held.velocity().x(), free.velocity().x(), 1e-12);
 }
 
 // No gyro: a hand-held camera (1.25 m up) turning a quarter turn in place at a plain corner, 1 m

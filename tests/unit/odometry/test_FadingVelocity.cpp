@@ -116,3 +116,36 @@ TEST(FadingVelocity, AcrossTheHeadingTheVelocityFadesSooner) {
     EXPECT_EQ(var.y(), FadingVelocity({0.5, 0.25}).displacementVariance(4.0, 0.03));
     EXPECT_EQ(var.z(), var.y());
 }
+
+// The velocity itself across a gap, as the next gap starts from it: faded towards zero with the
+// axis's time constant, its spread towards the carrier's. The process is Markov, so a gap cut
+// in two (VO restarting in between and losing track again) carries the velocity to the same
+// end as the whole gap does - and the displacement of the two halves adds up to the whole's.
+TEST(FadingVelocity, ItsVelocityFadesAlikeInOneGapOrInTwo) {
+    FadingVelocity model{0.5, 1.0, 0.25};
+    const Eigen::Vector3d v0(0.3, 0.1, -0.05);
+    const Eigen::Matrix3d C0 = 0.03 * 0.03 * Eigen::Matrix3d::Identity();
+    Eigen::Vector3d whole = v0;
+    Eigen::Matrix3d wholeC = C0;
+    model.fadeVelocity(0.6, whole, wholeC);
+    EXPECT_NEAR(whole.x(), 0.3 * std::exp(-0.6), 1e-12);
+    EXPECT_NEAR(whole.y(), 0.1 * std::exp(-0.6 / 0.25), 1e-12);
+    EXPECT_NEAR(wholeC(0, 0), std::exp(-1.2) * 0.03 * 0.03 + 0.25 * (1 - std::exp(-1.2)), 1e-12);
+
+    Eigen::Vector3d halves = v0;
+    Eigen::Matrix3d halvesC = C0;
+    model.fadeVelocity(0.2, halves, halvesC);
+    const Eigen::Vector3d first = model.meanDisplacement(v0, 0.2);
+    const Eigen::Vector3d second = model.meanDisplacement(halves, 0.4);
+    model.fadeVelocity(0.4, halves, halvesC);
+    EXPECT_NEAR((halves - whole).norm(), 0, 1e-12);
+    EXPECT_NEAR((halvesC - wholeC).norm(), 0, 1e-12);
+    EXPECT_NEAR((first + second - model.meanDisplacement(v0, 0.6)).norm(), 0, 1e-12);
+
+    // Long after, nothing of the start is left: zero, and the carrier's spread.
+    Eigen::Vector3d late = v0;
+    Eigen::Matrix3d lateC = C0;
+    model.fadeVelocity(60, late, lateC);
+    EXPECT_NEAR(late.norm(), 0, 1e-12);
+    EXPECT_NEAR((lateC - 0.25 * Eigen::Matrix3d::Identity()).norm(), 0, 1e-12);
+}

@@ -4,6 +4,7 @@
 // odometry::DepthBridge), or without a gyro the depth's turn and translation both.
 #include <lodestone/graphslam/Se3Pose.h>
 #include <lodestone/graphslam/nrd/VisualOdometryNRD.h>
+#include <lodestone/vision/So3.h>
 
 #include <Eigen/Eigenvalues>
 
@@ -63,7 +64,9 @@ VisualOdometryNRD::Velocity VisualOdometryNRD::velocityAtLastTracked() const {
     const std::size_t start = windowStart(params_.bridgeVelocity.correlationSeconds);
     Velocity v;
     if (chained_.empty() || !(chained_.back().first > chained_[start].first)) {
-        // (VO has not tracked since it restarted: the carrier's velocity is its spread)
+        // (VO has not tracked since it restarted: the velocity the gap before carried, else
+        // the carrier's spread)
+        if (carried_velocity_) return *carried_velocity_;
         v.sigma = params_.bridgeVelocity.speedSigma;
         v.covariance = v.sigma * v.sigma * Eigen::Matrix3d::Identity();
         return v;
@@ -90,7 +93,8 @@ VisualOdometryNRD::Velocity VisualOdometryNRD::turnRateAtLastTracked() const {
     const std::size_t start = windowStart(params_.gravityVelocitySeconds);
     Velocity w;
     if (chained_.empty() || !(chained_.back().first > chained_[start].first)) {
-        w.sigma = params_.bridgeTurn.rate.speedSigma;  // (not tracked since the restart)
+        if (carried_turn_rate_) return *carried_turn_rate_;  // (not tracked since the restart)
+        w.sigma = params_.bridgeTurn.rate.speedSigma;
         w.covariance = w.sigma * w.sigma * Eigen::Matrix3d::Identity();
         return w;
     }
@@ -172,21 +176,33 @@ void VisualOdometryNRD::followGap(const vision::RgbdFrame& frame, double t,
         // to a few features), the velocity there is the model's, not VO's drift. Axis by axis:
         // VO's correlations between axes are the least sure part of its covariance, and the
         // depth's precise approach would turn a slight one into metres per second elsewhere.
-        const auto vo = velocityAtLastTracked();
-        const double s2 = std::pow(params_.bridgeVelocity.speedSigma, 2);
-        const Eigen::Array3d c = vo.covariance.diagonal().array(), gain = s2 / (s2 + c);
+        // (A velocity carried across the gap before is the model's already: taken as it is.)
+        const auto weighed = [](const Velocity& m, double spread, Eigen::Vector3d& mean,
+                                Eigen::Matrix3d& covariance) {
+            if (m.carried) {
+                mean = m.mean;
+                covariance = m.covariance;
+                return;
+            }
+            const double s2 = spread * spread;
+            const Eigen::Array3d c = m.covariance.diagonal().array(), gain = s2 / (s2 + c);
+            mean = (gain * m.mean.array()).matrix();
+            covariance = (gain * c).matrix().asDiagonal();
+        };
+        Eigen::Vector3d v0;
+        Eigen::Matrix3d v0Covariance;
+        weighed(velocityAtLastTracked(), params_.bridgeVelocity.speedSigma, v0, v0Covariance);
         // Up: the accelerometer's where measured, else the robot frame's z.
         std::optional<AttitudePrior> up;
         if (params_.useGravity) up = measuredUp(last_tracked_.t);
-        depth_bridge_.start(last_tracked_.t, *last_tracked_frame_, last_tracked_optical_,
-                            (gain * vo.mean.array()).matrix(), (gain * c).matrix().asDiagonal(),
-                            up ? up->up : Eigen::Vector3d::UnitZ());
+        depth_bridge_.start(last_tracked_.t, *last_tracked_frame_, last_tracked_optical_, v0,
+                            v0Covariance, up ? up->up : Eigen::Vector3d::UnitZ());
         if (!g) {
             // The turn rate the same way: VO's, weighed against a carrier's spread of them.
-            const auto w = turnRateAtLastTracked();
-            const double r2 = std::pow(params_.bridgeTurn.rate.speedSigma, 2);
-            const Eigen::Array3d cw = w.covariance.diagonal().array(), gw = r2 / (r2 + cw);
-            depth_bridge_.startTurn((gw * w.mean.array()).matrix(), (gw * cw).matrix().asDiagonal());
+            Eigen::Vector3d w0;
+            Eigen::Matrix3d w0Covariance;
+            weighed(turnRateAtLastTracked(), params_.bridgeTurn.rate.speedSigma, w0, w0Covariance);
+            depth_bridge_.startTurn(w0, w0Covariance);
         }
     }
     const int aligned = depth_bridge_.aligned(), rejected = depth_bridge_.rejected();
@@ -199,6 +215,56 @@ void VisualOdometryNRD::followGap(const vision::RgbdFrame& frame, double t,
     }
     depth_bridge_aligned_ += static_cast<std::size_t>(depth_bridge_.aligned() - aligned);
     depth_bridge_rejected_ += static_cast<std::size_t>(depth_bridge_.rejected() - rejected);
+}
+
+void VisualOdometryNRD::carryAcrossGap(double t) {
+    // (the velocity before this gap first: the one the gap before carried, where VO has not
+    // tracked since)
+    const Velocity before = velocityAtLastTracked();
+    carried_velocity_.reset();
+    carried_turn_rate_.reset();
+    const bool followed = params_.bridgeByDepth && depth_bridge_.active() &&
+                          depth_bridge_.startTime() == last_tracked_.t;
+    // The gap's turn, into the restart frame's axes: the gyro's, else the depth's.
+    std::optional<odometry::GyroIntegrator::Rotation> g;
+    if (params_.useGyro) g = gyro_.between(last_tracked_.t, t);
+    Eigen::Matrix3d R, turnCovariance;
+    if (g) {
+        const Eigen::Matrix3d S = gyro_.sensorOnRobot().linear();
+        R = S * g->R * S.transpose();
+        turnCovariance = g->sigma * g->sigma * Eigen::Matrix3d::Identity();
+    } else if (followed && depth_bridge_.turning()) {
+        R = depth_bridge_.rotation();
+        turnCovariance = depth_bridge_.rotationCovariance();
+        // (known as well as a bridge needs it, bridge_turn_max_sigma_deg, or not at all)
+        const double loosest =
+            Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(turnCovariance).eigenvalues().maxCoeff();
+        if (!(loosest <= params_.bridgeTurnMaxSigma * params_.bridgeTurnMaxSigma)) return;
+    } else {
+        return;  // (where it turned is not known: nor where its velocity points)
+    }
+    const auto carried = [](const Eigen::Vector3d& mean, const Eigen::Matrix3d& covariance) {
+        Velocity v;
+        v.mean = mean;
+        v.covariance = covariance;
+        v.sigma = std::sqrt(covariance.diagonal().maxCoeff());
+        v.carried = true;
+        return v;
+    };
+    Eigen::Vector3d v = depth_bridge_.velocity();  // (in the last tracked frame's axes)
+    Eigen::Matrix3d C = depth_bridge_.velocityCovariance();
+    if (!followed) {
+        v = before.mean;
+        C = before.covariance;
+        params_.bridgeVelocity.fadeVelocity(t - last_tracked_.t, v, C);
+    }
+    // In the restart frame's axes; the turn's own error turns the velocity too (first order:
+    // R exp(theta) sees u = R^T v as u - theta x u).
+    const Eigen::Vector3d u = R.transpose() * v;
+    const Eigen::Matrix3d ux = vision::skew(u);
+    carried_velocity_ = carried(u, R.transpose() * C * R + ux * turnCovariance * ux.transpose());
+    // Where the depth followed the turn, its rate too (the robot's body rate at t already).
+    if (!g) carried_turn_rate_ = carried(depth_bridge_.turnRate(), depth_bridge_.turnRateCovariance());
 }
 
 }  // namespace lodestone::graphslam

@@ -246,6 +246,7 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
             expected = bridge(gap);
         if (!first && r.frameFeatures)
             found = relocalize(*r.frameFeatures, T_robot_optical, expected ? &*expected : nullptr);
+        if (!first) carryAcrossGap(t);  // (before this frame becomes the last tracked one)
         if (found) {
             // The view came back: the graph goes on from where it was seen before.
             ++relocalized_;

@@ -77,11 +77,18 @@ class DepthBridge {
      * the height along `up` changed by about that much at most. */
     Eigen::Vector3d displacement() const;
     Eigen::Matrix3d covariance() const;
+    /** The robot's velocity at the last frame added (in the start's robot frame) and its
+     * covariance, conditioned as `displacement` is: what a gap that goes on after it carries. */
+    Eigen::Vector3d velocity() const;
+    Eigen::Matrix3d velocityCovariance() const;
     /** Where the turn is the depth's: the robot's rotation since the start and its covariance
      * (right perturbation; DepthTurn). */
     bool turning() const { return turning_; }
     Eigen::Matrix3d rotation() const { return turn_.rotation(); }
     Eigen::Matrix3d rotationCovariance() const { return turn_.covariance(); }
+    /** The turn rate there (robot frame, rad/s) and its covariance. */
+    const Eigen::Vector3d& turnRate() const { return turn_.rate(); }
+    Eigen::Matrix3d turnRateCovariance() const { return turn_.rateCovariance(); }
     /** Frames of this gap whose depth measured the motion, and those left out by the gate. */
     int aligned() const { return aligned_; }
     int rejected() const { return rejected_; }

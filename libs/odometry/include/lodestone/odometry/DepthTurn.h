@@ -54,6 +54,9 @@ class DepthTurn {
     const Eigen::Matrix3d& rotation() const { return R_; }
     Eigen::Matrix3d covariance() const { return P_.topLeftCorner<3, 3>(); }
     const Eigen::Matrix3d& anchorRotation() const { return Rm_; }
+    /** The turn rate now (robot frame, rad/s) and its covariance. */
+    const Eigen::Vector3d& rate() const { return w_; }
+    Eigen::Matrix3d rateCovariance() const { return P_.block<3, 3>(3, 3); }
 
   private:
     using Matrix9d = Eigen::Matrix<double, 9, 9>;

@@ -30,6 +30,10 @@ struct FadingVelocity {
     double displacementVariance(double seconds, double v0Sigma = 0) const;
     /** The same per axis (heading x, across y and z). */
     Eigen::Vector3d displacementVariances(double seconds, double v0Sigma = 0) const;
+    /** The velocity `seconds` after it was `v` with covariance `C` (both in the carrier's
+     * axes), as the model carries it: each axis faded towards zero, its spread towards
+     * `speedSigma`. Updated in place. */
+    void fadeVelocity(double seconds, Eigen::Vector3d& v, Eigen::Matrix3d& C) const;
     /** The model across the heading, as a FadingVelocity of its own. */
     FadingVelocity across() const;
 

@@ -179,11 +179,15 @@ class VisualOdometryNRD : public NodeDecider {
     /** The carrier's velocity at the last tracked frame, in that frame [m/s]: VO's
      * displacement over the bridge's velocity time constant, trusted to `gravityVelocitySigma`
      * per axis (`sigma`) or to VO's own covariance of its ends, floored there (`covariance`);
-     * where VO has not tracked since it restarted, zero and the carrier's speed spread. */
+     * where VO has not tracked since it restarted, the velocity carried across the gap before
+     * the restart (`carried`), else zero and the carrier's speed spread. */
     struct Velocity {
         Eigen::Vector3d mean{Eigen::Vector3d::Zero()};
         double sigma{0};
         Eigen::Matrix3d covariance{Eigen::Matrix3d::Zero()};
+        /** The motion model's estimate across a gap, not VO's measurement: not to be weighed
+         * against the carrier's spread again. */
+        bool carried{false};
     };
     Velocity velocityAtLastTracked() const;
     /** The tracked frame (in chained_) a window of `seconds` back from the last starts at: the
@@ -191,6 +195,12 @@ class VisualOdometryNRD : public NodeDecider {
     std::size_t windowStart(double seconds) const;
     /** The same for the turn rate [rad/s], from VO's rotation over `gravityVelocitySeconds`. */
     Velocity turnRateAtLastTracked() const;
+    /** VO restarts at t after a gap whose turn is known (the gyro's, or the depth's): the
+     * carrier's velocity and turn rate at t, in its frame, as the gap's motion model ends -
+     * the depth bridge's where it followed the gap, else the last tracked frame's faded. A
+     * restart VO fails after again (a plain stretch: a restart every lost_after frames) bridges
+     * its next gap from these, not from a standstill. */
+    void carryAcrossGap(double t);
     /** VO's rotation from its old reference to a frame that became the new one, against the
      * gyro's over the same time: the gyro's bias learnt. */
     void learnGyroBias(const vision::VoResult& r, double t,
@@ -248,6 +258,7 @@ class VisualOdometryNRD : public NodeDecider {
     std::deque<std::pair<double, mrpt::poses::CPose3D>> chained_;
     std::deque<Eigen::Matrix3d> chained_covariance_;  // VO's, of each against its reference
     std::deque<Eigen::Matrix3d> chained_rotation_covariance_;  // (the same for its rotation)
+    std::optional<Velocity> carried_velocity_, carried_turn_rate_;  // at the last restart
     mrpt::poses::CPose3D last_step_;  // the last motion between tracked frames ...
     double last_step_seconds_{0};      // ... and how long it took
     std::vector<double> gap_seconds_;  // from the last tracked frame to VO's restart
