@@ -251,11 +251,13 @@ void VisualOdometryNRD::carryAcrossGap(double t) {
         v.carried = true;
         return v;
     };
-    Eigen::Vector3d v = depth_bridge_.velocity();  // (in the last tracked frame's axes)
-    Eigen::Matrix3d C = depth_bridge_.velocityCovariance();
-    if (!followed) {
-        v = before.mean;
-        C = before.covariance;
+    // (in the last tracked frame's axes)
+    Eigen::Vector3d v = before.mean;
+    Eigen::Matrix3d C = before.covariance;
+    if (followed) {
+        v = depth_bridge_.velocity();
+        C = depth_bridge_.velocityCovariance();
+    } else {
         params_.bridgeVelocity.fadeVelocity(t - last_tracked_.t, v, C);
     }
     // In the restart frame's axes; the turn's own error turns the velocity too (first order:

@@ -198,8 +198,8 @@ class VisualOdometryNRD : public NodeDecider {
     /** VO restarts at t after a gap whose turn is known (the gyro's, or the depth's): the
      * carrier's velocity and turn rate at t, in its frame, as the gap's motion model ends -
      * the depth bridge's where it followed the gap, else the last tracked frame's faded. A
-     * restart VO fails after again (a plain stretch: a restart every lost_after frames) bridges
-     * its next gap from these, not from a standstill. */
+     * restart VO fails after again (a plain stretch: a restart every lost_after + 1 frames)
+     * bridges its next gap from these, not from a standstill. */
     void carryAcrossGap(double t);
     /** VO's rotation from its old reference to a frame that became the new one, against the
      * gyro's over the same time: the gyro's bias learnt. */
