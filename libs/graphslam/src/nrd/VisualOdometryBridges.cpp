@@ -111,15 +111,19 @@ VisualOdometryNRD::Velocity VisualOdometryNRD::turnRateAtLastTracked() const {
     return w;
 }
 
+bool VisualOdometryNRD::depthTurnKnown() const {
+    const double loosest = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(depth_bridge_.rotationCovariance())
+                               .eigenvalues()
+                               .maxCoeff();
+    return loosest <= params_.bridgeTurnMaxSigma * params_.bridgeTurnMaxSigma;
+}
+
 std::optional<mrpt::poses::CPose3DPDFGaussian> VisualOdometryNRD::bridgeByDepthTurn(double t) const {
     if (!depth_bridge_.active() || !depth_bridge_.turning() ||
         depth_bridge_.startTime() != last_tracked_.t || !(t - last_tracked_.t <= params_.gyroBridgeMaxSeconds))
         return std::nullopt;
+    if (!depthTurnKnown()) return std::nullopt;
     const Eigen::Matrix3d turnCovariance = depth_bridge_.rotationCovariance();
-    const double loosest = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(turnCovariance)
-                               .eigenvalues()
-                               .maxCoeff();
-    if (!(loosest <= params_.bridgeTurnMaxSigma * params_.bridgeTurnMaxSigma)) return std::nullopt;
     Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
     step.linear() = depth_bridge_.rotation();
     step.translation() = depth_bridge_.displacement();
@@ -236,10 +240,7 @@ void VisualOdometryNRD::carryAcrossGap(double t) {
     } else if (followed && depth_bridge_.turning()) {
         R = depth_bridge_.rotation();
         turnCovariance = depth_bridge_.rotationCovariance();
-        // (known as well as a bridge needs it, bridge_turn_max_sigma_deg, or not at all)
-        const double loosest =
-            Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(turnCovariance).eigenvalues().maxCoeff();
-        if (!(loosest <= params_.bridgeTurnMaxSigma * params_.bridgeTurnMaxSigma)) return;
+        if (!depthTurnKnown()) return;  // (as well as a bridge needs it, or not at all)
     } else {
         return;  // (where it turned is not known: nor where its velocity points)
     }

@@ -171,6 +171,8 @@ class VisualOdometryNRD : public NodeDecider {
     /** Where no gyro covers the gap: the turn and translation the depth bridge followed up to
      * t, if it measured the turn to `bridgeTurnMaxSigma`. */
     std::optional<mrpt::poses::CPose3DPDFGaussian> bridgeByDepthTurn(double t) const;
+    /** The depth bridge's turn known to `bridgeTurnMaxSigma` about every axis. */
+    bool depthTurnKnown() const;
     /** VO tracked this frame (or restarted on it): a gap after it starts here. */
     void trackedFrame(const vision::RgbdFrame& frame, const Eigen::Isometry3d& T_robot_optical);
     /** A frame VO did not track, or restarted on: into the gap's depth bridge (started at the
