@@ -5,18 +5,20 @@
 
 namespace lodestone::odometry {
 
-Eigen::Vector3d FadingVelocity::meanDisplacement(const Eigen::Vector3d& v0, double seconds) const {
-    const double tau = correlationSeconds, T = std::max(0.0, seconds);
-    if (!(acrossSeconds > 0)) return v0 * (tau * -std::expm1(-T / tau));
-    const double c = acrossSeconds;
-    return Eigen::Vector3d(v0.x() * (tau * -std::expm1(-T / tau)),
-                           v0.y() * (c * -std::expm1(-T / c)), v0.z() * (c * -std::expm1(-T / c)));
+Eigen::Vector3d FadingVelocity::meanDisplacement(const Eigen::Vector3d& v0, double seconds,
+                                                 const Eigen::Vector3d& cruise) const {
+    const double T = std::max(0.0, seconds);
+    const double along = step(T).carry, side = across().step(T).carry;
+    const Eigen::Vector3d carry(along, side, side);
+    // (the deviation from the cruise fades; the cruise goes on)
+    return carry.cwiseProduct(v0 - cruise) + T * cruise;
 }
 
-void FadingVelocity::fadeVelocity(double seconds, Eigen::Vector3d& v, Eigen::Matrix3d& C) const {
+void FadingVelocity::fadeVelocity(double seconds, Eigen::Vector3d& v, Eigen::Matrix3d& C,
+                                  const Eigen::Vector3d& cruise) const {
     const Step along = step(seconds), side = across().step(seconds);
     const Eigen::Vector3d fade(along.fade, side.fade, side.fade);
-    v = fade.cwiseProduct(v);
+    v = cruise + fade.cwiseProduct(v - cruise);
     C = fade.asDiagonal() * C * fade.asDiagonal();
     C.diagonal() += Eigen::Vector3d(along.qvv, side.qvv, side.qvv);
 }
@@ -84,6 +86,16 @@ void FadingVelocity::matrices(double seconds, const Eigen::Matrix3d& R,
     Q.block<3, 3>(0, 0) = turned(along.qxx, side.qxx);
     Q.block<3, 3>(3, 3) = turned(along.qvv, side.qvv);
     Q.block<3, 3>(0, 3) = Q.block<3, 3>(3, 0) = turned(along.qxv, side.qxv);
+}
+
+Eigen::Matrix<double, 9, 1> FadingVelocity::cruiseStep(double seconds, const Eigen::Matrix3d& R,
+                                                       const Eigen::Vector3d& cruise) const {
+    const Step along = step(seconds), side = across().step(seconds);
+    const double T = std::max(0.0, seconds);
+    Eigen::Matrix<double, 9, 1> u = Eigen::Matrix<double, 9, 1>::Zero();
+    u.head<3>() = R * Eigen::Vector3d(T - along.carry, T - side.carry, T - side.carry).cwiseProduct(cruise);
+    u.segment<3>(3) = R * Eigen::Vector3d(1 - along.fade, 1 - side.fade, 1 - side.fade).cwiseProduct(cruise);
+    return u;
 }
 
 }  // namespace lodestone::odometry

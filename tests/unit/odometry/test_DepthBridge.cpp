@@ -47,6 +47,40 @@ TEST(DepthBridge, WithoutDepthItIsTheFadingVelocitysBridge) {
     EXPECT_NEAR((bridge.velocityCovariance() - C).norm(), 0, 1e-9);
 }
 
+// With a cruise and no depth the bridge is the model's with it: the carrier keeps its pace
+// (0.3 m/s over 4 s: 1.2 m, where fading to rest from the same start carries it 0.3 m); and it
+// keeps it along its own heading - after a quarter turn the velocity is the cruise turned.
+TEST(DepthBridge, WithoutDepthACruisingCarrierKeepsItsPaceAlongItsHeading) {
+    lodestone::vision::RgbdFrame blank;
+    blank.intrinsics = {570.3, 570.3, 319.5, 239.5, 640, 480};
+    blank.depth = cv::Mat::zeros(480, 640, CV_32FC1);
+    DepthBridge::Params p;
+    p.motion = FadingVelocity{0.5, 1.0};
+    const Eigen::Vector3d cruise(0.3, 0, 0);
+    const Eigen::Matrix3d C0 = 0.03 * 0.03 * Eigen::Matrix3d::Identity();
+    DepthBridge straight(p);
+    straight.start(10.0, blank, lodestone::test::opticalInCamera(), cruise, C0,
+                   Eigen::Vector3d::UnitZ(), cruise);
+    for (int k = 1; k <= 120; ++k)
+        straight.add(10.0 + k / kRate, blank, lodestone::test::opticalInCamera(), Eigen::Matrix3d::Identity());
+    EXPECT_NEAR((straight.displacement() - p.motion.meanDisplacement(cruise, 4.0, cruise)).norm(), 0, 1e-9);
+    EXPECT_NEAR(straight.displacement().x(), 1.2, 1e-9);
+    EXPECT_NEAR(straight.covariance()(0, 0), p.motion.displacementVariance(4.0, 0.03), 1e-9);
+
+    DepthBridge turning(p);
+    turning.start(10.0, blank, lodestone::test::opticalInCamera(), cruise, C0,
+                  Eigen::Vector3d::UnitZ(), cruise);
+    Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+    for (int k = 1; k <= 150; ++k) {  // a quarter turn over 2 s, then 3 s straight on
+        R = Eigen::AngleAxisd(M_PI / 2 * std::min(k, 60) / 60.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+        turning.add(10.0 + k / kRate, blank, lodestone::test::opticalInCamera(), R);
+    }
+    // (what is left of the turn's lag after 3 s: e^-3 of 0.42 m/s)
+    EXPECT_NEAR((turning.velocity() - R * cruise).norm(), 0, 0.03) << turning.velocity().transpose();
+    EXPECT_GT(turning.displacement().y(), 0.8) << turning.displacement().transpose();
+    EXPECT_GT(turning.displacement().x(), 0.3) << turning.displacement().transpose();
+}
+
 // Walking 1 m at a plain wall (2 m from it to 1 m, nothing else in view) while drifting 0.2 m
 // sideways, the velocity before the gap a tenth of the truth's: the depth measures the approach,
 // which the motion model alone puts at 0.1 m, and says nothing of the drift along the wall -

@@ -149,3 +149,77 @@ TEST(FadingVelocity, ItsVelocityFadesAlikeInOneGapOrInTwo) {
     EXPECT_NEAR(late.norm(), 0, 1e-12);
     EXPECT_NEAR((lateC - 0.25 * Eigen::Matrix3d::Identity()).norm(), 0, 1e-12);
 }
+
+// With a cruise the velocity fades towards it, not towards rest: the process v = c + an
+// Ornstein-Uhlenbeck deviation, simulated, against the model's mean and variance; and the
+// variance is the zero-mean model's (the cruise moves the mean only).
+TEST(FadingVelocity, WithACruiseTheVelocityFadesTowardsItNotTowardsRest) {
+    const FadingVelocity model{0.5, 1.0};
+    const double c = 0.3, v0 = 0.1, T = 4.0, dt = 1e-3;
+    std::mt19937_64 rng(11);
+    std::normal_distribution<double> n01;
+    const double a = std::exp(-dt / model.correlationSeconds);
+    const double s = model.speedSigma * std::sqrt(1 - a * a);
+    const int runs = 4000;
+    double sum = 0, sum2 = 0;
+    for (int r = 0; r < runs; ++r) {
+        double v = v0, x = 0;
+        for (double t = 0; t < T - 1e-9; t += dt) {
+            const double next = c + a * (v - c) + s * n01(rng);
+            x += 0.5 * (v + next) * dt;
+            v = next;
+        }
+        sum += x;
+        sum2 += x * x;
+    }
+    const double mean = sum / runs, var = sum2 / runs - mean * mean;
+    const Eigen::Vector3d cruise(c, 0, 0);
+    const double modelMean = model.meanDisplacement(Eigen::Vector3d(v0, 0, 0), T, cruise).x();
+    // (sampling error of the mean ~0.017 m; of the variance ~2.2 %)
+    EXPECT_NEAR(mean, modelMean, 0.08);
+    EXPECT_NEAR(var / model.displacementVariance(T), 1.0, 0.1);
+    // Closed form: c T + (v0 - c) tau (1 - e^-T/tau) - far more than the rest model's v0 tau.
+    EXPECT_NEAR(modelMean, c * T + (v0 - c) * (1 - std::exp(-T)), 1e-12);
+    EXPECT_GT(modelMean, 5 * model.meanDisplacement(Eigen::Vector3d(v0, 0, 0), T).x());
+
+    // The velocity itself: towards the cruise, its spread as without one; Markov still.
+    Eigen::Vector3d whole(v0, 0.05, 0), halves = whole, rest = whole;
+    Eigen::Matrix3d wholeC = 0.01 * Eigen::Matrix3d::Identity(), halvesC = wholeC, restC = wholeC;
+    model.fadeVelocity(0.8, whole, wholeC, cruise);
+    model.fadeVelocity(0.8, rest, restC);
+    EXPECT_NEAR(whole.x(), c + (v0 - c) * std::exp(-0.8), 1e-12);
+    EXPECT_NEAR((wholeC - restC).norm(), 0, 1e-12);
+    const Eigen::Vector3d first = model.meanDisplacement(halves, 0.3, cruise);
+    model.fadeVelocity(0.3, halves, halvesC, cruise);
+    const Eigen::Vector3d second = model.meanDisplacement(halves, 0.5, cruise);
+    model.fadeVelocity(0.5, halves, halvesC, cruise);
+    EXPECT_NEAR((halves - whole).norm(), 0, 1e-12);
+    EXPECT_NEAR((first + second - model.meanDisplacement(Eigen::Vector3d(v0, 0.05, 0), 0.8, cruise)).norm(),
+                0, 1e-12);
+    // Long after: the cruise.
+    model.fadeVelocity(60, whole, wholeC, cruise);
+    EXPECT_NEAR((whole - cruise).norm(), 0, 1e-12);
+}
+
+// The filter's step with a cruise (DepthBridge's prediction) is the model's: in the carrier's
+// own axes, the step's drift added to F x gives meanDisplacement and fadeVelocity; turned, it
+// turns with the carrier (the heading's time constant along its heading, not the map's x).
+TEST(FadingVelocity, TheFiltersCruiseStepIsTheModels) {
+    const FadingVelocity model{0.5, 1.0, 0.25};
+    const Eigen::Vector3d v0(0.2, 0.04, -0.01), cruise(0.3, 0, 0);
+    const double T = 0.7;
+    for (const double yaw : {0.0, M_PI / 3}) {
+        const Eigen::Matrix3d R = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+        Eigen::Matrix<double, 9, 9> F, Q;
+        model.matrices(T, R, F, Q);
+        Eigen::Matrix<double, 9, 1> x = Eigen::Matrix<double, 9, 1>::Zero();
+        x.segment<3>(3) = R * v0;
+        x = F * x + model.cruiseStep(T, R, cruise);
+        Eigen::Vector3d v = v0;
+        Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
+        model.fadeVelocity(T, v, C, cruise);
+        EXPECT_NEAR((x.head<3>() - R * model.meanDisplacement(v0, T, cruise)).norm(), 0, 1e-12) << yaw;
+        EXPECT_NEAR((x.segment<3>(3) - R * v).norm(), 0, 1e-12) << yaw;
+        EXPECT_EQ(x.tail<3>().norm(), 0.0);
+    }
+}

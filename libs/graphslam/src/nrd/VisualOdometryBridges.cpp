@@ -65,8 +65,9 @@ VisualOdometryNRD::Velocity VisualOdometryNRD::velocityAtLastTracked() const {
     Velocity v;
     if (chained_.empty() || !(chained_.back().first > chained_[start].first)) {
         // (VO has not tracked since it restarted: the velocity the gap before carried, else
-        // the carrier's spread)
+        // the carrier's spread about its cruise)
         if (carried_velocity_) return *carried_velocity_;
+        v.mean = cruise_.mean();
         v.sigma = params_.bridgeVelocity.speedSigma;
         v.covariance = v.sigma * v.sigma * Eigen::Matrix3d::Identity();
         return v;
@@ -152,10 +153,11 @@ std::optional<mrpt::poses::CPose3DPDFGaussian> VisualOdometryNRD::bridgeByGyro(d
         step.translation() = depth_bridge_.displacement();
         cov.bottomRightCorner<3, 3>() = depth_bridge_.covariance();
     } else {
-        // The velocity before the gap (the last tracked frame's, in its own frame) fading.
+        // The velocity before the gap (the last tracked frame's, in its own frame) fading
+        // towards the cruise (in the same axes: the gap's turn left out, as for the velocity).
         const auto& fading = params_.bridgeVelocity;
         const auto v0 = velocityAtLastTracked();
-        step.translation() = fading.meanDisplacement(v0.mean, gap);
+        step.translation() = fading.meanDisplacement(v0.mean, gap, cruise_.mean());
         cov.bottomRightCorner<3, 3>() = fading.displacementVariances(gap, v0.sigma).asDiagonal();
     }
     mrpt::poses::CPose3DPDFGaussian edge = lastTrackedHeld();
@@ -181,8 +183,9 @@ void VisualOdometryNRD::followGap(const vision::RgbdFrame& frame, double t,
         // VO's correlations between axes are the least sure part of its covariance, and the
         // depth's precise approach would turn a slight one into metres per second elsewhere.
         // (A velocity carried across the gap before is the model's already: taken as it is.)
-        const auto weighed = [](const Velocity& m, double spread, Eigen::Vector3d& mean,
-                                Eigen::Matrix3d& covariance) {
+        // The model's own mean is the cruise (for the turn rate: none).
+        const auto weighed = [](const Velocity& m, double spread, const Eigen::Vector3d& prior,
+                                Eigen::Vector3d& mean, Eigen::Matrix3d& covariance) {
             if (m.carried) {
                 mean = m.mean;
                 covariance = m.covariance;
@@ -190,22 +193,24 @@ void VisualOdometryNRD::followGap(const vision::RgbdFrame& frame, double t,
             }
             const double s2 = spread * spread;
             const Eigen::Array3d c = m.covariance.diagonal().array(), gain = s2 / (s2 + c);
-            mean = (gain * m.mean.array()).matrix();
+            mean = prior + (gain * (m.mean - prior).array()).matrix();
             covariance = (gain * c).matrix().asDiagonal();
         };
         Eigen::Vector3d v0;
         Eigen::Matrix3d v0Covariance;
-        weighed(velocityAtLastTracked(), params_.bridgeVelocity.speedSigma, v0, v0Covariance);
+        weighed(velocityAtLastTracked(), params_.bridgeVelocity.speedSigma, cruise_.mean(), v0,
+                v0Covariance);
         // Up: the accelerometer's where measured, else the robot frame's z.
         std::optional<AttitudePrior> up;
         if (params_.useGravity) up = measuredUp(last_tracked_.t);
         depth_bridge_.start(last_tracked_.t, *last_tracked_frame_, last_tracked_optical_, v0,
-                            v0Covariance, up ? up->up : Eigen::Vector3d::UnitZ());
+                            v0Covariance, up ? up->up : Eigen::Vector3d::UnitZ(), cruise_.mean());
         if (!g) {
             // The turn rate the same way: VO's, weighed against a carrier's spread of them.
             Eigen::Vector3d w0;
             Eigen::Matrix3d w0Covariance;
-            weighed(turnRateAtLastTracked(), params_.bridgeTurn.rate.speedSigma, w0, w0Covariance);
+            weighed(turnRateAtLastTracked(), params_.bridgeTurn.rate.speedSigma,
+                    Eigen::Vector3d::Zero(), w0, w0Covariance);
             depth_bridge_.startTurn(w0, w0Covariance);
         }
     }
@@ -259,7 +264,7 @@ void VisualOdometryNRD::carryAcrossGap(double t) {
         v = depth_bridge_.velocity();
         C = depth_bridge_.velocityCovariance();
     } else {
-        params_.bridgeVelocity.fadeVelocity(t - last_tracked_.t, v, C);
+        params_.bridgeVelocity.fadeVelocity(t - last_tracked_.t, v, C, cruise_.mean());
     }
     // In the restart frame's axes; the turn's own error turns the velocity too (first order:
     // R exp(theta) sees u = R^T v as u - theta x u).

@@ -74,6 +74,8 @@ void VisualOdometryNRD::configure(const mrpt::config::CConfigFileBase& ini) {
     if (!(p.gyroBridgeMaxSeconds >= 0)) s.fail("gyro_bridge_max_seconds", "must be >= 0");
     if (!(fading.speedSigma > 0)) s.fail("bridge_speed_sigma", "must be > 0");
     if (!(fading.correlationSeconds > 0)) s.fail("bridge_velocity_seconds", "must be > 0");
+    p.bridgeCruiseSeconds = s.getDouble("bridge_cruise_seconds", p.bridgeCruiseSeconds);
+    if (!(p.bridgeCruiseSeconds >= 0)) s.fail("bridge_cruise_seconds", "must be >= 0");
     p.bridgeByDepth = s.getBool("bridge_by_depth", p.bridgeByDepth);
     p.bridgeHeightSigma = s.getDouble("bridge_height_sigma", p.bridgeHeightSigma);
     if (!(p.bridgeHeightSigma >= 0)) s.fail("bridge_height_sigma", "must be >= 0");
@@ -134,6 +136,7 @@ void VisualOdometryNRD::configure(const mrpt::config::CConfigFileBase& ini) {
     bridge.heightSigma = params_.bridgeHeightSigma;
     bridge.turn = params_.bridgeTurn;
     depth_bridge_ = odometry::DepthBridge(bridge);
+    cruise_ = odometry::CruiseVelocity(params_.bridgeCruiseSeconds);
 }
 
 bool VisualOdometryNRD::updateState(mrpt::obs::CActionCollection::Ptr,
@@ -295,6 +298,7 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
     cur += motion;
     last_step_ = cur.mean - last_tracked_.pdf.mean;  // (both relative to the same node)
     last_step_seconds_ = t - last_tracked_.t;
+    cruise_.add(Eigen::Vector3d(last_step_.x(), last_step_.y(), last_step_.z()), last_step_seconds_);
     if (!chained_.empty()) {
         chained_.emplace_back(t, chained_.back().second + last_step_);
         // VO's own uncertainty of this frame against its reference, in the chain's axes (turned
@@ -489,6 +493,7 @@ JsonObject VisualOdometryNRD::describe() const {
             .set("bridge_speed_sigma", params_.bridgeVelocity.speedSigma)
             .set("bridge_velocity_seconds", params_.bridgeVelocity.correlationSeconds)
             .set("bridge_across_seconds", params_.bridgeVelocity.acrossSeconds)
+            .set("bridge_cruise_seconds", params_.bridgeCruiseSeconds)
             .set("use_gravity", params_.useGravity);
     }
     if (params_.bridgeTurnByDepth) {
@@ -498,7 +503,8 @@ JsonObject VisualOdometryNRD::describe() const {
                 .set("bridge_height_sigma", params_.bridgeHeightSigma)
                 .set("bridge_speed_sigma", params_.bridgeVelocity.speedSigma)
                 .set("bridge_velocity_seconds", params_.bridgeVelocity.correlationSeconds)
-                .set("bridge_across_seconds", params_.bridgeVelocity.acrossSeconds);
+                .set("bridge_across_seconds", params_.bridgeVelocity.acrossSeconds)
+                .set("bridge_cruise_seconds", params_.bridgeCruiseSeconds);
         }
         params.set("bridge_turn_by_depth", true)
             .set("bridge_turn_rate_sigma_deg", params_.bridgeTurn.rate.speedSigma * 180 / M_PI)

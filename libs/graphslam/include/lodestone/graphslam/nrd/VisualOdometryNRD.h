@@ -2,6 +2,7 @@
 
 #include <lodestone/graphslam/NodeDecider.h>
 #include <lodestone/graphslam/nrd/NodeSpacing.h>
+#include <lodestone/odometry/CruiseVelocity.h>
 #include <lodestone/odometry/DepthBridge.h>
 #include <lodestone/odometry/FadingVelocity.h>
 #include <lodestone/odometry/GravityEstimator.h>
@@ -91,6 +92,10 @@ class VisualOdometryNRD : public NodeDecider {
          * (`bridge_velocity_seconds`, `bridge_speed_sigma`). */
         double gyroBridgeMaxSeconds{10.0};
         odometry::FadingVelocity bridgeVelocity;
+        /** [s] The velocity a gap's fades towards: the carrier's cruise, VO's velocity in its
+         * axes averaged over this long of tracking (odometry::CruiseVelocity;
+         * `bridge_cruise_seconds`; 0: rest). */
+        double bridgeCruiseSeconds{0};
         /** The gyro's bridge corrected by the depth of the gap's frames (odometry::DepthBridge:
          * each frame's depth aligned with an earlier one measures the translation where it
          * pins it - a plain wall's distance - the fading velocity carrying the rest). */
@@ -246,6 +251,7 @@ class VisualOdometryNRD : public NodeDecider {
     std::optional<vision::RgbdFrame> last_tracked_frame_;  // (its images shared, not copied)
     Eigen::Isometry3d last_tracked_optical_{Eigen::Isometry3d::Identity()};  // its camera on the robot
     odometry::DepthBridge depth_bridge_;  // the gap since the last tracked frame, by its depth
+    odometry::CruiseVelocity cruise_;     // the carrier's pace while VO tracked
     std::size_t bridged_by_depth_{0};     // gyro bridges the depth corrected (of those taken)
     std::size_t bridged_by_depth_turn_{0};  // gaps no gyro covered, bridged by the depth's turn
     std::size_t depth_bridge_aligned_{0}, depth_bridge_rejected_{0};  // gap frames, over the run
