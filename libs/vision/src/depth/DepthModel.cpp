@@ -2,6 +2,9 @@
 
 #include <nanoflann.hpp>
 
+#include <cmath>
+#include <limits>
+
 namespace lodestone::vision {
 
 /** Every keyframe's cloud in the reference frame, and nanoflann's tree over it. */
@@ -19,6 +22,30 @@ struct DepthModel::Index {
         nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, Index>, Index, 3>;
     std::unique_ptr<Tree> tree;
 };
+
+namespace {
+/** nanoflann's result set for the one nearest point no farther than a bound: subtrees beyond
+ * the bound are never searched (the ICP's gate - most of the tree, for most points). The point
+ * found is the one nanoflann's KNNResultSet(1) finds where it lies within the bound: the same
+ * traversal, ties kept by the first met, pruned only where nothing within the bound lies. */
+struct NearestWithin {
+    explicit NearestWithin(float maxDistance2)
+        : best(std::nextafter(maxDistance2, std::numeric_limits<float>::infinity())) {}
+    float best;  // (the bound itself is within: a point exactly at it is found)
+    std::size_t index{0};
+    bool found{false};
+    float worstDist() const { return best; }
+    bool full() const { return found; }
+    bool addPoint(float dist, std::size_t i) {
+        if (dist < best) {
+            best = dist;
+            index = i;
+            found = true;
+        }
+        return true;  // (search on: a nearer point may lie in another leaf)
+    }
+};
+}  // namespace
 
 DepthModel::DepthModel(int keyframes) : max_keyframes_(std::max(1, keyframes)) {}
 DepthModel::~DepthModel() = default;
@@ -70,13 +97,11 @@ bool DepthModel::nearest(const Eigen::Vector3f& p, float maxDistance2, Nearest& 
     if (keyframes_.empty()) return false;
     if (!index_) build();
     if (index_->merged.size() == 0) return false;
-    std::size_t idx = 0;
-    float d2 = 0;
-    nanoflann::KNNResultSet<float> result(1);
-    result.init(&idx, &d2);
+    NearestWithin result(maxDistance2);
     index_->tree->findNeighbors(result, p.data(), nanoflann::SearchParams(32, 0, false));
-    if (result.size() == 0 || d2 > maxDistance2) return false;
-    const auto i = static_cast<Eigen::Index>(idx);
+    if (!result.found) return false;
+    const float d2 = result.best;
+    const auto i = static_cast<Eigen::Index>(result.index);
     out.point = index_->merged.points.col(i);
     out.normal = index_->merged.normals.col(i);
     out.sigma = index_->merged.sigma(i);

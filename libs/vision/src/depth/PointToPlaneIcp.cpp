@@ -151,6 +151,8 @@ DepthAlignment PointToPlaneIcp::align(const DepthModel& model, const DepthCloud&
         const Eigen::Vector3f t = T.translation().cast<float>();
         const auto gate2 = static_cast<float>(gate * gate);
         DepthModel::Nearest nn;
+        e.points.reserve(static_cast<std::size_t>(current.points.cols()));
+        e.normals.reserve(static_cast<std::size_t>(current.points.cols()));
         for (Eigen::Index i = 0; i < current.points.cols(); ++i) {
             const Eigen::Vector3f p = R * current.points.col(i) + t;
             if (!model.nearest(p, gate2, nn)) continue;
