@@ -377,8 +377,9 @@ TEST(CameraOnlySlam, RestartsInAStretchVoCannotTrackCarryTheVelocityOn) {
 }
 
 // The same stretch with the velocity fading towards the hand's pace over the 10 s before
-// (bridge_cruise_seconds) rather than towards rest: walked nearly as far as the truth (1.10 m of
-// 1.25, measured; fading to rest 0.41) - and again alike in one gap or in a chain of them.
+// (bridge_cruise_seconds; at the gyro's turn rate) rather than towards rest: walked about as far
+// as the truth (1.40 m of 1.25, measured; fading to rest 0.41) - and again alike in one gap or in
+// a chain of them.
 TEST(CameraOnlySlam, AStretchVoCannotTrackIsWalkedAtTheCarriersCruise) {
     double oneGap = 0, oneGapTruth = 0, chain = 0, chainTruth = 0;
     officeStretch(false, "10", oneGap, oneGapTruth);

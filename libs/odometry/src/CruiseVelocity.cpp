@@ -1,17 +1,38 @@
 #include <lodestone/odometry/CruiseVelocity.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace lodestone::odometry {
 
-void CruiseVelocity::add(const Eigen::Vector3d& displacement, double seconds) {
-    if (!(seconds_ > 0) || !(seconds > 0) || !displacement.allFinite()) return;
+namespace {
+/** The window's turn rates reach their mean plus this many sigma (normal, 99 %). */
+constexpr double kRateReach = 2.576;
+}  // namespace
+
+void CruiseVelocity::add(const Eigen::Vector3d& displacement, double seconds, double turnRate) {
+    if (!(seconds_ > 0) || !(seconds > 0) || !displacement.allFinite() || !std::isfinite(turnRate))
+        return;
     // (displacement over time, not each step's velocity averaged: a frame's few millimetres
     // of VO error are a tenth of a metre per second, and cancel from one step to the next)
-    const double keep = std::exp(-seconds / seconds_);
+    const double keep = std::exp(-seconds / seconds_), w = std::abs(turnRate);
+    time_ = keep * time_ + seconds;
+    rate_ = keep * rate_ + seconds * w;
+    rate2_ = keep * rate2_ + seconds * w * w;
     moved_ = keep * moved_ + displacement;
-    tracked_ = keep * tracked_ + seconds;
-    mean_ = moved_ / tracked_;
+    moved_rate_ = keep * moved_rate_ + displacement * w;
+}
+
+Eigen::Vector3d CruiseVelocity::at(double turnRate) const {
+    if (!(time_ > 0)) return Eigen::Vector3d::Zero();
+    const double meanRate = rate_ / time_;
+    // (the rates' spread, with their own error: never narrower than that)
+    const double spread2 = std::max(0.0, rate2_ / time_ - meanRate * meanRate) + rate_sigma_ * rate_sigma_;
+    const double w = std::abs(turnRate);
+    if (!(w <= meanRate + kRateReach * std::sqrt(spread2))) return Eigen::Vector3d::Zero();
+    const Eigen::Vector3d mean = moved_ / time_;
+    const Eigen::Vector3d slope = (moved_rate_ / time_ - mean * meanRate) / spread2;
+    return mean + slope * (w - meanRate);
 }
 
 }  // namespace lodestone::odometry

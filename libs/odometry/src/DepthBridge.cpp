@@ -45,10 +45,11 @@ DepthBridge::DepthBridge(const Params& params) : params_(params) {
 void DepthBridge::start(double t0, const vision::RgbdFrame& lastTracked,
                         const Eigen::Isometry3d& T_robot_optical, const Eigen::Vector3d& v0,
                         const Eigen::Matrix3d& v0Covariance, const Eigen::Vector3d& up,
-                        const Eigen::Vector3d& cruise) {
+                        const CruiseVelocity& cruise) {
     active_ = true;
     up_ = up.normalized();
     cruise_ = cruise;
+    R_predicted_.setIdentity();
     t0_ = t_ = t0;
     aligned_ = rejected_ = 0;
     x_.setZero();
@@ -103,12 +104,14 @@ void DepthBridge::predict(double t, const Eigen::Matrix3d& R_0) {
     if (dt == 0) return;
     // The Ornstein-Uhlenbeck velocity and its integral over dt, per axis (FadingVelocity's
     // model; its displacement variance is the sum of these steps) - the carrier's axes now
-    // R_0's, where the velocity across its heading fades sooner; towards the cruise where
-    // there is one (turned with the carrier).
+    // R_0's, where the velocity across its heading fades sooner; towards the cruise at the
+    // step's turn rate where there is one (turned with the carrier).
     Matrix9d F, Q;
     params_.motion.matrices(dt, R_0, F, Q);
     x_ = F * x_;
-    if (!cruise_.isZero()) x_ += params_.motion.cruiseStep(dt, R_0, cruise_);
+    const Eigen::Vector3d cruise = cruise_.at(Eigen::AngleAxisd(R_predicted_.transpose() * R_0).angle() / dt);
+    R_predicted_ = R_0;
+    if (!cruise.isZero()) x_ += params_.motion.cruiseStep(dt, R_0, cruise);
     P_ = F * P_ * F.transpose() + Q;
 }
 

@@ -65,9 +65,8 @@ VisualOdometryNRD::Velocity VisualOdometryNRD::velocityAtLastTracked() const {
     Velocity v;
     if (chained_.empty() || !(chained_.back().first > chained_[start].first)) {
         // (VO has not tracked since it restarted: the velocity the gap before carried, else
-        // the carrier's spread about its cruise)
+        // the carrier's spread)
         if (carried_velocity_) return *carried_velocity_;
-        v.mean = cruise_.mean();
         v.sigma = params_.bridgeVelocity.speedSigma;
         v.covariance = v.sigma * v.sigma * Eigen::Matrix3d::Identity();
         return v;
@@ -157,7 +156,8 @@ std::optional<mrpt::poses::CPose3DPDFGaussian> VisualOdometryNRD::bridgeByGyro(d
         // towards the cruise (in the same axes: the gap's turn left out, as for the velocity).
         const auto& fading = params_.bridgeVelocity;
         const auto v0 = velocityAtLastTracked();
-        step.translation() = fading.meanDisplacement(v0.mean, gap, cruise_.mean());
+        const double rate = Eigen::AngleAxisd(step.linear()).angle() / gap;
+        step.translation() = fading.meanDisplacement(v0.mean, gap, cruise_.at(rate));
         cov.bottomRightCorner<3, 3>() = fading.displacementVariances(gap, v0.sigma).asDiagonal();
     }
     mrpt::poses::CPose3DPDFGaussian edge = lastTrackedHeld();
@@ -198,13 +198,13 @@ void VisualOdometryNRD::followGap(const vision::RgbdFrame& frame, double t,
         };
         Eigen::Vector3d v0;
         Eigen::Matrix3d v0Covariance;
-        weighed(velocityAtLastTracked(), params_.bridgeVelocity.speedSigma, cruise_.mean(), v0,
-                v0Covariance);
+        weighed(velocityAtLastTracked(), params_.bridgeVelocity.speedSigma,
+                cruise_.at(turnRateAtLastTracked().mean.norm()), v0, v0Covariance);
         // Up: the accelerometer's where measured, else the robot frame's z.
         std::optional<AttitudePrior> up;
         if (params_.useGravity) up = measuredUp(last_tracked_.t);
         depth_bridge_.start(last_tracked_.t, *last_tracked_frame_, last_tracked_optical_, v0,
-                            v0Covariance, up ? up->up : Eigen::Vector3d::UnitZ(), cruise_.mean());
+                            v0Covariance, up ? up->up : Eigen::Vector3d::UnitZ(), cruise_);
         if (!g) {
             // The turn rate the same way: VO's, weighed against a carrier's spread of them.
             Eigen::Vector3d w0;
@@ -264,7 +264,8 @@ void VisualOdometryNRD::carryAcrossGap(double t) {
         v = depth_bridge_.velocity();
         C = depth_bridge_.velocityCovariance();
     } else {
-        params_.bridgeVelocity.fadeVelocity(t - last_tracked_.t, v, C, cruise_.mean());
+        const double rate = Eigen::AngleAxisd(R).angle() / (t - last_tracked_.t);
+        params_.bridgeVelocity.fadeVelocity(t - last_tracked_.t, v, C, cruise_.at(rate));
     }
     // In the restart frame's axes; the turn's own error turns the velocity too (first order:
     // R exp(theta) sees u = R^T v as u - theta x u).

@@ -298,7 +298,6 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
     cur += motion;
     last_step_ = cur.mean - last_tracked_.pdf.mean;  // (both relative to the same node)
     last_step_seconds_ = t - last_tracked_.t;
-    cruise_.add(Eigen::Vector3d(last_step_.x(), last_step_.y(), last_step_.z()), last_step_seconds_);
     if (!chained_.empty()) {
         chained_.emplace_back(t, chained_.back().second + last_step_);
         // VO's own uncertainty of this frame against its reference, in the chain's axes (turned
@@ -311,6 +310,9 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
         for (int i = 0; i < 3; ++i)
             for (int j = 0; j < 3; ++j) Cr(i, j) = motion.cov(5 - i, 5 - j);
         chained_rotation_covariance_.push_back(R * Cr * R.transpose());
+        // (the carrier's pace against its turn rate, VO's over the last frames)
+        cruise_.add(Eigen::Vector3d(last_step_.x(), last_step_.y(), last_step_.z()), last_step_seconds_,
+                    turnRateAtLastTracked().mean.norm());
         // (kept: VO's velocity before a gap; with the accelerometer, the window before a node)
         double old = t - std::max(2 * params_.gravityVelocitySeconds,
                                   params_.bridgeVelocity.correlationSeconds);

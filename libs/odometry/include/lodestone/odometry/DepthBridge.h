@@ -1,5 +1,6 @@
 #pragma once
 
+#include <lodestone/odometry/CruiseVelocity.h>
 #include <lodestone/odometry/DepthTurn.h>
 #include <lodestone/odometry/FadingVelocity.h>
 #include <lodestone/vision/RgbdFrame.h>
@@ -55,12 +56,12 @@ class DepthBridge {
 
     /** A gap starts after the last tracked frame: its time, depth and optical frame on the
      * robot, and the robot's velocity there (in its frame) with its covariance; `cruise` the
-     * velocity it fades towards (the carrier's axes: CruiseVelocity; zero: rest). */
+     * velocity it fades towards at the turn rate of each step (CruiseVelocity; none: rest). */
     void start(double t0, const vision::RgbdFrame& lastTracked,
                const Eigen::Isometry3d& T_robot_optical, const Eigen::Vector3d& v0,
                const Eigen::Matrix3d& v0Covariance,
                const Eigen::Vector3d& up = Eigen::Vector3d::UnitZ(),
-               const Eigen::Vector3d& cruise = Eigen::Vector3d::Zero());
+               const CruiseVelocity& cruise = CruiseVelocity());
     /** No gyro: the turn is the depth's too (DepthTurn), from the turn rate at the start
      * (robot frame, rad/s) and its covariance. After `start`, before the first `add`. */
     void startTurn(const Eigen::Vector3d& w0, const Eigen::Matrix3d& w0Covariance);
@@ -127,7 +128,8 @@ class DepthBridge {
     Eigen::Matrix3d R_0m_{Eigen::Matrix3d::Identity()};  // the model frame's rotation
     Eigen::Isometry3d T_robot_optical_m_{Eigen::Isometry3d::Identity()};
     Eigen::Vector3d up_{Eigen::Vector3d::UnitZ()};
-    Eigen::Vector3d cruise_{Eigen::Vector3d::Zero()};  // (the carrier's axes)
+    CruiseVelocity cruise_;
+    Eigen::Matrix3d R_predicted_{Eigen::Matrix3d::Identity()};  // the turn at the last prediction
     int aligned_{0}, rejected_{0};
     bool turning_{false};
     DepthTurn turn_;
