@@ -327,6 +327,9 @@ void officeStretch(bool noise, const char* cruise, double& estimated, double& tr
     ASSERT_TRUE(std::regex_search(report, gaps, std::regex("\"vo_gaps_bridged_by_gyro\": ([0-9]+)")));
     if (noise) {
         EXPECT_GE(std::stoi(gaps[1]), 5) << "a restart every 6 frames";
+        std::smatch carried;
+        ASSERT_TRUE(std::regex_search(report, carried, std::regex("\"vo_restarts_carrying_velocity\": ([0-9]+)")));
+        EXPECT_GE(std::stoi(carried[1]), 4) << "each restart after the first gap's";
     } else {
         EXPECT_EQ(std::stoi(gaps[1]), 1) << report;
     }

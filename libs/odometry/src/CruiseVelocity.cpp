@@ -23,16 +23,22 @@ void CruiseVelocity::add(const Eigen::Vector3d& displacement, double seconds, do
     moved_rate_ = keep * moved_rate_ + displacement * w;
 }
 
-Eigen::Vector3d CruiseVelocity::at(double turnRate) const {
-    if (!(time_ > 0)) return Eigen::Vector3d::Zero();
-    const double meanRate = rate_ / time_;
+double CruiseVelocity::rateSpread2() const {
     // (the rates' spread, with their own error: never narrower than that)
-    const double spread2 = std::max(0.0, rate2_ / time_ - meanRate * meanRate) + rate_sigma_ * rate_sigma_;
-    const double w = std::abs(turnRate);
-    if (!(w <= meanRate + kRateReach * std::sqrt(spread2))) return Eigen::Vector3d::Zero();
+    const double meanRate = rate_ / time_;
+    return std::max(0.0, rate2_ / time_ - meanRate * meanRate) + rate_sigma_ * rate_sigma_;
+}
+
+bool CruiseVelocity::knows(double turnRate) const {
+    return time_ > 0 && std::abs(turnRate) <= rate_ / time_ + kRateReach * std::sqrt(rateSpread2());
+}
+
+Eigen::Vector3d CruiseVelocity::at(double turnRate) const {
+    if (!knows(turnRate)) return Eigen::Vector3d::Zero();
+    const double meanRate = rate_ / time_, spread2 = rateSpread2();
     const Eigen::Vector3d mean = moved_ / time_;
     const Eigen::Vector3d slope = (moved_rate_ / time_ - mean * meanRate) / spread2;
-    return mean + slope * (w - meanRate);
+    return mean + slope * (std::abs(turnRate) - meanRate);
 }
 
 }  // namespace lodestone::odometry

@@ -51,7 +51,7 @@ void DepthBridge::start(double t0, const vision::RgbdFrame& lastTracked,
     cruise_ = cruise;
     R_predicted_.setIdentity();
     t0_ = t_ = t0;
-    aligned_ = rejected_ = 0;
+    aligned_ = rejected_ = cruising_ = beyond_cruise_ = 0;
     x_.setZero();
     x_.segment<3>(3) = v0;
     P_.setZero();
@@ -109,9 +109,16 @@ void DepthBridge::predict(double t, const Eigen::Matrix3d& R_0) {
     Matrix9d F, Q;
     params_.motion.matrices(dt, R_0, F, Q);
     x_ = F * x_;
-    const Eigen::Vector3d cruise = cruise_.at(Eigen::AngleAxisd(R_predicted_.transpose() * R_0).angle() / dt);
+    if (cruise_.seconds() > 0) {
+        const double rate = Eigen::AngleAxisd(R_predicted_.transpose() * R_0).angle() / dt;
+        if (cruise_.knows(rate)) {
+            ++cruising_;
+            x_ += params_.motion.cruiseStep(dt, R_0, cruise_.at(rate));
+        } else {
+            ++beyond_cruise_;
+        }
+    }
     R_predicted_ = R_0;
-    if (!cruise.isZero()) x_ += params_.motion.cruiseStep(dt, R_0, cruise);
     P_ = F * P_ * F.transpose() + Q;
 }
 

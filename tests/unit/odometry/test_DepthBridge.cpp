@@ -86,6 +86,9 @@ TEST(DepthBridge, WithoutDepthACruisingCarrierKeepsItsPaceAndStopsToTurn) {
     EXPECT_NEAR((turning.velocity() - R * pace).norm(), 0, 0.3 * std::exp(-3) + 1e-6);
     EXPECT_NEAR(turning.displacement().y(), 0.3 * (3 - (1 - std::exp(-3))), 0.01) << turning.displacement().transpose();
     EXPECT_NEAR(turning.displacement().x(), 0, 0.01);
+    EXPECT_EQ(turning.beyondCruise(), turn);
+    EXPECT_EQ(turning.cruising(), 90);
+    EXPECT_EQ(straight.cruising(), 120);
 }
 
 // Walking 1 m at a plain wall (2 m from it to 1 m, nothing else in view) while drifting 0.2 m

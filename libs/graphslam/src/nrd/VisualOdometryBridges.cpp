@@ -214,7 +214,8 @@ void VisualOdometryNRD::followGap(const vision::RgbdFrame& frame, double t,
             depth_bridge_.startTurn(w0, w0Covariance);
         }
     }
-    const int aligned = depth_bridge_.aligned(), rejected = depth_bridge_.rejected();
+    const int aligned = depth_bridge_.aligned(), rejected = depth_bridge_.rejected(),
+              cruising = depth_bridge_.cruising(), beyond = depth_bridge_.beyondCruise();
     if (depth_bridge_.turning()) {
         depth_bridge_.add(t, frame, T_robot_optical);
     } else {
@@ -224,6 +225,8 @@ void VisualOdometryNRD::followGap(const vision::RgbdFrame& frame, double t,
     }
     depth_bridge_aligned_ += static_cast<std::size_t>(depth_bridge_.aligned() - aligned);
     depth_bridge_rejected_ += static_cast<std::size_t>(depth_bridge_.rejected() - rejected);
+    depth_bridge_cruising_ += static_cast<std::size_t>(depth_bridge_.cruising() - cruising);
+    depth_bridge_beyond_cruise_ += static_cast<std::size_t>(depth_bridge_.beyondCruise() - beyond);
 }
 
 void VisualOdometryNRD::carryAcrossGap(double t) {
@@ -272,6 +275,7 @@ void VisualOdometryNRD::carryAcrossGap(double t) {
     const Eigen::Vector3d u = R.transpose() * v;
     const Eigen::Matrix3d ux = vision::skew(u);
     carried_velocity_ = carried(u, R.transpose() * C * R + ux * turnCovariance * ux.transpose());
+    ++restarts_carrying_velocity_;
     // Where the depth followed the turn, its rate too (the robot's body rate at t already).
     if (!g) carried_turn_rate_ = carried(depth_bridge_.turnRate(), depth_bridge_.turnRateCovariance());
 }

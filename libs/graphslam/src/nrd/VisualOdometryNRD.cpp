@@ -534,6 +534,7 @@ JsonObject VisualOdometryNRD::describe() const {
         .set("vo_gaps_relocalized", relocalized_)
         .set("vo_relocalizations_against_the_motion_model", relocalizations_rejected_)
         .set("segments", segment_ + 1)
+        .set("vo_restarts_carrying_velocity", restarts_carrying_velocity_)
         .set("vo_ms_per_frame", detail::voTimingJson(vo_.totals()));
     if (params_.useGyro) {
         const Eigen::Vector3d b = gyro_bias_.bias() * 180 / M_PI;
@@ -554,6 +555,10 @@ JsonObject VisualOdometryNRD::describe() const {
             stats.set("depth_bridge_frames_aligned", depth_bridge_aligned_)
                 .set("depth_bridge_frames_rejected", depth_bridge_rejected_);
         }
+    }
+    if (params_.bridgeByDepth && params_.bridgeCruiseSeconds > 0) {
+        stats.set("depth_bridge_steps_cruising", depth_bridge_cruising_)
+            .set("depth_bridge_steps_turning_beyond_cruise", depth_bridge_beyond_cruise_);
     }
     if (params_.useGravity) stats.set("nodes_with_measured_up", attitude_priors_);
     if (params_.carrierTiltSigma > 0) stats.set("nodes_with_carrier_up", carrier_ups_);

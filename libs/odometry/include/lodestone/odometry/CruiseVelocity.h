@@ -35,9 +35,14 @@ class CruiseVelocity {
     /** The cruise velocity [m/s] in the carrier's axes while it turns at `turnRate` [rad/s,
      * magnitude]: zero before any step, and where it turns faster than the window's rates. */
     Eigen::Vector3d at(double turnRate) const;
+    /** Whether anything is known of the pace at `turnRate`: steps were tracked, and it is
+     * within the window's turn rates. */
+    bool knows(double turnRate) const;
     double seconds() const { return seconds_; }
 
   private:
+    double rateSpread2() const;  ///< the window's turn rates' variance, theirs own error added
+
     double seconds_{0}, rate_sigma_{0};
     // (sums over the window, each step weighed by its time and its age: time, time x rate,
     // time x rate^2, displacement, displacement x rate)

@@ -95,6 +95,10 @@ class DepthBridge {
     /** Frames of this gap whose depth measured the motion, and those left out by the gate. */
     int aligned() const { return aligned_; }
     int rejected() const { return rejected_; }
+    /** With a cruise: steps of this gap that went on at it, and those turning faster than it
+     * knows (faded to rest). */
+    int cruising() const { return cruising_; }
+    int beyondCruise() const { return beyond_cruise_; }
 
   private:
     using Vector9d = Eigen::Matrix<double, 9, 1>;
@@ -130,7 +134,7 @@ class DepthBridge {
     Eigen::Vector3d up_{Eigen::Vector3d::UnitZ()};
     CruiseVelocity cruise_;
     Eigen::Matrix3d R_predicted_{Eigen::Matrix3d::Identity()};  // the turn at the last prediction
-    int aligned_{0}, rejected_{0};
+    int aligned_{0}, rejected_{0}, cruising_{0}, beyond_cruise_{0};
     bool turning_{false};
     DepthTurn turn_;
 };

@@ -255,6 +255,8 @@ class VisualOdometryNRD : public NodeDecider {
     std::size_t bridged_by_depth_{0};     // gyro bridges the depth corrected (of those taken)
     std::size_t bridged_by_depth_turn_{0};  // gaps no gyro covered, bridged by the depth's turn
     std::size_t depth_bridge_aligned_{0}, depth_bridge_rejected_{0};  // gap frames, over the run
+    std::size_t depth_bridge_cruising_{0}, depth_bridge_beyond_cruise_{0};  // ... their steps
+    std::size_t restarts_carrying_velocity_{0};  // VO restarts a gap's velocity was carried to
     std::deque<std::pair<TNodeID, std::shared_ptr<const vision::FrameFeatures>>> recent_keyframes_;
     mrpt::poses::CPose3D since_keyframe_;  // the last node relative to the last keyframe
     int segment_{0};
