@@ -41,7 +41,7 @@ class CruiseVelocity {
     double seconds() const { return seconds_; }
 
   private:
-    double rateSpread2() const;  ///< the window's turn rates' variance, theirs own error added
+    double rateSpread2() const;  ///< the window's turn rates' variance, their own error added
 
     double seconds_{0}, rate_sigma_{0};
     // (sums over the window, each step weighed by its time and its age: time, time x rate,

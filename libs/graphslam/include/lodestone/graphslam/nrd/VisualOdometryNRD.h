@@ -92,9 +92,10 @@ class VisualOdometryNRD : public NodeDecider {
          * (`bridge_velocity_seconds`, `bridge_speed_sigma`). */
         double gyroBridgeMaxSeconds{10.0};
         odometry::FadingVelocity bridgeVelocity;
-        /** [s] The velocity a gap's fades towards: the carrier's cruise, VO's velocity in its
-         * axes averaged over this long of tracking (odometry::CruiseVelocity;
-         * `bridge_cruise_seconds`; 0: rest). */
+        /** [s] The velocity a gap's fades towards: the carrier's cruise at the gap's turn rate,
+         * VO's velocity in its axes regressed on its turn rate over this long of tracking, rest
+         * where it turns faster than it did then (odometry::CruiseVelocity;
+         * `bridge_cruise_seconds`; 0: always rest). */
         double bridgeCruiseSeconds{0};
         /** The gyro's bridge corrected by the depth of the gap's frames (odometry::DepthBridge:
          * each frame's depth aligned with an earlier one measures the translation where it
