@@ -12,13 +12,19 @@ using lodestone::odometry::FadingVelocity;
 
 namespace {
 constexpr double kRate = 30;  // [Hz]
-}
 
-// With no depth in any frame the bridge is the fading velocity's, mean and variance alike.
-TEST(DepthBridge, WithoutDepthItIsTheFadingVelocitysBridge) {
+/** A frame with no depth anywhere: the bridge is its motion model alone. */
+lodestone::vision::RgbdFrame blankFrame() {
     lodestone::vision::RgbdFrame blank;
     blank.intrinsics = {570.3, 570.3, 319.5, 239.5, 640, 480};
     blank.depth = cv::Mat::zeros(480, 640, CV_32FC1);
+    return blank;
+}
+}  // namespace
+
+// With no depth in any frame the bridge is the fading velocity's, mean and variance alike.
+TEST(DepthBridge, WithoutDepthItIsTheFadingVelocitysBridge) {
+    const lodestone::vision::RgbdFrame blank = blankFrame();
     DepthBridge::Params p;
     p.motion = FadingVelocity{0.5, 1.0};
     DepthBridge bridge(p);
@@ -52,9 +58,7 @@ TEST(DepthBridge, WithoutDepthItIsTheFadingVelocitysBridge) {
 // that stopped and turns on the spot (its cruise learnt on a straight corridor: no turn that
 // fast in it) stays where it stood, and drives on at its pace along its new heading.
 TEST(DepthBridge, WithoutDepthACruisingCarrierKeepsItsPaceAndStopsToTurn) {
-    lodestone::vision::RgbdFrame blank;
-    blank.intrinsics = {570.3, 570.3, 319.5, 239.5, 640, 480};
-    blank.depth = cv::Mat::zeros(480, 640, CV_32FC1);
+    const lodestone::vision::RgbdFrame blank = blankFrame();
     DepthBridge::Params p;
     p.motion = FadingVelocity{0.5, 1.0};
     lodestone::odometry::CruiseVelocity cruise(10.0);
@@ -188,9 +192,7 @@ TEST(DepthBridge, ARobotTurningInPlaceBeforeAWallStaysWhereItStood) {
 // would carry the bridge a metre up over a few seconds; a carrier's height wanders centimetres,
 // and with that prior the bridge stays within it - along the other axes it is unchanged.
 TEST(DepthBridge, TheCarriersHeightHoldsWhereNothingMeasuresIt) {
-    lodestone::vision::RgbdFrame blank;
-    blank.intrinsics = {570.3, 570.3, 319.5, 239.5, 640, 480};
-    blank.depth = cv::Mat::zeros(480, 640, CV_32FC1);
+    const lodestone::vision::RgbdFrame blank = blankFrame();
     DepthBridge::Params p;
     DepthBridge free(p);
     p.heightSigma = 0.1;
@@ -250,9 +252,7 @@ TEST(DepthBridge, WithoutAGyroTheDepthMeasuresAQuarterTurnAtAPlainCorner) {
 // No gyro and no depth: the turn is the fading rate's guess - the rate at the start carried
 // as FadingVelocity carries a velocity, with that model's spread per axis.
 TEST(DepthBridge, WithoutAGyroOrDepthTheTurnIsTheFadingRatesGuess) {
-    lodestone::vision::RgbdFrame blank;
-    blank.intrinsics = {570.3, 570.3, 319.5, 239.5, 640, 480};
-    blank.depth = cv::Mat::zeros(480, 640, CV_32FC1);
+    const lodestone::vision::RgbdFrame blank = blankFrame();
     DepthBridge::Params p;
     p.turn.rate = FadingVelocity{0.5, 1.0};
     DepthBridge bridge(p);

@@ -10,27 +10,39 @@
 
 using lodestone::odometry::FadingVelocity;
 
-TEST(FadingVelocity, MatchesTheProcessSimulated) {
-    const FadingVelocity model{0.5, 1.0};
-    const double v0 = 0.3, T = 3.0, dt = 1e-3;
-    std::mt19937_64 rng(7);
+namespace {
+/** The process itself, one axis, simulated `runs` times over `seconds` from `v0`: the mean and
+ * variance of its displacement. Exact discretization of the velocity about the cruise c:
+ * v' = c + a (v - c) + s w, a = e^-dt/tau, s^2 = sigma^2 (1 - a^2). */
+void simulate(const FadingVelocity& model, double v0, double cruise, double seconds, unsigned seed,
+              double& mean, double& variance) {
+    const double dt = 1e-3;
+    std::mt19937_64 rng(seed);
     std::normal_distribution<double> n01;
-    // Exact discretization of the velocity: v' = a v + s w, a = e^-dt/tau, s^2 = sigma^2 (1 - a^2).
     const double a = std::exp(-dt / model.correlationSeconds);
     const double s = model.speedSigma * std::sqrt(1 - a * a);
     const int runs = 4000;
     double sum = 0, sum2 = 0;
     for (int r = 0; r < runs; ++r) {
         double v = v0, x = 0;
-        for (double t = 0; t < T - 1e-9; t += dt) {
-            const double next = a * v + s * n01(rng);
+        for (double t = 0; t < seconds - 1e-9; t += dt) {
+            const double next = cruise + a * (v - cruise) + s * n01(rng);
             x += 0.5 * (v + next) * dt;
             v = next;
         }
         sum += x;
         sum2 += x * x;
     }
-    const double mean = sum / runs, var = sum2 / runs - mean * mean;
+    mean = sum / runs;
+    variance = sum2 / runs - mean * mean;
+}
+}  // namespace
+
+TEST(FadingVelocity, MatchesTheProcessSimulated) {
+    const FadingVelocity model{0.5, 1.0};
+    const double v0 = 0.3, T = 3.0;
+    double mean = 0, var = 0;
+    simulate(model, v0, 0.0, T, 7, mean, var);
     const double modelMean = model.meanDisplacement(Eigen::Vector3d(v0, 0, 0), T).x();
     const double modelVar = model.displacementVariance(T);
     // Sampling error of the mean: sqrt(var / runs) ~ 0.014 m; of the variance ~ 2.2 % (5 and
@@ -155,24 +167,9 @@ TEST(FadingVelocity, ItsVelocityFadesAlikeInOneGapOrInTwo) {
 // variance is the zero-mean model's (the cruise moves the mean only).
 TEST(FadingVelocity, WithACruiseTheVelocityFadesTowardsItNotTowardsRest) {
     const FadingVelocity model{0.5, 1.0};
-    const double c = 0.3, v0 = 0.1, T = 4.0, dt = 1e-3;
-    std::mt19937_64 rng(11);
-    std::normal_distribution<double> n01;
-    const double a = std::exp(-dt / model.correlationSeconds);
-    const double s = model.speedSigma * std::sqrt(1 - a * a);
-    const int runs = 4000;
-    double sum = 0, sum2 = 0;
-    for (int r = 0; r < runs; ++r) {
-        double v = v0, x = 0;
-        for (double t = 0; t < T - 1e-9; t += dt) {
-            const double next = c + a * (v - c) + s * n01(rng);
-            x += 0.5 * (v + next) * dt;
-            v = next;
-        }
-        sum += x;
-        sum2 += x * x;
-    }
-    const double mean = sum / runs, var = sum2 / runs - mean * mean;
+    const double c = 0.3, v0 = 0.1, T = 4.0;
+    double mean = 0, var = 0;
+    simulate(model, v0, c, T, 11, mean, var);
     const Eigen::Vector3d cruise(c, 0, 0);
     const double modelMean = model.meanDisplacement(Eigen::Vector3d(v0, 0, 0), T, cruise).x();
     // (sampling error of the mean ~0.017 m; of the variance ~2.2 %)
