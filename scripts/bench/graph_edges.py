@@ -10,7 +10,10 @@ does a covariance lie? Two markdown tables:
      bias: summed lengths, measured over true, minus one);
   3. the same edges split by whether they claim under half the truth's length (of those that
      moved 2 cm or more): how much of a run's shortness a few edges hold (a bridge from a
-     standstill) and how much is spread over every step.
+     standstill) and how much is spread over every step;
+  4. the same edges split by the time they span (a gap's bridge spans more than 0.5 s, VO's
+     steps less): their position error (x, y) against the truth, summed and RMS - where one
+     bridge design's edges are nearer the truth than another's.
 Errors are taken in the edge's own frame (planar: x, y, yaw). Kidnap edges (sigma > 1) are
 left out.
 Usage: scripts/bench/graph_edges.py RUN_DIR GROUND_TRUTH.tum"""
@@ -119,6 +122,7 @@ def main():
     classes = [(0, 0.02), (0.02, 0.05), (0.05, 0.1), (0.1, 0.2), (0.2, 0.5), (0.5, 1e9)]
     stats = {c: [] for c in classes}
     halves = {"under half the truth's length": [], "the rest": []}
+    spans = {"up to 0.5 s (VO's steps)": [], "over 0.5 s (gaps)": []}
     for k, t in node_time.items():
         if (k, k + 1) not in edges or k + 1 not in node_time:
             continue
@@ -126,7 +130,10 @@ def main():
         if cov[2][2] > 1:
             continue
         truth = relative(pose_at(tum, times, t), pose_at(tum, times, node_time[k + 1]))
-        yaw_err = error_of(measured, truth)[2]
+        e = error_of(measured, truth)
+        yaw_err = e[2]
+        spans["over 0.5 s (gaps)" if node_time[k + 1] - t > 0.5 else "up to 0.5 s (VO's steps)"].append(
+            math.hypot(e[0], e[1]))
         sigma = math.degrees(math.sqrt(cov[2][2]))
         lengths = (math.hypot(measured[0], measured[1]), math.hypot(truth[0], truth[1]))
         if lengths[1] >= 0.02:
@@ -152,6 +159,12 @@ def main():
         true_length, length = sum(l[1] for l in v), sum(l[0] for l in v)
         print("| %s | %d | %.2f | %.2f | %+.2f %% |" % (
             name, len(v), true_length, length, 100 * (length / true_length - 1) if true_length > 0 else 0))
+    print()
+    print("| odometry edges spanning | edges | position error sum [m] | RMS [m] |")
+    print("|---|---|---|---|")
+    for name, v in spans.items():
+        if v:
+            print("| %s | %d | %.3f | %.4f |" % (name, len(v), sum(v), math.sqrt(sum(a * a for a in v) / len(v))))
 
 
 if __name__ == "__main__":
