@@ -87,9 +87,6 @@ VisualOdometryNRD::Velocity VisualOdometryNRD::velocityAtLastTracked() const {
 }
 
 VisualOdometryNRD::Velocity VisualOdometryNRD::turnRateAtLastTracked() const {
-    // VO's rotations over a window are known no better than its steps' (0.1-0.4 deg RMS at
-    // 640x480, docs/results/camera-only.md): two of them over 0.3 s, about 2 deg/s.
-    constexpr double kRateFloor = 2 * M_PI / 180;
     const std::size_t start = windowStart(params_.gravityVelocitySeconds);
     Velocity w;
     if (chained_.empty() || !(chained_.back().first > chained_[start].first)) {
@@ -103,7 +100,7 @@ VisualOdometryNRD::Velocity VisualOdometryNRD::turnRateAtLastTracked() const {
     const double dt = chained_.back().first - chained_[start].first;
     const Eigen::AngleAxisd turned(R0.transpose() * R1);  // (its axis the same in either frame)
     w.mean = turned.angle() * turned.axis() / dt;
-    w.sigma = kRateFloor;
+    w.sigma = kTurnRateFloor;
     w.covariance = R1.transpose() *
                        (chained_rotation_covariance_.back() + chained_rotation_covariance_[start]) *
                        R1 / (dt * dt) +

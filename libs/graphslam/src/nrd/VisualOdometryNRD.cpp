@@ -136,7 +136,7 @@ void VisualOdometryNRD::configure(const mrpt::config::CConfigFileBase& ini) {
     bridge.heightSigma = params_.bridgeHeightSigma;
     bridge.turn = params_.bridgeTurn;
     depth_bridge_ = odometry::DepthBridge(bridge);
-    cruise_ = odometry::CruiseVelocity(params_.bridgeCruiseSeconds);
+    cruise_ = odometry::CruiseVelocity(params_.bridgeCruiseSeconds, kTurnRateFloor);
 }
 
 bool VisualOdometryNRD::updateState(mrpt::obs::CActionCollection::Ptr,

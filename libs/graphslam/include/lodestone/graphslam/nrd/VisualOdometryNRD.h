@@ -270,6 +270,9 @@ class VisualOdometryNRD : public NodeDecider {
     std::deque<Eigen::Matrix3d> chained_covariance_;  // VO's, of each against its reference
     std::deque<Eigen::Matrix3d> chained_rotation_covariance_;  // (the same for its rotation)
     std::optional<Velocity> carried_velocity_, carried_turn_rate_;  // at the last restart
+    /** [rad/s] How well VO's turn rate over a window is known: its rotations no better than its
+     * steps' (0.1-0.4 deg RMS at 640x480, docs/results/camera-only.md), two over 0.3 s. */
+    static constexpr double kTurnRateFloor = 2 * M_PI / 180;
     mrpt::poses::CPose3D last_step_;  // the last motion between tracked frames ...
     double last_step_seconds_{0};      // ... and how long it took
     std::vector<double> gap_seconds_;  // from the last tracked frame to VO's restart
