@@ -33,6 +33,10 @@ void NodeDecider::continueAfterMap(TNodeID, int) {
     throw std::logic_error(getClassName() + " cannot start in a saved map");
 }
 
+std::function<void(const mrpt::obs::CObservation::Ptr&)> NodeDecider::preparer(std::size_t) {
+    return {};
+}
+
 void EdgeDecider::registerNewEdge(const TNodeID& from, const TNodeID& to, const Constraint& c) {
     m_graph->insertEdge(from, to, c);
     LoopClosure lc;

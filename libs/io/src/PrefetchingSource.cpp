@@ -47,11 +47,13 @@ bool isFrame(const mrpt::obs::CObservation& obs) {
 }  // namespace
 
 PrefetchingSource::PrefetchingSource(std::unique_ptr<DataSource> inner, std::size_t depth,
-                                     std::function<double()> progress, std::size_t threads)
+                                     std::function<double()> progress, std::size_t threads,
+                                     Prepare prepare)
     : inner_(std::move(inner)),
       name_(inner_->name()),
       depth_(std::max<std::size_t>(depth, 1)),
-      progress_of_(std::move(progress)) {
+      progress_of_(std::move(progress)),
+      prepare_(std::move(prepare)) {
     for (std::size_t k = 0; k < std::max<std::size_t>(threads, 1); ++k) {
         workers_.emplace_back([this] { run(); });
     }
@@ -88,8 +90,11 @@ void PrefetchingSource::run() {
             const double t0 = threadCpuSeconds();
             decode(*obs);
             const double t1 = threadCpuSeconds();
+            if (prepare_) prepare_(obs);
+            const double t2 = threadCpuSeconds();
             lock.lock();
             time_.decodeSeconds += t1 - t0;
+            time_.prepareSeconds += t2 - t1;
             for (auto& s : queue_) {
                 if (s.obs == obs) s.decoded = true;
             }

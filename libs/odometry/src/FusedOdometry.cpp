@@ -63,6 +63,7 @@ FusedOdometry::FusedOdometry(const Params& params, std::vector<std::string> meth
                                             params.kalmanMeasurementNoise));
     }
     recent_.resize(fusions_.size());
+    prepared_.onlyCamera(params.cameraLabel);
 }
 
 std::vector<FusedOdometry::Estimate> FusedOdometry::process(
@@ -92,10 +93,11 @@ std::vector<FusedOdometry::Estimate> FusedOdometry::process(
             ++frames_ignored_;
             return out;
         }
-        vision::RgbdFrame frame = frameFromObservation(*scan);
+        vision::PreparedFrame frame = prepared_.take(*scan);
+        const double t = frame.frame.timestamp;
         const Eigen::Isometry3d T_robot_optical = opticalFrameOnRobot(scan->sensorPose);
-        const auto prior = wheelPrior(frame.timestamp, T_robot_optical);
-        Pending p{frame.timestamp, visual_.process(frame, prior ? &*prior : nullptr), T_robot_optical};
+        const auto prior = wheelPrior(t, T_robot_optical);
+        Pending p{t, visual_.process(std::move(frame), prior ? &*prior : nullptr), T_robot_optical};
         scan->unload();
         pending_.push_back(std::move(p));
         ++frames_;

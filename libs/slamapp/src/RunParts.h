@@ -34,7 +34,7 @@ std::set<std::string> allowedSections();
 /** What a run reads and drives, opened and checked before any work. */
 struct RunInputs {
     std::unique_ptr<graphslam::SlamEngine> engine;
-    std::unique_ptr<io::DataSource> source;
+    std::unique_ptr<io::DataSource> source;  ///< (after the engine: its workers may call into it)
     sim::SimulatorSource* simulator{nullptr};  ///< `source`, when it is the simulator
     std::function<double()> fractionRead;      ///< of the rawlog, for the progress bar
     const io::PrefetchingSource* prefetcher{nullptr};  ///< its workers' time, for report.json

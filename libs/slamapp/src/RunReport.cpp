@@ -65,9 +65,12 @@ JsonObject timingJson(const graphslam::SlamEngine::Stats& s, const LoopOutcome& 
         .set("node_ms", JsonObject().set("mean", nodes.mean).set("p99", nodes.p99).set("max", nodes.max))
         .set("node_ms_by_decile", decileMeans(s.nodeMs));
     if (prefetcher) {
-        // The workers' CPU time: what reading and decoding cost, off the frame loop.
+        // The workers' CPU time: what reading, decoding and preparing frames cost, off the
+        // frame loop.
         const auto w = prefetcher->workerTime();
-        timing.set("worker_read_s", w.readSeconds).set("worker_decode_s", w.decodeSeconds);
+        timing.set("worker_read_s", w.readSeconds)
+            .set("worker_decode_s", w.decodeSeconds)
+            .set("worker_prepare_s", w.prepareSeconds);
     }
     return timing;
 }

@@ -118,9 +118,11 @@ void openRawlog(const SlamRunOptions& options, RunInputs& in) {
         return;
     }
     in.decodeThreads = options.decodeThreads > 0 ? options.decodeThreads : usableCores();
+    // The workers also prepare the node decider's frames (RGB-D features): the engine must
+    // outlive the source (RunInputs destroys the source first).
     auto prefetch = std::make_unique<io::PrefetchingSource>(
         std::move(rawlog), options.decodeAhead, [inner] { return inner->fractionRead(); },
-        in.decodeThreads);
+        in.decodeThreads, in.engine->preparer(options.decodeAhead + 1));
     const io::PrefetchingSource* p = prefetch.get();
     in.prefetcher = p;
     in.fractionRead = [p] { return p->progress(); };

@@ -160,7 +160,6 @@ GuidedMatcher::Params guidedParams(const RgbdVisualOdometry::Params& p) {
 
 RgbdVisualOdometry::RgbdVisualOdometry(const Params& params)
     : params_(params),
-      extractor_(params.orb),
       matcher_(params.matcher),
       guided_(guidedParams(params)),
       ransac_(params.ransac),
@@ -249,9 +248,29 @@ bool RgbdVisualOdometry::replaceIfPlausible(RigidEstimate& est, const Eigen::Iso
     return true;
 }
 
+PreparedFrame RgbdVisualOdometry::prepare(RgbdFrame frame) const {
+    PreparedFrame p;
+    p.frame = std::move(frame);
+    auto t0 = std::chrono::steady_clock::now();
+    // (an extractor of its own: OpenCV's ORB is not documented as safe to share across threads)
+    p.features = OrbExtractor(params_.orb).extract(p.frame);
+    p.orbMs = msSince(t0);
+    if (params_.depthAlignment) {
+        t0 = std::chrono::steady_clock::now();
+        p.cloud = sampleDepthCloud(p.frame, params_.depthSampling);
+        p.cloudMs = msSince(t0);
+    }
+    return p;
+}
+
 VoResult RgbdVisualOdometry::process(const RgbdFrame& frame, const MotionPrior* prior,
                                      const RotationPrior* rotation) {
-    VoResult r = processFrame(frame, prior, rotation);
+    return process(prepare(frame), prior, rotation);
+}
+
+VoResult RgbdVisualOdometry::process(PreparedFrame prepared, const MotionPrior* prior,
+                                     const RotationPrior* rotation) {
+    VoResult r = processFrame(prepared, prior, rotation);
     ++totals_.frames;
     if (r.guided) ++totals_.guided;
     totals_.ms.orb += r.timing.orb;
@@ -335,25 +354,28 @@ DepthAlignment RgbdVisualOdometry::alignDepth(const DepthCloud& cloud, double ti
     return d;
 }
 
-VoResult RgbdVisualOdometry::processFrame(const RgbdFrame& frame, const MotionPrior* prior,
+VoResult RgbdVisualOdometry::processFrame(PreparedFrame& prepared, const MotionPrior* prior,
                                           const RotationPrior* rotation) {
     VoResult r;
     ++frame_count_;
-    auto t0 = std::chrono::steady_clock::now();
-    FrameFeatures current = extractor_.extract(frame);
-    r.timing.orb = msSince(t0);
+    const RgbdFrame& frame = prepared.frame;
+    FrameFeatures& current = prepared.features;
+    r.timing.orb = prepared.orbMs;
     r.features = current.size();
     r.frameFeatures = std::make_shared<const FrameFeatures>(current);
-    // The frame's depth points, sampled when first needed: for a new reference, a start, or an
-    // alignment (most frames whose features align need none unless solved with them).
-    std::optional<DepthCloud> sampled;
+    // The frame's depth points, sampled ahead or when first needed: for a new reference, a
+    // start, or an alignment (most frames whose features align need none unless solved with
+    // them). Their cost counts where they are used.
+    bool cloudCounted = false;
     const auto cloud = [&]() -> DepthCloud& {
-        if (!sampled) {
+        if (!prepared.cloud) {
             const auto td = std::chrono::steady_clock::now();
-            sampled = sampleDepthCloud(frame, params_.depthSampling);
-            r.timing.depth += msSince(td);
+            prepared.cloud = sampleDepthCloud(frame, params_.depthSampling);
+            prepared.cloudMs = msSince(td);
         }
-        return *sampled;
+        if (!cloudCounted) r.timing.depth += prepared.cloudMs;
+        cloudCounted = true;
+        return *prepared.cloud;
     };
 
     const auto fail = [&](VoFailure why) {

@@ -282,6 +282,14 @@ NodeRecord FusedOdometryNRD::recordFor(double timestamp, bool keyframe) {
     return r;
 }
 
+std::function<void(const mrpt::obs::CObservation::Ptr&)> FusedOdometryNRD::preparer(std::size_t inFlight) {
+    // (the frames in flight, and the one being taken while the reader adds the next)
+    odometry_->preparedFrames().setCapacity(inFlight + 1);
+    return [this](const mrpt::obs::CObservation::Ptr& obs) {
+        odometry_->preparedFrames().prepareAhead(obs);
+    };
+}
+
 JsonObject FusedOdometryNRD::describe() const {
     JsonObject params;
     params_.describe(params);
@@ -300,6 +308,8 @@ JsonObject FusedOdometryNRD::describe() const {
         .set("keyframes", keyframes_)
         .set("segments", segment_ + 1)
         .set("vo_ms_per_frame", detail::voTimingJson(odometry_->visual().totals()))
+        .set("frames_prepared_ahead", odometry_->preparedFrames().counts().ahead)
+        .set("frames_prepared_in_the_loop", odometry_->preparedFrames().counts().here)
         .set("vo_guided_frames", odometry_->visual().totals().guided)
         .set("vo_guided_fallbacks", odometry_->visual().totals().guidedFallback)
         .set("vo_guided_pairs_compared",

@@ -126,6 +126,7 @@ void VisualOdometryNRD::configure(const mrpt::config::CConfigFileBase& ini) {
     s.finish();
     params_ = p;
     vo_ = vision::RgbdVisualOdometry(params_.visual);
+    prepared_.onlyCamera(params_.cameraLabel);
     gyro_ = odometry::GyroIntegrator(params_.gyro);
     gyro_bias_ = odometry::GyroBiasEstimator(params_.gyro.biasStd);
     gravity_ = odometry::GravityEstimator(params_.gravity);
@@ -191,7 +192,10 @@ std::optional<vision::RotationPrior> VisualOdometryNRD::gyroSinceReference(
 }
 
 void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& scan) {
-    if (params_.cameraLabel.empty()) params_.cameraLabel = scan->sensorLabel;
+    if (params_.cameraLabel.empty()) {
+        params_.cameraLabel = scan->sensorLabel;
+        prepared_.onlyCamera(params_.cameraLabel);  // (another camera's frames: not ahead)
+    }
     if (scan->sensorLabel != params_.cameraLabel) return;
     ++frames_;
     const double t = mrpt::Clock::toDouble(scan->timestamp);
@@ -201,8 +205,9 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
         rotation = gyroSinceReference(t, T_robot_optical);
         if (rotation) ++gyro_priors_;
     }
-    const vision::RgbdFrame frame = odometry::frameFromObservation(*scan);
-    const auto r = vo_.process(frame, nullptr, rotation ? &*rotation : nullptr);
+    vision::PreparedFrame prepared = prepared_.take(*scan);
+    const vision::RgbdFrame frame = prepared.frame;  // (the images shared, not copied)
+    const auto r = vo_.process(std::move(prepared), nullptr, rotation ? &*rotation : nullptr);
     if (params_.useGyro) {
         // Keep what the next frame's rotation needs: from VO's reference (or this frame) on,
         // and from the last tracked frame (a bridge across a gap, this frame's restart
@@ -478,6 +483,12 @@ VisualOdometryNRD::global_pose_t VisualOdometryNRD::getCurrentRobotPosEstimation
     return global_pose_t(pose + last_tracked_.pdf.mean);
 }
 
+std::function<void(const mrpt::obs::CObservation::Ptr&)> VisualOdometryNRD::preparer(std::size_t inFlight) {
+    // (the frames in flight, and the one being taken while the reader adds the next)
+    prepared_.setCapacity(inFlight + 1);
+    return [this](const mrpt::obs::CObservation::Ptr& obs) { prepared_.prepareAhead(obs); };
+}
+
 JsonObject VisualOdometryNRD::describe() const {
     JsonObject params;
     params_.describe(params);
@@ -535,7 +546,9 @@ JsonObject VisualOdometryNRD::describe() const {
         .set("vo_relocalizations_against_the_motion_model", relocalizations_rejected_)
         .set("segments", segment_ + 1)
         .set("vo_restarts_carrying_velocity", restarts_carrying_velocity_)
-        .set("vo_ms_per_frame", detail::voTimingJson(vo_.totals()));
+        .set("vo_ms_per_frame", detail::voTimingJson(vo_.totals()))
+        .set("frames_prepared_ahead", prepared_.counts().ahead)
+        .set("frames_prepared_in_the_loop", prepared_.counts().here);
     if (params_.useGyro) {
         const Eigen::Vector3d b = gyro_bias_.bias() * 180 / M_PI;
         stats.set("frames_with_gyro_rotation", gyro_priors_)

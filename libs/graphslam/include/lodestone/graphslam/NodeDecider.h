@@ -3,6 +3,7 @@
 #include <lodestone/graphslam/SlamComponent.h>
 #include <mrpt/graphslam/interfaces/CNodeRegistrationDecider.h>
 
+#include <functional>
 #include <optional>
 
 namespace lodestone::graphslam {
@@ -21,6 +22,11 @@ class NodeDecider : public mrpt::graphslam::deciders::CNodeRegistrationDecider<G
      * segment `segment`, tied to the map as across a kidnap (the robot is somewhere in it).
      * Called before any observation. The default refuses (std::logic_error). */
     virtual void continueAfterMap(TNodeID lastMapNode, int segment);
+    /** Work on an observation that depends on it alone (an RGB-D frame's features and depth
+     * cloud), for a reader to do ahead on its own threads, at most `inFlight` observations
+     * before updateState() takes them, so that the frame loop need not. Thread-safe; what it
+     * computes is what updateState() computes without it. Empty (the default): nothing. */
+    virtual std::function<void(const mrpt::obs::CObservation::Ptr&)> preparer(std::size_t inFlight);
     /** The ID registered by the last updateState() / finish() call, if it added one. */
     std::optional<TNodeID> justRegistered() const { return just_registered_; }
 

@@ -57,6 +57,10 @@ class SlamEngine {
     const GraphOptimizer& optimizer() const { return *gso_; }
     /** The run's true trajectory for the deciders' diagnostics (SlamComponent). */
     void setDiagnosticTruth(const std::shared_ptr<const std::vector<io::TumPose>>& truth);
+    /** What a reader may do ahead on its threads for the node decider (NodeDecider::preparer). */
+    std::function<void(const mrpt::obs::CObservation::Ptr&)> preparer(std::size_t inFlight) {
+        return nrd_->preparer(inFlight);
+    }
     /** Union of the deciders' required observation classes. */
     std::set<std::string> requiredObservations() const;
     mrpt::poses::CPose3D currentPose() const;

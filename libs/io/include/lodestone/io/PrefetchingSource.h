@@ -34,13 +34,20 @@ namespace lodestone::io {
  *   the depth would leave less than a frame queued, and reading and decoding would wait on the
  *   frame loop instead of running beside it.
  * - The inner source is touched by one worker at a time; `progress` (e.g. a rawlog's fraction
- *   read) is sampled after each read and read back with progress(). */
+ *   read) is sampled after each read and read back with progress().
+ * - `prepare`, if given, is called on each observation once it is decoded, on the worker, before
+ *   the caller can have it: what the consumer would compute from the observation alone (an
+ *   RGB-D frame's features, lodestone-slam's node decider), done beside the frame loop. It must
+ *   be thread-safe and must not throw; its results are its own business (the observation is
+ *   handed over as it is). */
 class PrefetchingSource : public DataSource {
   public:
     static constexpr std::size_t kLightPerFrame = 64;
 
+    using Prepare = std::function<void(const mrpt::obs::CObservation::Ptr&)>;
     PrefetchingSource(std::unique_ptr<DataSource> inner, std::size_t depth,
-                      std::function<double()> progress = {}, std::size_t threads = 1);
+                      std::function<double()> progress = {}, std::size_t threads = 1,
+                      Prepare prepare = {});
     ~PrefetchingSource() override;
     PrefetchingSource(const PrefetchingSource&) = delete;
     PrefetchingSource& operator=(const PrefetchingSource&) = delete;
@@ -50,9 +57,9 @@ class PrefetchingSource : public DataSource {
     double progress() const { return progress_.load(); }
 
     /** The workers' CPU time so far [s], summed over them: reading entries from the inner
-     * source, and decoding what they load (external files, images). */
+     * source, decoding what they load (external files, images), and `prepare`. */
     struct WorkerTime {
-        double readSeconds{0}, decodeSeconds{0};
+        double readSeconds{0}, decodeSeconds{0}, prepareSeconds{0};
     };
     WorkerTime workerTime() const;
 
@@ -69,6 +76,7 @@ class PrefetchingSource : public DataSource {
     const std::string name_;
     const std::size_t depth_;
     std::function<double()> progress_of_;
+    Prepare prepare_;
     std::atomic<double> progress_{0};
     mutable std::mutex mutex_;
     std::condition_variable ready_;  // the front slot was decoded, or the end / a fault came

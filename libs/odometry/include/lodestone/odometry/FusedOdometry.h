@@ -2,6 +2,7 @@
 
 #include <lodestone/odometry/DiffDriveOdometry.h>
 #include <lodestone/odometry/PlanarFusion.h>
+#include <lodestone/odometry/PreparedFrames.h>
 #include <lodestone/vision/RgbdVisualOdometry.h>
 #include <mrpt/config/CLoadableOptions.h>
 #include <mrpt/obs/CObservation.h>
@@ -88,6 +89,9 @@ class FusedOdometry {
 
     const std::vector<std::string>& methods() const { return method_names_; }
     const vision::RgbdVisualOdometry& visual() const { return visual_; }
+    /** The camera's frames, preparable ahead on other threads (PreparedFrames::prepareAhead). */
+    PreparedFrames& preparedFrames() { return prepared_; }
+    const PreparedFrames& preparedFrames() const { return prepared_; }
     std::size_t framesProcessed() const { return frames_; }
     std::size_t poseSamples() const { return pose_samples_; }
     std::size_t framesIgnored() const { return frames_ignored_; }
@@ -119,6 +123,7 @@ class FusedOdometry {
     std::vector<std::map<double, mrpt::poses::CPose2D>> recent_;  // per method: frame time -> pose
     DiffDriveOdometry wheels_;
     vision::RgbdVisualOdometry visual_;
+    PreparedFrames prepared_{[this](vision::RgbdFrame f) { return visual_.prepare(std::move(f)); }};
     std::deque<WheelSample> wheel_history_;
     std::deque<Pending> pending_;
     double cum_left_{0}, cum_right_{0};

@@ -3,6 +3,7 @@
 #include <lodestone/vision/DescriptorMatcher.h>
 #include <lodestone/vision/GuidedMatcher.h>
 #include <lodestone/vision/OrbFeatures.h>
+#include <lodestone/vision/PreparedFrame.h>
 #include <lodestone/vision/RgbdFrame.h>
 #include <lodestone/vision/RigidRansac.h>
 #include <lodestone/vision/depth/PointToPlaneIcp.h>
@@ -196,6 +197,13 @@ class RgbdVisualOdometry {
      * starts from it, and with `gyroWithFeatures` it joins the features' motion. */
     VoResult process(const RgbdFrame& frame, const MotionPrior* prior = nullptr,
                      const RotationPrior* rotation = nullptr);
+    /** The same, for a frame prepare() prepared (on this thread or another). */
+    VoResult process(PreparedFrame frame, const MotionPrior* prior = nullptr,
+                     const RotationPrior* rotation = nullptr);
+    /** What process() computes from the frame alone: its ORB features and, with depth
+     * alignment, its depth cloud. Thread-safe (it touches nothing process() changes), so a
+     * reader may prepare the next frames while this one is processed. */
+    PreparedFrame prepare(RgbdFrame frame) const;
     /** The timestamp of the frame the next one will be aligned with, if any. */
     std::optional<double> referenceTimestamp() const;
 
@@ -220,7 +228,7 @@ class RgbdVisualOdometry {
     const Params& params() const { return params_; }
 
   private:
-    VoResult processFrame(const RgbdFrame& frame, const MotionPrior* prior,
+    VoResult processFrame(PreparedFrame& prepared, const MotionPrior* prior,
                           const RotationPrior* rotation);
     /** Depth alignment where the features failed (from the prior, the rotation, or constant
      * velocity). */
@@ -248,7 +256,6 @@ class RgbdVisualOdometry {
                             const Eigen::Matrix<double, 6, 6>& covariance, double timestamp) const;
 
     Params params_;
-    OrbExtractor extractor_;
     DescriptorMatcher matcher_;
     GuidedMatcher guided_;
     RigidRansac ransac_;

@@ -8,6 +8,7 @@
 #include <lodestone/odometry/GravityEstimator.h>
 #include <lodestone/odometry/GyroBiasEstimator.h>
 #include <lodestone/odometry/GyroIntegrator.h>
+#include <lodestone/odometry/PreparedFrames.h>
 #include <lodestone/vision/RgbdVisualOdometry.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/poses/CPose3DPDFGaussian.h>
@@ -154,6 +155,8 @@ class VisualOdometryNRD : public NodeDecider {
     }
     global_pose_t getCurrentRobotPosEstimation() const override;
     JsonObject describe() const override;
+    /** The camera's frames prepared ahead: converted, ORB features, depth cloud. */
+    std::function<void(const mrpt::obs::CObservation::Ptr&)> preparer(std::size_t inFlight) override;
 
   protected:
     bool checkRegistrationCondition() override;
@@ -240,6 +243,8 @@ class VisualOdometryNRD : public NodeDecider {
 
     Params params_;
     vision::RgbdVisualOdometry vo_;
+    /** Frames VO prepares, ahead on a reader's threads or here (vo_'s parameters only). */
+    odometry::PreparedFrames prepared_{[this](vision::RgbdFrame f) { return vo_.prepare(std::move(f)); }};
     odometry::GyroIntegrator gyro_;
     odometry::GyroBiasEstimator gyro_bias_;  // learnt where VO tracks on features
     odometry::GravityEstimator gravity_;
