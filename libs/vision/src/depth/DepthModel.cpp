@@ -2,6 +2,7 @@
 
 #include <nanoflann.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -93,11 +94,19 @@ void DepthModel::build() const {
     index_->tree->buildIndex();
 }
 
-bool DepthModel::nearest(const Eigen::Vector3f& p, float maxDistance2, Nearest& out) const {
+bool DepthModel::nearest(const Eigen::Vector3f& p, float maxDistance2, Nearest& out,
+                         std::int64_t near) const {
     if (keyframes_.empty()) return false;
     if (!index_) build();
     if (index_->merged.size() == 0) return false;
-    NearestWithin result(maxDistance2);
+    float bound = maxDistance2;
+    if (near >= 0 && near < static_cast<std::int64_t>(index_->merged.size())) {
+        // Widened past rounding: a larger bound never changes the answer (the nearest point
+        // and, among equally near ones, the first the traversal meets), a smaller one might.
+        const float d2 = (p - index_->merged.points.col(static_cast<Eigen::Index>(near))).squaredNorm();
+        bound = std::min(bound, d2 * (1 + 1e-4f) + 1e-12f);
+    }
+    NearestWithin result(bound);
     index_->tree->findNeighbors(result, p.data(), nanoflann::SearchParams(32, 0, false));
     if (!result.found) return false;
     const float d2 = result.best;
@@ -107,6 +116,7 @@ bool DepthModel::nearest(const Eigen::Vector3f& p, float maxDistance2, Nearest& 
     out.sigma = index_->merged.sigma(i);
     out.normalVariance = index_->merged.normalVariance(i);
     out.distance2 = d2;
+    out.index = static_cast<std::int64_t>(i);
     return true;
 }
 

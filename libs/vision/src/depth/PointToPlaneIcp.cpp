@@ -3,6 +3,8 @@
 #include <Eigen/Eigenvalues>
 
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 namespace lodestone::vision {
 
@@ -145,6 +147,9 @@ DepthAlignment PointToPlaneIcp::align(const DepthModel& model, const DepthCloud&
         return a;
     }
     const float cosNormal = static_cast<float>(std::cos(params_.maxNormalAngle));
+    // Each point's nearest model point in the last pass: it bounds the next pass's search (the
+    // motion between passes is small).
+    std::vector<std::int64_t> lastNearest(static_cast<std::size_t>(current.points.cols()), -1);
     const auto pass = [&](const Eigen::Isometry3d& T, double gate) {
         Pass e;
         const Eigen::Matrix3f R = T.linear().cast<float>();
@@ -155,7 +160,12 @@ DepthAlignment PointToPlaneIcp::align(const DepthModel& model, const DepthCloud&
         e.normals.reserve(static_cast<std::size_t>(current.points.cols()));
         for (Eigen::Index i = 0; i < current.points.cols(); ++i) {
             const Eigen::Vector3f p = R * current.points.col(i) + t;
-            if (!model.nearest(p, gate2, nn)) continue;
+            auto& near = lastNearest[static_cast<std::size_t>(i)];
+            if (!model.nearest(p, gate2, nn, near)) {
+                near = -1;
+                continue;
+            }
+            near = nn.index;
             if ((R * current.normals.col(i)).dot(nn.normal) < cosNormal) continue;
             const double r = nn.normal.dot(p - nn.point);
             const double sigma2 =

@@ -2,6 +2,7 @@
 
 #include <lodestone/vision/depth/DepthCloud.h>
 
+#include <cstdint>
 #include <deque>
 #include <memory>
 
@@ -38,9 +39,15 @@ class DepthModel {
         float sigma{0};
         float normalVariance{0};
         float distance2{0};
+        std::int64_t index{-1};  ///< the point's index in the model, until the model changes
     };
-    /** The model's point nearest `p` (reference frame) within sqrt(maxDistance2), if any. */
-    bool nearest(const Eigen::Vector3f& p, float maxDistance2, Nearest& out) const;
+    /** The model's point nearest `p` (reference frame) within sqrt(maxDistance2), if any.
+     * `near`, a model point's index (a previous search's answer for a point that has hardly
+     * moved since, as between ICP iterations), bounds the search by its distance: the nearest
+     * point lies no farther. The point found is the same; fewer of the tree's cells are
+     * searched. */
+    bool nearest(const Eigen::Vector3f& p, float maxDistance2, Nearest& out,
+                 std::int64_t near = -1) const;
 
   private:
     struct Keyframe {
