@@ -10,6 +10,7 @@ packages=(
     libmrpt-dev mrpt-apps          # MRPT 2.5: obs, io, graphslam, hwdrivers; rawlog-edit for tests
     mrpt-common                    # MRPT's sample datasets: the tests compare inspect with rawlog-edit on them
     libopencv-dev libeigen3-dev libnanoflann-dev zlib1g-dev
+    libdeflate-dev                 # colour PNG frames inflated in half zlib's time (libs/io)
     libjpeg62-turbo-dev            # libjpeg's error handler made to throw (libs/io/hooks)
     libceres-dev                   # pose-graph optimization (sparse, robust losses)
     nlohmann-json3-dev             # lodestone-eval relocation reads report.json

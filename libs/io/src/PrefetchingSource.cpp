@@ -1,3 +1,4 @@
+#include <lodestone/io/PngFile.h>
 #include <lodestone/io/PrefetchingSource.h>
 
 #include <mrpt/obs/CObservation3DRangeScan.h>
@@ -5,11 +6,34 @@
 #include <mrpt/obs/CObservationStereoImages.h>
 
 #include <algorithm>
+#include <cctype>
 #include <ctime>
 
 namespace lodestone::io {
 
 namespace {
+bool endsWithPng(const std::string& path) {
+    if (path.size() < 4) return false;
+    std::string ext = path.substr(path.size() - 4);
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    return ext == ".png";
+}
+
+/** A delay-loaded image loaded: a colour PNG by the fast decoder (the same pixels), anything
+ * else - or a PNG it does not take - by MRPT. */
+void loadImage(mrpt::img::CImage& image) {
+    if (image.isExternallyStored()) {
+        const std::string path = image.getExternalStorageFileAbsolutePath();
+        if (endsWithPng(path)) {
+            if (auto bgr = decodeRgbPng(path)) {
+                image = mrpt::img::CImage(*bgr, mrpt::img::SHALLOW_COPY);
+                return;
+            }
+        }
+    }
+    image.forceLoad();
+}
+
 /** Loads what the caller would load: external range data (load()) and the delay-loaded images,
  * which MRPT decodes only when their pixels are first touched. A file that fails to load is
  * left as it is: the caller meets the same error where it would have. */
@@ -22,9 +46,9 @@ void decode(mrpt::obs::CObservation& obs) {
     };
     attempt([&] { obs.load(); });
     if (auto* scan = dynamic_cast<mrpt::obs::CObservation3DRangeScan*>(&obs)) {
-        if (scan->hasIntensityImage) attempt([&] { scan->intensityImage.forceLoad(); });
+        if (scan->hasIntensityImage) attempt([&] { loadImage(scan->intensityImage); });
     } else if (auto* image = dynamic_cast<mrpt::obs::CObservationImage*>(&obs)) {
-        attempt([&] { image->image.forceLoad(); });
+        attempt([&] { loadImage(image->image); });
     } else if (auto* stereo = dynamic_cast<mrpt::obs::CObservationStereoImages*>(&obs)) {
         attempt([&] { stereo->imageLeft.forceLoad(); });
         if (stereo->hasImageRight) attempt([&] { stereo->imageRight.forceLoad(); });
