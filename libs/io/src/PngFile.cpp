@@ -3,6 +3,7 @@
 #include <libdeflate.h>
 #include <opencv2/imgproc.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <cstdlib>
