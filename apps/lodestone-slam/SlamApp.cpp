@@ -45,7 +45,7 @@ int runSlamApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
                                      "frames (observations with images or range data) read and "
                                      "decoded ahead on other threads (0: in the frame loop; "
                                      "results are the same)",
-                                     false, 32, "N", cmd);
+                                     false, 8, "N", cmd);
     TCLAP::ValueArg<int> decodeThreads("", "decode-threads",
                                        "threads that read and decode ahead (0: one per core this process may use)",
                                        false, 0, "N", cmd);

@@ -39,11 +39,11 @@ struct SlamRunOptions {
     bool extendMap{false};
     double maxSeconds{std::numeric_limits<double>::infinity()};  ///< of data, from its start
     /** Frames read, decoded and prepared ahead on other threads (io::PrefetchingSource); 0:
-     * all in the frame loop. Results are the same either way. About a second of a 30 Hz camera:
-     * the loop's longer frames (a solve, a relocalization: up to half a second) and the disk's
-     * stalls do not leave the readers idle (the hand-held loop from a cold disk: 2.05x real
-     * time against 1.88x with 8; about 80 MB more at its peak). */
-    std::size_t decodeAhead{32};
+     * all in the frame loop. Results are the same either way. (32, a second of a 30 Hz camera,
+     * kept the readers busier through the loop's longer frames from the page cache - 2.22x real
+     * time against 2.14x - but not measurably from a cold disk, for 50-80 MB more:
+     * docs/results/throughput.md.) */
+    std::size_t decodeAhead{8};
     /** Threads reading and decoding ahead (with decodeAhead > 0); 0: one per core the
      * process may run on (its affinity: `taskset -c 0` gives one). */
     std::size_t decodeThreads{0};
