@@ -329,6 +329,13 @@ DepthAlignment RgbdVisualOdometry::alignDepth(const DepthCloud& cloud, double ti
                                               const MotionPrior* prior,
                                               const RotationPrior* rotation) const {
     Eigen::Isometry3d initial = prior ? prior->T_ref_cur : constantVelocity(timestamp);
+    // Where the depth does not pin it, the carrier went on as its velocity fades (not constant
+    // velocity: a walker stops to turn, and a step's velocity turns with the camera). Not the
+    // last step's: a depth-aligned step's motion along what the depth left loose is where the
+    // alignment started, so each such step would start the next - along a plain corridor the
+    // steps grew frame by frame to the carrier's speed bound (docs/results/camera-only.md).
+    const double tau = rotation ? rotation->velocitySeconds : 1.0, dt = std::max(0.0, timestamp - last_time_);
+    if (!prior) initial.translation() = last_in_ref_.translation() - velocity_ * (tau * std::expm1(-dt / tau));
     // The gyro's rotation starts the alignment (a turn in front of a wall is what constant
     // velocity gets wrong).
     if (rotation) initial.linear() = rotation->R_ref_cur;
@@ -338,9 +345,6 @@ DepthAlignment RgbdVisualOdometry::alignDepth(const DepthCloud& cloud, double ti
     // depth, which then need pin only what the rotation leaves (a wall's distance).
     MotionPrior measured;
     measured.T_ref_cur = initial;
-    // Where the depth does not pin it, the carrier went on as its velocity fades (not constant
-    // velocity: a walker stops to turn, and a step's velocity turns with the camera).
-    const double tau = rotation->velocitySeconds, dt = std::max(0.0, timestamp - last_time_);
     measured.T_ref_cur.translation() = last_in_ref_.translation() - velocity_ * (tau * std::expm1(-dt / tau));
     measured.covariance.setZero();
     measured.covariance.topLeftCorner<3, 3>().diagonal().setConstant(rotation->sigma * rotation->sigma);

@@ -280,6 +280,37 @@ TEST(PoseGraphSolver, ACarriersHeightStraightensAChainItsUpsAloneLeaveBent) {
     EXPECT_NEAR(h.nodes.at(n - 1).z(), before.nodes.at(n - 1).z(), 1e-6) << "the chain as it was";
 }
 
+TEST(PoseGraphSolver, EachNodesMeasuredHeightAboveTheFloorPlacesItThere) {
+    // A chain whose edges tilt by 1 deg a step, each node seeing the floor: its up level to
+    // 0.3 deg and its height above the floor measured to 1 cm - a hand bobbing 4 cm between
+    // nodes, 1.35 m above it. The floor is solved with the nodes (started 0.3 m off), and each
+    // node's height above it is its own, not a common one.
+    const int n = 21;
+    PoseGraphSolver::Options o;
+    o.planar = false;
+    std::vector<LoopClosure> none;
+    const auto bob = [](int k) { return k % 2 == 0 ? 0.0 : 0.04; };
+    AttitudePriors seen;
+    for (int k = 0; k < n; ++k) {
+        AttitudePrior p{{0, 0, 1}, 0.3 * M_PI / 180, 0.01};
+        p.height = 1.35 + bob(k);
+        seen.nodes[k] = p;
+    }
+    seen.mapHeight = -1.35 + 0.3;
+    // The edges measure each step's rise (the bob) with a 1 deg pitch error each.
+    Graph g = driftingChain(n, 1.0 * M_PI / 180);
+    for (int k = 1; k < n; ++k) {
+        auto& c = g.edges.find({static_cast<TNodeID>(k - 1), static_cast<TNodeID>(k)})->second;
+        c.mean = mrpt::poses::CPose3D(0.5, 0, bob(k) - bob(k - 1), 0, 1.0 * M_PI / 180, 0);
+    }
+    PoseGraphSolver(o).solve(g, none, {}, true, &seen);
+    EXPECT_NEAR(seen.mapHeight, -1.35, 0.01) << "the floor under the root (held at 0)";
+    for (const auto& [id, p] : g.nodes) {
+        const double above = seen.mapUp.dot(Eigen::Vector3d(p.x(), p.y(), p.z())) - seen.mapHeight;
+        EXPECT_NEAR(above, 1.35 + bob(static_cast<int>(id)), 0.01) << id;
+    }
+}
+
 TEST(PoseGraphSolver, WheelScalesAreEstimatedAndTheirArcTakenOutOfALoop) {
     // The wheels 0.3 % apart in scale: 0.75 deg of heading per metre, the same every lap.
     const Eigen::Vector2d scale(0.002, -0.001);

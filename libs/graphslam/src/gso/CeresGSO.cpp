@@ -55,11 +55,17 @@ void CeresGSO::holdFixed(TNodeID count) {
 void CeresGSO::addAttitudePrior(TNodeID id, const AttitudePrior& prior) {
     if (params_.solver.planar || !(prior.sigma > 0 || prior.heightSigma > 0)) return;
     // The map's up starts as the first prior's, turned into the map frame by its node's pose,
-    // and the carrier's height as that node's along it; full solves refine both.
-    if (attitude_.nodes.empty() && m_graph && m_graph->nodes.count(id)) {
+    // and the level heights are above (the floor, the carrier's common height) as the first
+    // node with a height puts it; full solves refine both.
+    if (m_graph && m_graph->nodes.count(id)) {
         const auto& pose = m_graph->nodes.at(id);
-        attitude_.mapUp = pose.getRotationMatrix().asEigen() * prior.up;
-        attitude_.mapHeight = attitude_.mapUp.dot(Eigen::Vector3d(pose.x(), pose.y(), pose.z()));
+        if (attitude_.nodes.empty())
+            attitude_.mapUp = pose.getRotationMatrix().asEigen() * prior.up;
+        if (!map_height_set_ && prior.heightSigma > 0) {
+            attitude_.mapHeight =
+                attitude_.mapUp.dot(Eigen::Vector3d(pose.x(), pose.y(), pose.z())) - prior.height;
+            map_height_set_ = true;
+        }
     }
     attitude_.nodes[id] = prior;
 }

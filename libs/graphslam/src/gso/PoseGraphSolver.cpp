@@ -226,7 +226,7 @@ void addAttitudePriors(GraphProblem& gp, const AttitudePriors& priors, bool solv
             (solveMapUp || !problem.IsParameterBlockConstant(st.t))) {
             problem.AddResidualBlock(
                 new ceres::AutoDiffCostFunction<detail::HeightPriorCost, 1, 3, 3, 1>(
-                    new detail::HeightPriorCost(p->second.heightSigma)),
+                    new detail::HeightPriorCost(p->second.heightSigma, p->second.height)),
                 nullptr, st.t, gp.mapUp.get(), gp.mapHeight.get());
             any = gp.mapHeightUsed = true;
         }

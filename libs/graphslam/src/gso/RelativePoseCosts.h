@@ -186,19 +186,22 @@ struct AttitudePriorCost {
     double inv_sigma_;
 };
 
-/** A node's height along the map's up against the carrier's common height (a carrier on one
- * floor): the residual u_map . t - h, whitened by its sigma. */
+/** A node's height along the map's up against the level mapHeight marks (the floor, or the
+ * carrier's common height on one floor) and its measured height above it: the residual
+ * u_map . t - level - above, whitened by its sigma. */
 struct HeightPriorCost {
-    explicit HeightPriorCost(double sigma) : inv_sigma_(1 / sigma) {}
+    HeightPriorCost(double sigma, double above = 0) : inv_sigma_(1 / sigma), above_(above) {}
 
     template <typename T>
     bool operator()(const T* t, const T* mapUp, const T* height, T* residual) const {
-        residual[0] = T(inv_sigma_) * (mapUp[0] * t[0] + mapUp[1] * t[1] + mapUp[2] * t[2] - height[0]);
+        residual[0] =
+            T(inv_sigma_) * (mapUp[0] * t[0] + mapUp[1] * t[1] + mapUp[2] * t[2] - height[0] - T(above_));
         return true;
     }
 
   private:
     double inv_sigma_;
+    double above_;
 };
 
 /** S with S^T S = info, for an information matrix that may be only semi-definite (a weak or

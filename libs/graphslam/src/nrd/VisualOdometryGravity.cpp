@@ -1,7 +1,9 @@
 // VisualOdometryNRD: each node's up, from the IMU's accelerometer (odometry::GravityEstimator),
 // with the carrier's velocity change over the averaging window - what an accelerometer cannot
-// tell from a tilt - measured by VO and taken out.
+// tell from a tilt - measured by VO and taken out; and from the level surfaces the node's depth
+// holds (LevelFloor), with its height above the floor.
 #include <lodestone/graphslam/nrd/VisualOdometryNRD.h>
+#include <lodestone/odometry/RgbdObservationFrame.h>
 
 #include <Eigen/Eigenvalues>
 
@@ -68,6 +70,41 @@ std::optional<AttitudePrior> VisualOdometryNRD::measuredUp(double t) const {
     if (!g) return std::nullopt;
     // (the gyro's body rotation from tm to t: the sensor's frame; then the robot's)
     return AttitudePrior{S * (turn->R.transpose() * g->up), std::hypot(g->sigma, turn->sigma)};
+}
+
+std::optional<AttitudePrior> VisualOdometryNRD::nodeAttitude(TNodeID id, double t,
+                                                             const mrpt::obs::CObservation3DRangeScan& scan) {
+    std::optional<AttitudePrior> up;
+    if (params_.useGravity) {
+        up = measuredUp(t);
+        if (up) ++attitude_priors_;
+    }
+    if (params_.floorLevel && frame_) {
+        const vision::DepthCloud cloud =
+            frame_cloud_ ? *frame_cloud_ : vision::sampleDepthCloud(*frame_, params_.visual.depthSampling);
+        const auto poseOf = [this](TNodeID n) {
+            Eigen::Isometry3d T;
+            T.matrix() = m_graph->nodes.at(n).getHomogeneousMatrixVal<mrpt::math::CMatrixDouble44>().asEigen();
+            return T;
+        };
+        const auto floor = floor_.observe(id, cloud, odometry::opticalFrameOnRobot(scan.sensorPose), poseOf);
+        if (floor && up) {
+            // (a floor the accelerometer says is not level - a ramp - is left out)
+            const auto both = fuseUps(*up, *floor);
+            if (both) up = both; else ++floor_disagreed_;
+        } else if (floor) {
+            up = floor;
+        }
+    }
+    if (!up && params_.carrierTiltSigma > 0) {
+        up = AttitudePrior{Eigen::Vector3d::UnitZ(), params_.carrierTiltSigma};
+        ++carrier_ups_;
+    }
+    if (params_.carrierHeightSigma > 0) {
+        if (!up) up = AttitudePrior{};  // (a height, no up)
+        up->heightSigma = params_.carrierHeightSigma;
+    }
+    return up;
 }
 
 }  // namespace lodestone::graphslam

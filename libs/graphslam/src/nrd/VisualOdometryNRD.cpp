@@ -119,6 +119,16 @@ void VisualOdometryNRD::configure(const mrpt::config::CConfigFileBase& ini) {
         s.fail("carrier_height_sigma",
                "needs use_gravity = true or carrier_tilt_sigma_deg > 0 (a height is along an up: "
                "with none, the nodes' own plane could stand on its edge)");
+    p.floorLevel = s.getBool("floor_level", p.floorLevel);
+    auto& fit = p.floor.fit;
+    fit.minUpSigma = s.getDouble("floor_min_sigma_deg", fit.minUpSigma * 180 / M_PI) * M_PI / 180;
+    fit.minHeightSigma = s.getDouble("floor_min_height_sigma", fit.minHeightSigma);
+    if (!(fit.minUpSigma > 0)) s.fail("floor_min_sigma_deg", "must be > 0");
+    if (!(fit.minHeightSigma > 0)) s.fail("floor_min_height_sigma", "must be > 0");
+    if (p.floorLevel && p.carrierHeightSigma > 0)
+        s.fail("floor_level",
+               "not with carrier_height_sigma > 0 (one level per graph: the floor's or the "
+               "carrier's common height)");
     if (p.useGravity && !p.useGyro)
         s.fail("use_gravity",
                "needs use_gyro = true (the gyro turns the window's samples into one frame)");
@@ -130,6 +140,7 @@ void VisualOdometryNRD::configure(const mrpt::config::CConfigFileBase& ini) {
     gyro_ = odometry::GyroIntegrator(params_.gyro);
     gyro_bias_ = odometry::GyroBiasEstimator(params_.gyro.biasStd);
     gravity_ = odometry::GravityEstimator(params_.gravity);
+    floor_ = LevelFloor(params_.floor);
     odometry::DepthBridge::Params bridge;
     bridge.motion = params_.bridgeVelocity;
     bridge.sampling = params_.visual.depthSampling;
@@ -207,6 +218,10 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
     }
     vision::PreparedFrame prepared = prepared_.take(*scan);
     const vision::RgbdFrame frame = prepared.frame;  // (the images shared, not copied)
+    if (params_.floorLevel) {  // (for the floor, should this frame be a node)
+        frame_ = frame;
+        frame_cloud_ = prepared.cloud;
+    }
     const auto r = vo_.process(std::move(prepared), nullptr, rotation ? &*rotation : nullptr);
     if (params_.useGyro) {
         // Keep what the next frame's rotation needs: from VO's reference (or this frame) on,
@@ -432,18 +447,7 @@ void VisualOdometryNRD::registerAt(const mrpt::obs::CObservation3DRangeScan& sca
         rec.timestamp = t;
         rec.segment = segment_;
         rec.keyframe = keyframe;
-        if (params_.useGravity) {
-            rec.attitude = measuredUp(t);
-            if (rec.attitude) ++attitude_priors_;
-        }
-        if (!rec.attitude && params_.carrierTiltSigma > 0) {
-            rec.attitude = AttitudePrior{Eigen::Vector3d::UnitZ(), params_.carrierTiltSigma};
-            ++carrier_ups_;
-        }
-        if (params_.carrierHeightSigma > 0) {
-            if (!rec.attitude) rec.attitude = AttitudePrior{};  // (a height, no up)
-            rec.attitude->heightSigma = params_.carrierHeightSigma;
-        }
+        rec.attitude = nodeAttitude(id, t, scan);
         if (restart) {
             rec.liftTime = lostAfter;  // tracking lost after this frame ...
             rec.putDownTime = t;       // ... and found again at this one
@@ -527,6 +531,11 @@ JsonObject VisualOdometryNRD::describe() const {
     if (params_.carrierTiltSigma > 0)
         params.set("carrier_tilt_sigma_deg", params_.carrierTiltSigma * 180 / M_PI);
     if (params_.carrierHeightSigma > 0) params.set("carrier_height_sigma", params_.carrierHeightSigma);
+    if (params_.floorLevel) {
+        params.set("floor_level", true)
+            .set("floor_min_sigma_deg", params_.floor.fit.minUpSigma * 180 / M_PI)
+            .set("floor_min_height_sigma", params_.floor.fit.minHeightSigma);
+    }
     if (params_.useGravity) {
         params.set("accel_bias", params_.gravity.biasStd)
             .set("gravity_window_seconds", params_.gravity.windowSeconds)
@@ -575,6 +584,12 @@ JsonObject VisualOdometryNRD::describe() const {
     }
     if (params_.useGravity) stats.set("nodes_with_measured_up", attitude_priors_);
     if (params_.carrierTiltSigma > 0) stats.set("nodes_with_carrier_up", carrier_ups_);
+    if (params_.floorLevel) {
+        stats.set("nodes_with_floor_up", floor_.ups())
+            .set("nodes_with_floor_height", floor_.heights())
+            .set("level_surfaces_beyond_the_up_gate", floor_.rejected());
+        if (params_.useGravity) stats.set("nodes_whose_floor_and_accelerometer_disagreed", floor_disagreed_);
+    }
     JsonObject why;
     for (const auto& [reason, count] : failures_) why.set(reason, count);
     stats.set("failed_frames_by_reason", why);

@@ -230,11 +230,12 @@ class RgbdVisualOdometry {
   private:
     VoResult processFrame(PreparedFrame& prepared, const MotionPrior* prior,
                           const RotationPrior* rotation);
-    /** Depth alignment where the features failed (from the prior, the rotation, or constant
-     * velocity). */
+    /** Depth alignment where the features failed, started from the prior, else the rotation
+     * (or constant turn rate) and the carrier's fading velocity. */
     DepthAlignment alignDepth(const DepthCloud& cloud, double timestamp, const MotionPrior* prior,
                               const RotationPrior* rotation) const;
-    /** The frame's pose in the reference by constant velocity since the last tracked frame. */
+    /** The frame's pose in the reference by constant velocity since the last tracked frame
+     * (its rotation starts a depth alignment). */
     Eigen::Isometry3d constantVelocity(double timestamp) const;
     /** Whether a tracked frame, measured at `measured` from the reference, replaces it
      * (`keyframeDistance`, `keyframeAngle`, `keyframeBy`). */

@@ -88,6 +88,7 @@ class CeresGSO : public GraphOptimizer {
 
     Params params_;
     AttitudePriors attitude_;
+    bool map_height_set_{false};  // (by the first prior with a height)
     WheelScale wheels_;
     std::unique_ptr<PoseGraphSolver> solver_;
     std::unique_ptr<BackgroundSolve> background_;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <lodestone/graphslam/NodeDecider.h>
+#include <lodestone/graphslam/nrd/LevelFloor.h>
 #include <lodestone/graphslam/nrd/NodeSpacing.h>
 #include <lodestone/odometry/CruiseVelocity.h>
 #include <lodestone/odometry/DepthBridge.h>
@@ -133,6 +134,13 @@ class VisualOdometryNRD : public NodeDecider {
          * (the accelerometer's, or the carrier's) hold: a node's height counts once one of
          * them has an up. Not for stairs or ramps. */
         double carrierHeightSigma{0};
+        /** Each node's up and height measured by the level surfaces its frame's depth holds -
+         * the floor, a ceiling (LevelFloor; `floor_level`, `floor_min_sigma_deg`,
+         * `floor_min_height_sigma`): where seen, it replaces the carrier's up, and is fused with
+         * the accelerometer's. The floor is assumed level, the carrier nothing. Not with
+         * `carrierHeightSigma` (one level per graph). */
+        bool floorLevel{false};
+        LevelFloor::Params floor;
         /** The carrier's velocity change over the window, taken out of the mean, is VO's: its
          * displacement over `gravityVelocitySeconds` at each end of the window, trusted to
          * `gravityVelocitySigma` per axis [m/s] (`gravity_velocity_sigma`). The same is the
@@ -219,6 +227,9 @@ class VisualOdometryNRD : public NodeDecider {
     /** The node's up at t from the accelerometer, the velocity change VO measured over the
      * window taken out; nothing where VO did not track the whole window. */
     std::optional<AttitudePrior> measuredUp(double t) const;
+    /** What node `id` (at t, this frame's) is given of its up and height: the accelerometer's
+     * up, the floor's (fused), else the carrier's; nothing where none is used. */
+    std::optional<AttitudePrior> nodeAttitude(TNodeID id, double t, const mrpt::obs::CObservation3DRangeScan& scan);
     /** VO's tracked frame nearest to t (within a frame interval or two), in the frame
      * VO's steps are chained in since the segment's last restart: its index in chained_. */
     std::optional<std::size_t> trackedNear(double t) const;
@@ -250,6 +261,10 @@ class VisualOdometryNRD : public NodeDecider {
     odometry::GravityEstimator gravity_;
     std::size_t attitude_priors_{0};  // nodes given the accelerometer's up
     std::size_t carrier_ups_{0};      // nodes given the carrier's level up instead
+    LevelFloor floor_;                // the floor, where nodes' depth sees it
+    std::size_t floor_disagreed_{0};  // nodes whose floor and accelerometer disagreed
+    std::optional<vision::RgbdFrame> frame_;       // the frame being consumed (images shared) ...
+    std::optional<vision::DepthCloud> frame_cloud_;  // ... and its depth cloud, where prepared
     std::size_t gyro_priors_{0};  // frames given the gyro's rotation
     Anchor reference_;    // VO's reference frame
     Anchor last_tracked_;  // the last frame VO tracked (it may become the reference)
