@@ -126,12 +126,13 @@ std::string reportOf(const std::string& dir) {
 
 /** lodestone-slam on `dir`'s hand.rawlog (handHeldOfficeWithImu) with rgbd_only.ini and `keys`
  * set in it, into `dir`/`name`: its report.json and how many nodes it made. */
-std::pair<std::string, int> runHandHeld(const lodestone::test::TempDir& dir, const std::string& name,
-                                        const std::vector<std::pair<std::string, std::string>>& keys) {
+std::pair<std::string, int> runHandHeld(
+    const lodestone::test::TempDir& dir, const std::string& name,
+    const std::vector<std::pair<std::string, std::string>>& keys) {
     const auto run = lodestone::test::runCommand(
         kSlam + " --rawlog " + dir.file("hand.rawlog") + " --config " +
-        rgbdOnlyWith(dir.file(name + ".ini"), keys) + " --out " + dir.file(name) + " --ground-truth " +
-        dir.file("hand.gt.tum") + " --quiet");
+        rgbdOnlyWith(dir.file(name + ".ini"), keys) + " --out " + dir.file(name) +
+        " --ground-truth " + dir.file("hand.gt.tum") + " --quiet");
     EXPECT_EQ(run.exitCode, 0) << run.output;
     std::smatch nodes;
     EXPECT_TRUE(std::regex_search(run.output, nodes, std::regex("([0-9]+) nodes"))) << run.output;
@@ -141,7 +142,8 @@ std::pair<std::string, int> runHandHeld(const lodestone::test::TempDir& dir, con
 /** A whole-number value of `key` in a report (-1: not there). */
 int countIn(const std::string& report, const std::string& key) {
     std::smatch m;
-    return std::regex_search(report, m, std::regex("\"" + key + "\": ([0-9]+)")) ? std::stoi(m[1]) : -1;
+    return std::regex_search(report, m, std::regex("\"" + key + "\": ([0-9]+)")) ? std::stoi(m[1])
+                                                                                 : -1;
 }
 
 /** A run's node timestamps, from its nodes.csv. */
@@ -522,7 +524,8 @@ TEST(CameraOnlySlam, ACarriersLevelUpHoldsTheNodesNoAccelerometerMeasured) {
     EXPECT_NE(noImu.find("\"carrier_height_sigma\": 0.05"), std::string::npos) << "and their heights";
 
     const auto [imu, imuNodes] = runWith("imu", {{"carrier_tilt_sigma_deg", "5"}});
-    const int measured = countIn(imu, "nodes_with_measured_up"), carried = countIn(imu, "nodes_with_carrier_up");
+    const int measured = countIn(imu, "nodes_with_measured_up"),
+              carried = countIn(imu, "nodes_with_carrier_up");
     EXPECT_GT(measured, 0.8 * imuNodes) << imu;
     EXPECT_GT(carried, 0) << "VO's first 1.3 s: no window for the accelerometer yet";
     EXPECT_EQ(measured + carried, imuNodes) << imu;
@@ -542,13 +545,16 @@ TEST(CameraOnlySlam, TheFloorInViewGivesTheNodesTheirUpAndHeight) {
     };
     const auto ate = [](const std::string& report) {
         std::smatch m;
-        return std::regex_search(report, m, std::regex("\"rmse_m\": ([0-9.eE+-]+)")) ? std::stod(m[1]) : -1.0;
+        return std::regex_search(report, m, std::regex("\"rmse_m\": ([0-9.eE+-]+)"))
+                   ? std::stod(m[1])
+                   : -1.0;
     };
     // Without an IMU: the floor's up and height wherever the office's floor is in view.
-    const auto [floor, floorNodes] =
-        runWith("floor", {{"use_gyro", "false"}, {"use_gravity", "false"}, {"floor_level", "true"}});
+    const auto [floor, floorNodes] = runWith(
+        "floor", {{"use_gyro", "false"}, {"use_gravity", "false"}, {"floor_level", "true"}});
     ASSERT_GT(floorNodes, 50);
-    const int ups = countIn(floor, "nodes_with_floor_up"), heights = countIn(floor, "nodes_with_floor_height");
+    const int ups = countIn(floor, "nodes_with_floor_up"),
+              heights = countIn(floor, "nodes_with_floor_height");
     // (a small office at 320x240: the floor is in view from 3 m, the ceiling from 2.5; measured
     // 27 of 107 nodes, 8 of them with the floor's height)
     EXPECT_GT(ups, floorNodes / 5) << floor;
@@ -568,7 +574,8 @@ TEST(CameraOnlySlam, TheFloorInViewGivesTheNodesTheirUpAndHeight) {
     // A carrier's common height and the floor's are two levels: one graph holds one.
     const auto both = lodestone::test::runCommand(
         kSlam + " --rawlog " + dir.file("hand.rawlog") + " --config " +
-        rgbdOnlyWith(dir.file("both.ini"), {{"floor_level", "true"}, {"carrier_height_sigma", "0.05"}}) +
+        rgbdOnlyWith(dir.file("both.ini"),
+                     {{"floor_level", "true"}, {"carrier_height_sigma", "0.05"}}) +
         " --out " + dir.file("both") + " --quiet");
     EXPECT_NE(both.exitCode, 0);
     EXPECT_NE(both.output.find("floor_level"), std::string::npos) << both.output;

@@ -334,8 +334,11 @@ DepthAlignment RgbdVisualOdometry::alignDepth(const DepthCloud& cloud, double ti
     // last step's: a depth-aligned step's motion along what the depth left loose is where the
     // alignment started, so each such step would start the next - along a plain corridor the
     // steps grew frame by frame to the carrier's speed bound (docs/results/camera-only.md).
-    const double tau = rotation ? rotation->velocitySeconds : 1.0, dt = std::max(0.0, timestamp - last_time_);
-    if (!prior) initial.translation() = last_in_ref_.translation() - velocity_ * (tau * std::expm1(-dt / tau));
+    const double tau = rotation ? rotation->velocitySeconds : 1.0,
+                 dt = std::max(0.0, timestamp - last_time_);
+    if (!prior)
+        initial.translation() =
+            last_in_ref_.translation() - velocity_ * (tau * std::expm1(-dt / tau));
     // The gyro's rotation starts the alignment (a turn in front of a wall is what constant
     // velocity gets wrong).
     if (rotation) initial.linear() = rotation->R_ref_cur;

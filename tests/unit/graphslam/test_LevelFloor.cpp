@@ -1,8 +1,7 @@
 // LevelFloor: which level surface is the floor, and which surfaces are taken as level at all,
 // decided against the floor seen last; fuseUps: two measured ups of a node.
-#include <lodestone/graphslam/nrd/LevelFloor.h>
-
 #include <gtest/gtest.h>
+#include <lodestone/graphslam/nrd/LevelFloor.h>
 
 #include <cmath>
 #include <map>
@@ -35,7 +34,8 @@ lodestone::vision::DepthCloud levelCloud(const Eigen::Vector3d& up,
     std::vector<Eigen::Vector3d> pts;
     for (const auto& [below, near, far] : patches) {
         for (double d = near; d <= far; d += 0.1) {
-            for (double s = -1.0; s <= 1.0; s += 0.1) pts.push_back(-below * up + d * ahead + s * across);
+            for (double s = -1.0; s <= 1.0; s += 0.1)
+                pts.push_back(-below * up + d * ahead + s * across);
         }
     }
     lodestone::vision::DepthCloud c;
@@ -78,7 +78,8 @@ TEST(LevelFloor, TheFirstFloorIsTheLowestSurfaceAndLaterOnesFollowIt) {
     const Eigen::Vector3d up(0, -1, 0);               // (level: the optical frame's -y)
     // Node 0: the floor 1.35 m below the camera and a table top 0.6 m below it.
     poses.at[0] = walkedTo(0);
-    const auto first = floor.observe(0, levelCloud(up, {{1.35, 3.0, 4.5}, {0.6, 1.2, 2.0}}, 1), A, poses.fn());
+    const auto first =
+        floor.observe(0, levelCloud(up, {{1.35, 3.0, 4.5}, {0.6, 1.2, 2.0}}, 1), A, poses.fn());
     ASSERT_TRUE(first);
     EXPECT_LT(std::acos(first->up.z()), 0.2 * kDeg);
     EXPECT_NEAR(first->height, 0.35, 0.01) << "the robot's origin: 1.35 less the camera's 1 m";
@@ -91,7 +92,8 @@ TEST(LevelFloor, TheFirstFloorIsTheLowestSurfaceAndLaterOnesFollowIt) {
     EXPECT_EQ(table->heightSigma, 0);
     // Node 2: the floor again, and the table; the floor is the one near where it was.
     poses.at[2] = walkedTo(4);
-    const auto again = floor.observe(2, levelCloud(up, {{0.6, 1.2, 2.0}, {1.37, 3.0, 4.5}}, 3), A, poses.fn());
+    const auto again =
+        floor.observe(2, levelCloud(up, {{0.6, 1.2, 2.0}, {1.37, 3.0, 4.5}}, 3), A, poses.fn());
     ASSERT_TRUE(again);
     EXPECT_NEAR(again->height, 0.37, 0.01);
     EXPECT_EQ(floor.ups(), 3u);
@@ -113,7 +115,8 @@ TEST(LevelFloor, ASurfaceBeyondTheUpGateIsNotTakenForLevel) {
     // Node 2 tilted 5 deg in the graph by VO's drift, the floor level: taken, and its up is
     // the floor's in the node's frame - 5 deg off the robot's z, which the graph then corrects.
     poses.at[2] = walkedTo(2, 5 * kDeg);
-    const auto tilted = floor.observe(2, levelCloud({0, -1, 0}, {{0.5, 1.0, 2.0}}, 3), A, poses.fn());
+    const auto tilted =
+        floor.observe(2, levelCloud({0, -1, 0}, {{0.5, 1.0, 2.0}}, 3), A, poses.fn());
     ASSERT_TRUE(tilted);
     EXPECT_LT(std::acos(tilted->up.z()), 0.3 * kDeg) << "the camera's view is level";
 }
@@ -146,10 +149,12 @@ TEST(LevelFloor, TwoUpsFuseByTheirSigmasAndDisagreeingOnesDoNot) {
     ASSERT_TRUE(both);
     // (weights 1 : 11.1: the floor's up moves a tenth of the way towards the accelerometer's)
     EXPECT_NEAR(std::asin(both->up.x()), 1 * kDeg / (1 + 1 / 0.09), 0.002 * kDeg);
-    EXPECT_NEAR(both->sigma, 1 / std::sqrt(1 / std::pow(1 * kDeg, 2) + 1 / std::pow(0.3 * kDeg, 2)), 1e-12);
+    EXPECT_NEAR(both->sigma, 1 / std::sqrt(1 / std::pow(1 * kDeg, 2) + 1 / std::pow(0.3 * kDeg, 2)),
+                1e-12);
     EXPECT_EQ(both->height, 0.8);
     EXPECT_EQ(both->heightSigma, 0.01);
     // 5 deg apart against 1 and 0.3 deg: a ramp the accelerometer feels; not fused.
-    const AttitudePrior ramp{Eigen::Vector3d(std::sin(5 * kDeg), 0, std::cos(5 * kDeg)), 0.3 * kDeg};
+    const AttitudePrior ramp{Eigen::Vector3d(std::sin(5 * kDeg), 0, std::cos(5 * kDeg)),
+                             0.3 * kDeg};
     EXPECT_FALSE(fuseUps(AttitudePrior{Eigen::Vector3d::UnitZ(), 1 * kDeg}, ramp));
 }

@@ -41,12 +41,13 @@ TEST(LevelSurfaces, TheFloorAndTheCeilingGiveTheUpAndTheHeights) {
     const struct {
         Eigen::Vector3d at;
         double yaw, pitch, roll;
-    } poses[] = {{{0.0, 0.5, 1.35}, 0.3, 0.05, 0.04},   {{1.0, -1.0, 1.35}, -0.4, -0.03, -0.06},
-                 {{2.0, 0.0, 1.35}, 0.0, 0.08, 0.0},    {{6.0, -2.0, 1.35}, 2.5, 0.02, 0.07},
-                 {{0.0, 0.0, 0.45}, 0.2, 0.0, 0.03},    {{3.0, -1.5, 0.45}, -2.8, 0.04, -0.02}};
+    } poses[] = {{{0.0, 0.5, 1.35}, 0.3, 0.05, 0.04}, {{1.0, -1.0, 1.35}, -0.4, -0.03, -0.06},
+                 {{2.0, 0.0, 1.35}, 0.0, 0.08, 0.0},  {{6.0, -2.0, 1.35}, 2.5, 0.02, 0.07},
+                 {{0.0, 0.0, 0.45}, 0.2, 0.0, 0.03},  {{3.0, -1.5, 0.45}, -2.8, 0.04, -0.02}};
     for (const auto& c : poses) {
         const Eigen::Isometry3d pose = cameraPose(c.at, c.yaw, c.pitch, c.roll);
-        const auto cloud = sampleDepthCloud(lodestone::test::render(world, pose, 7 + checked), DepthSampling{});
+        const auto cloud =
+            sampleDepthCloud(lodestone::test::render(world, pose, 7 + checked), DepthSampling{});
         const auto fit = fitLevelSurfaces(cloud, Eigen::Vector3d(0, -1, 0));
         ASSERT_TRUE(fit) << "pose " << checked;
         const double error = angleBetween(fit->up, trueUp(pose));
@@ -70,8 +71,8 @@ TEST(LevelSurfaces, APlainWallAloneGivesNoUp) {
     const lodestone::sim::World world(sc, 1);
     // 0.8 m from the wall at x = 8, at 1.35 m: neither the floor (from 2.9 m ahead) nor the
     // ceiling (from 2.5 m) is in view.
-    const auto cloud =
-        sampleDepthCloud(lodestone::test::render(world, cameraPose({7.2, 0.0, 1.35}, 0.0), 3), DepthSampling{});
+    const auto cloud = sampleDepthCloud(
+        lodestone::test::render(world, cameraPose({7.2, 0.0, 1.35}, 0.0), 3), DepthSampling{});
     ASSERT_GT(cloud.size(), 1000u);
     EXPECT_FALSE(fitLevelSurfaces(cloud, Eigen::Vector3d(0, -1, 0)));
 }
@@ -106,25 +107,29 @@ TEST(LevelSurfaces, RealKinectFramesAgreeOnTheUpThroughTheirPoses) {
     // one up. Measured: frames 0, 1, 2 within 0.6 deg of each other, 116 and 422 (the poses
     // after a long way round) within 1.3 deg; each 0.3 deg claimed (the floor on the sigma).
     const auto dir = lodestone::test::sharedDataDir() / "rgbd" / "3dmatch" / "seq-01";
-    if (!std::filesystem::exists(dir)) GTEST_SKIP() << "real data absent: " << dir << " (read in place from ../shared/data)";
+    if (!std::filesystem::exists(dir))
+        GTEST_SKIP() << "real data absent: " << dir << " (read in place from ../shared/data)";
     std::map<int, Eigen::Vector3d> ups;
     for (const int i : {0, 1, 2, 116, 422}) {
         char name[64];
         std::snprintf(name, sizeof(name), "frame-%06d", i);
         RgbdFrame f;
         f.depth = depthToMetres(
-            cv::imread((dir / (std::string(name) + ".depth.png")).string(), cv::IMREAD_UNCHANGED), 0.001);
+            cv::imread((dir / (std::string(name) + ".depth.png")).string(), cv::IMREAD_UNCHANGED),
+            0.001);
         f.intrinsics = {570.342205, 570.342205, 320.0, 240.0, 640, 480};
         std::ifstream in(dir / (std::string(name) + ".pose.txt"));
         Eigen::Matrix4d pose;
         for (int r = 0; r < 4; ++r)
             for (int c = 0; c < 4; ++c) in >> pose(r, c);
         // (expected: a camera held about level, as a carrier starts)
-        const auto fit = fitLevelSurfaces(sampleDepthCloud(f, DepthSampling{}), Eigen::Vector3d(0, -1, 0));
+        const auto fit =
+            fitLevelSurfaces(sampleDepthCloud(f, DepthSampling{}), Eigen::Vector3d(0, -1, 0));
         ASSERT_TRUE(fit) << "frame " << i;
         EXPECT_NEAR(fit->surfaces.front().height, 1.47, 0.06) << "frame " << i << ": the floor";
         ups[i] = pose.topLeftCorner<3, 3>() * fit->up;
     }
     for (const int i : {1, 2}) EXPECT_LT(angleBetween(ups[i], ups[0]), 1.0 * kDeg) << "frame " << i;
-    for (const int i : {116, 422}) EXPECT_LT(angleBetween(ups[i], ups[0]), 2.0 * kDeg) << "frame " << i;
+    for (const int i : {116, 422})
+        EXPECT_LT(angleBetween(ups[i], ups[0]), 2.0 * kDeg) << "frame " << i;
 }

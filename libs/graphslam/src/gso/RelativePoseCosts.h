@@ -194,8 +194,8 @@ struct HeightPriorCost {
 
     template <typename T>
     bool operator()(const T* t, const T* mapUp, const T* height, T* residual) const {
-        residual[0] =
-            T(inv_sigma_) * (mapUp[0] * t[0] + mapUp[1] * t[1] + mapUp[2] * t[2] - height[0] - T(above_));
+        residual[0] = T(inv_sigma_) *
+                      (mapUp[0] * t[0] + mapUp[1] * t[1] + mapUp[2] * t[2] - height[0] - T(above_));
         return true;
     }
 

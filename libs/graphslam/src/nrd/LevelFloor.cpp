@@ -8,15 +8,16 @@ namespace lodestone::graphslam {
 LevelFloor::LevelFloor() : LevelFloor(Params{}) {}
 LevelFloor::LevelFloor(Params params) : params_(params) {}
 
-std::optional<AttitudePrior> LevelFloor::observe(TNodeID node, const vision::DepthCloud& cloud,
-                                                 const Eigen::Isometry3d& T_robot_optical,
-                                                 const std::function<Eigen::Isometry3d(TNodeID)>& poseOf) {
+std::optional<AttitudePrior> LevelFloor::observe(
+    TNodeID node, const vision::DepthCloud& cloud, const Eigen::Isometry3d& T_robot_optical,
+    const std::function<Eigen::Isometry3d(TNodeID)>& poseOf) {
     const Eigen::Isometry3d T_map_node = poseOf(node);
     const Eigen::Matrix3d& R_ro = T_robot_optical.linear();
     // The up expected here: the last level surface's, carried by the graph's poses (VO's tilt
     // since then); at first the robot frame's z.
     Eigen::Vector3d expected = Eigen::Vector3d::UnitZ();
-    if (last_) expected = T_map_node.linear().transpose() * (poseOf(last_->node).linear() * last_->up);
+    if (last_)
+        expected = T_map_node.linear().transpose() * (poseOf(last_->node).linear() * last_->up);
     const auto fit = vision::fitLevelSurfaces(cloud, R_ro.transpose() * expected, params_.fit);
     if (!fit) return std::nullopt;
     const Eigen::Vector3d up = (R_ro * fit->up).normalized();
@@ -33,7 +34,8 @@ std::optional<AttitudePrior> LevelFloor::observe(TNodeID node, const vision::Dep
     if (lastFloor_) {
         const Eigen::Isometry3d T_map_floor = poseOf(lastFloor_->node);
         const Eigen::Vector3d upMap = T_map_floor.linear() * lastFloor_->up;
-        predicted = *lastFloor_->height + upMap.dot(T_map_node.translation() - T_map_floor.translation());
+        predicted =
+            *lastFloor_->height + upMap.dot(T_map_node.translation() - T_map_floor.translation());
     }
     const vision::LevelSurface* floor = nullptr;
     for (const vision::LevelSurface& s : fit->surfaces) {
@@ -41,7 +43,8 @@ std::optional<AttitudePrior> LevelFloor::observe(TNodeID node, const vision::Dep
         const double h = s.height - cameraOnRobot;
         if (predicted) {
             if (std::abs(h - *predicted) > params_.heightGate) continue;
-            if (!floor || std::abs(h - *predicted) < std::abs(floor->height - cameraOnRobot - *predicted))
+            if (!floor ||
+                std::abs(h - *predicted) < std::abs(floor->height - cameraOnRobot - *predicted))
                 floor = &s;
         } else if (!floor || s.height > floor->height) {
             floor = &s;  // (the first floor: the lowest surface seen)

@@ -6,7 +6,6 @@
 #include <lodestone/odometry/RgbdObservationFrame.h>
 
 #include <Eigen/Eigenvalues>
-
 #include <algorithm>
 #include <cmath>
 
@@ -72,8 +71,8 @@ std::optional<AttitudePrior> VisualOdometryNRD::measuredUp(double t) const {
     return AttitudePrior{S * (turn->R.transpose() * g->up), std::hypot(g->sigma, turn->sigma)};
 }
 
-std::optional<AttitudePrior> VisualOdometryNRD::nodeAttitude(TNodeID id, double t,
-                                                             const mrpt::obs::CObservation3DRangeScan& scan) {
+std::optional<AttitudePrior> VisualOdometryNRD::nodeAttitude(
+    TNodeID id, double t, const mrpt::obs::CObservation3DRangeScan& scan) {
     std::optional<AttitudePrior> up;
     if (params_.useGravity) {
         up = measuredUp(t);
@@ -81,17 +80,24 @@ std::optional<AttitudePrior> VisualOdometryNRD::nodeAttitude(TNodeID id, double 
     }
     if (params_.floorLevel && frame_) {
         const vision::DepthCloud cloud =
-            frame_cloud_ ? *frame_cloud_ : vision::sampleDepthCloud(*frame_, params_.visual.depthSampling);
+            frame_cloud_ ? *frame_cloud_
+                         : vision::sampleDepthCloud(*frame_, params_.visual.depthSampling);
         const auto poseOf = [this](TNodeID n) {
             Eigen::Isometry3d T;
-            T.matrix() = m_graph->nodes.at(n).getHomogeneousMatrixVal<mrpt::math::CMatrixDouble44>().asEigen();
+            T.matrix() = m_graph->nodes.at(n)
+                             .getHomogeneousMatrixVal<mrpt::math::CMatrixDouble44>()
+                             .asEigen();
             return T;
         };
-        const auto floor = floor_.observe(id, cloud, odometry::opticalFrameOnRobot(scan.sensorPose), poseOf);
+        const auto floor =
+            floor_.observe(id, cloud, odometry::opticalFrameOnRobot(scan.sensorPose), poseOf);
         if (floor && up) {
             // (a floor the accelerometer says is not level - a ramp - is left out)
             const auto both = fuseUps(*up, *floor);
-            if (both) up = both; else ++floor_disagreed_;
+            if (both)
+                up = both;
+            else
+                ++floor_disagreed_;
         } else if (floor) {
             up = floor;
         }

@@ -218,7 +218,8 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
     }
     vision::PreparedFrame prepared = prepared_.take(*scan);
     const vision::RgbdFrame frame = prepared.frame;  // (the images shared, not copied)
-    if (params_.floorLevel) {  // (for the floor, should this frame be a node)
+    // (for the floor, should this frame be a node)
+    if (params_.floorLevel) {
         frame_ = frame;
         frame_cloud_ = prepared.cloud;
     }
@@ -588,7 +589,8 @@ JsonObject VisualOdometryNRD::describe() const {
         stats.set("nodes_with_floor_up", floor_.ups())
             .set("nodes_with_floor_height", floor_.heights())
             .set("level_surfaces_beyond_the_up_gate", floor_.rejected());
-        if (params_.useGravity) stats.set("nodes_whose_floor_and_accelerometer_disagreed", floor_disagreed_);
+        if (params_.useGravity)
+            stats.set("nodes_whose_floor_and_accelerometer_disagreed", floor_disagreed_);
     }
     JsonObject why;
     for (const auto& [reason, count] : failures_) why.set(reason, count);

@@ -2,7 +2,6 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
-
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -13,7 +12,8 @@ namespace {
 
 /** Two unit vectors completing `u` to an orthonormal basis: the up's two tilt axes. */
 void tiltAxes(const Eigen::Vector3d& u, Eigen::Vector3d& e1, Eigen::Vector3d& e2) {
-    const Eigen::Vector3d a = std::abs(u.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+    const Eigen::Vector3d a =
+        std::abs(u.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
     e1 = u.cross(a).normalized();
     e2 = u.cross(e1);
 }
@@ -26,7 +26,8 @@ struct Candidate {
 
 }  // namespace
 
-std::optional<LevelSurfaces> fitLevelSurfaces(const DepthCloud& cloud, const Eigen::Vector3d& expectedUp,
+std::optional<LevelSurfaces> fitLevelSurfaces(const DepthCloud& cloud,
+                                              const Eigen::Vector3d& expectedUp,
                                               const LevelSurfaceParams& params) {
     if (cloud.size() == 0 || !(expectedUp.norm() > 0)) return std::nullopt;
     Eigen::Vector3d up = expectedUp.normalized();
@@ -57,14 +58,16 @@ std::optional<LevelSurfaces> fitLevelSurfaces(const DepthCloud& cloud, const Eig
     {
         std::size_t begin = 0;
         for (std::size_t i = 1; i <= order.size(); ++i) {
-            if (i < order.size() && heightOf(pts[order[i]]) - heightOf(pts[order[i - 1]]) <= params.separation)
+            if (i < order.size() &&
+                heightOf(pts[order[i]]) - heightOf(pts[order[i - 1]]) <= params.separation)
                 continue;
             if (i - begin >= params.minPoints) {
                 double mean = 0;
                 for (std::size_t j = begin; j < i; ++j) mean += heightOf(pts[order[j]]);
                 mean /= static_cast<double>(i - begin);
                 if (std::abs(mean) >= params.minHeight) {
-                    for (std::size_t j = begin; j < i; ++j) pts[order[j]].surface = static_cast<int>(heights.size());
+                    for (std::size_t j = begin; j < i; ++j)
+                        pts[order[j]].surface = static_cast<int>(heights.size());
                     heights.push_back(mean);
                 }
             }
@@ -108,7 +111,8 @@ std::optional<LevelSurfaces> fitLevelSurfaces(const DepthCloud& cloud, const Eig
             }
             H = H.selfadjointView<Eigen::Lower>();
             const Eigen::LDLT<Eigen::MatrixXd> ldlt(H);
-            if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().minCoeff() > 0)) return std::nullopt;
+            if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().minCoeff() > 0))
+                return std::nullopt;
             const Eigen::VectorXd step = -ldlt.solve(g);
             if (!step.allFinite()) return std::nullopt;
             up = (up + step(0) * e1 + step(1) * e2).normalized();
@@ -121,7 +125,8 @@ std::optional<LevelSurfaces> fitLevelSurfaces(const DepthCloud& cloud, const Eig
             c.surface = -1;
             double best = 3;
             for (int s = 0; s < m; ++s) {
-                const double z = std::abs(up.dot(c.p) + heights[static_cast<std::size_t>(s)]) / pointSigma(c);
+                const double z =
+                    std::abs(up.dot(c.p) + heights[static_cast<std::size_t>(s)]) / pointSigma(c);
                 if (z <= best) {
                     best = z;
                     c.surface = s;
@@ -137,7 +142,9 @@ std::optional<LevelSurfaces> fitLevelSurfaces(const DepthCloud& cloud, const Eig
     const double scale = std::max(1.0, chi2 / std::max<double>(1, static_cast<double>(used) - dof));
     const Eigen::MatrixXd C = H.inverse() * scale;
     if (!C.allFinite()) return std::nullopt;
-    const double tilt2 = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(C.topLeftCorner<2, 2>()).eigenvalues().maxCoeff();
+    const double tilt2 = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(C.topLeftCorner<2, 2>())
+                             .eigenvalues()
+                             .maxCoeff();
     const double upSigma = std::sqrt(std::max(0.0, tilt2));
     if (!(upSigma <= params.maxUpSigma)) return std::nullopt;
     LevelSurfaces out;

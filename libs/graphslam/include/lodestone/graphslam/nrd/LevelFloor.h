@@ -5,7 +5,6 @@
 #include <lodestone/vision/depth/LevelSurfaces.h>
 
 #include <Eigen/Geometry>
-
 #include <cstddef>
 #include <functional>
 #include <optional>
@@ -30,7 +29,7 @@ class LevelFloor {
     struct Params {
         vision::LevelSurfaceParams fit;
         double upGate{10 * 3.14159265358979 / 180};  ///< [rad]
-        double heightGate{0.3};                     ///< [m]
+        double heightGate{0.3};                      ///< [m]
     };
     LevelFloor();
     explicit LevelFloor(Params params);
@@ -44,19 +43,19 @@ class LevelFloor {
                                          const Eigen::Isometry3d& T_robot_optical,
                                          const std::function<Eigen::Isometry3d(TNodeID)>& poseOf);
 
-    std::size_t ups() const { return ups_; }          ///< nodes given an up
-    std::size_t heights() const { return heights_; }  ///< ... of them a height above the floor
+    std::size_t ups() const { return ups_; }            ///< nodes given an up
+    std::size_t heights() const { return heights_; }    ///< ... of them a height above the floor
     std::size_t rejected() const { return rejected_; }  ///< level surfaces beyond upGate
 
   private:
     struct Seen {
         TNodeID node;
-        Eigen::Vector3d up;  // in the node's robot frame
+        Eigen::Vector3d up;            // in the node's robot frame
         std::optional<double> height;  // of the robot's origin above the floor [m]
     };
     Params params_;
-    std::optional<Seen> last_;        // the last node that saw a level surface
-    std::optional<Seen> lastFloor_;   // ... and the floor
+    std::optional<Seen> last_;       // the last node that saw a level surface
+    std::optional<Seen> lastFloor_;  // ... and the floor
     std::size_t ups_{0}, heights_{0}, rejected_{0};
 };
 

@@ -229,7 +229,8 @@ class VisualOdometryNRD : public NodeDecider {
     std::optional<AttitudePrior> measuredUp(double t) const;
     /** What node `id` (at t, this frame's) is given of its up and height: the accelerometer's
      * up, the floor's (fused), else the carrier's; nothing where none is used. */
-    std::optional<AttitudePrior> nodeAttitude(TNodeID id, double t, const mrpt::obs::CObservation3DRangeScan& scan);
+    std::optional<AttitudePrior> nodeAttitude(TNodeID id, double t,
+                                              const mrpt::obs::CObservation3DRangeScan& scan);
     /** VO's tracked frame nearest to t (within a frame interval or two), in the frame
      * VO's steps are chained in since the segment's last restart: its index in chained_. */
     std::optional<std::size_t> trackedNear(double t) const;
@@ -263,7 +264,7 @@ class VisualOdometryNRD : public NodeDecider {
     std::size_t carrier_ups_{0};      // nodes given the carrier's level up instead
     LevelFloor floor_;                // the floor, where nodes' depth sees it
     std::size_t floor_disagreed_{0};  // nodes whose floor and accelerometer disagreed
-    std::optional<vision::RgbdFrame> frame_;       // the frame being consumed (images shared) ...
+    std::optional<vision::RgbdFrame> frame_;         // the frame being consumed (images shared) ...
     std::optional<vision::DepthCloud> frame_cloud_;  // ... and its depth cloud, where prepared
     std::size_t gyro_priors_{0};  // frames given the gyro's rotation
     Anchor reference_;    // VO's reference frame

@@ -3,7 +3,6 @@
 #include <lodestone/vision/depth/DepthCloud.h>
 
 #include <Eigen/Core>
-
 #include <cstddef>
 #include <optional>
 #include <vector>
@@ -56,7 +55,8 @@ struct LevelSurfaces {
  * surface's height (Gauss-Newton, the points re-gated at 3 sigma), each point weighted by its
  * depth noise along the up. Its covariance is the fit's, scaled by the residuals where they
  * exceed the noise. Nothing where no surface has enough points or they do not pin the up. */
-std::optional<LevelSurfaces> fitLevelSurfaces(const DepthCloud& cloud, const Eigen::Vector3d& expectedUp,
+std::optional<LevelSurfaces> fitLevelSurfaces(const DepthCloud& cloud,
+                                              const Eigen::Vector3d& expectedUp,
                                               const LevelSurfaceParams& params = {});
 
 }  // namespace lodestone::vision
