@@ -279,6 +279,7 @@ VoResult RgbdVisualOdometry::process(PreparedFrame prepared, const MotionPrior* 
     totals_.ms.depth += r.timing.depth;
     if (r.depthAligned) ++totals_.depthAligned;
     if (r.depthJoined) ++totals_.depthJoined;
+    if (r.depthJoined && r.depthDisagreed) ++totals_.depthJoinedDisagreeing;
     return r;
 }
 
@@ -484,6 +485,7 @@ VoResult RgbdVisualOdometry::processFrame(PreparedFrame& prepared, const MotionP
         if (d.success && replaceIfPlausible(est, d.T_ref_cur, d.covariance, frame.timestamp)) {
             r.depthJoined = true;
             r.depthObserved = d.observed;
+            r.depthDisagreed = d.disagreed;
         }
     }
     r.T_ref_cur_camera = est.transform;

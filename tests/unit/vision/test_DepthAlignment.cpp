@@ -288,6 +288,44 @@ TEST(PointToPlaneIcp, WithAMeasuredMotionTheCorridorsMoveAlongComesFromIt) {
     EXPECT_NEAR(err.dot(along), 0.02, 0.005) << "the move along is the measurement's";
     EXPECT_NEAR(translationSigma(a, along), 0.05, 0.01);
     EXPECT_LT(translationSigma(a, across), 0.005);
+    EXPECT_FALSE(a.disagreed) << "3 cm off with a 5 cm sigma is no disagreement: "
+                              << a.disagreement;
+}
+
+// The same measurement claiming 2 mm where it is 3 cm off across: the two disagree (one of the
+// covariances lies, the solve cannot tell which), and the joint covariance widens to cover
+// where the solve landed - a graph is not handed a confident wrong step.
+TEST(PointToPlaneIcp, AMeasurementThatDisagreesWithTheDepthWidensTheJointCovariance) {
+    const lodestone::sim::World world(plainCorridor(), 3);
+    const Eigen::Isometry3d ref = cameraPose({5.0, 0.1, 1.2}, 0.0, 0.1);
+    const Eigen::Isometry3d cur = cameraPose({5.3, 0.13, 1.21}, 0.03, 0.11);
+    const Eigen::Isometry3d truth = opticalMotion(ref, cur);
+    const Eigen::Vector3d along =
+        opticalMotion(ref, cameraPose({6, 0.1, 1.2}, 0, 0.1)).translation().normalized();
+    const Eigen::Vector3d across = along.cross(Eigen::Vector3d::UnitY()).normalized();
+    MotionPrior measured;
+    measured.T_ref_cur = truth;
+    measured.T_ref_cur.translation() += 0.03 * across;
+    measured.covariance.setZero();
+    measured.covariance.diagonal() << 1e-6, 1e-6, 1e-6, 4e-6, 4e-6, 4e-6;
+    DepthModel model(1);
+    model.addReference(sampleDepthCloud(render(world, ref, 11), DepthSampling{}),
+                       Eigen::Isometry3d::Identity());
+    const DepthCloud current = sampleDepthCloud(render(world, cur, 12), DepthSampling{});
+    const DepthAlignment a = PointToPlaneIcp().align(model, current, measured.T_ref_cur, &measured);
+    ASSERT_TRUE(a.success);
+    EXPECT_TRUE(a.disagreed);
+    EXPECT_GT(a.disagreement, 16.81) << "beyond chi-square's 99 % for the 5 directions pinned";
+    const double err = (a.T_ref_cur.translation() - truth.translation()).dot(across);
+    EXPECT_GT(std::abs(err), 0.002) << "the tight measurement pulled the solve off the depth";
+    EXPECT_LT(std::abs(err) / translationSigma(a, across), 3.3)
+        << "the covariance covers it: error " << err << ", sigma " << translationSigma(a, across);
+    // Told the truth with the same claim, the two agree and nothing widens.
+    measured.T_ref_cur = truth;
+    const DepthAlignment b = PointToPlaneIcp().align(model, current, truth, &measured);
+    ASSERT_TRUE(b.success);
+    EXPECT_FALSE(b.disagreed) << b.disagreement;
+    EXPECT_LT(translationSigma(b, across), 0.003);
 }
 
 

@@ -18,7 +18,8 @@ inline JsonObject voTimingJson(const vision::VoTotals& t) {
         o.set("depth", t.ms.depth / n)
             .set("depth_tried", t.depthTried)
             .set("depth_aligned", t.depthAligned)
-            .set("depth_joined", t.depthJoined);
+            .set("depth_joined", t.depthJoined)
+            .set("depth_joined_disagreeing", t.depthJoinedDisagreeing);
         JsonObject why;
         for (int f = 0; f < 4; ++f) {
             const auto reason = static_cast<vision::DepthAlignFailure>(f);

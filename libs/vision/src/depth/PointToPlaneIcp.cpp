@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -239,6 +240,25 @@ DepthAlignment PointToPlaneIcp::align(const DepthModel& model, const DepthCloud&
     a.observed = static_cast<int>(geo.observed.cols());
     a.T_ref_cur = T;
     if (measured) {
+        // The two measurements overlap in the directions the depth pins: where they disagree
+        // beyond chance (chi-square over those directions, 99 %), one of the covariances is
+        // too tight - which, neither says - so the joint one is scaled to cover the
+        // disagreement (the adjustment's a-posteriori variance factor).
+        const auto& U = geo.observed;
+        const int k = static_cast<int>(U.cols());
+        if (k > 0) {
+            const double vf = std::max(1.0, e.chi2 / static_cast<double>(e.n - 6));
+            const Eigen::MatrixXd Hu =
+                U.transpose() * (geo.Ainv.transpose() * e.H * geo.Ainv / vf) * U;
+            const Eigen::VectorXd offset =
+                Hu.ldlt().solve(U.transpose() * (geo.Ainv.transpose() * e.g / vf));
+            const Vector6d ds = geo.A * leftDifference(T, measured->T_ref_cur);
+            const Matrix6d Ls = geo.Ainv.transpose() * measuredInformation * geo.Ainv;
+            a.disagreement = offset.dot(Hu * offset) + ds.dot(Ls * ds);
+            constexpr double kChi2Quantile99[7] = {0, 6.63, 9.21, 11.34, 13.28, 15.09, 16.81};
+            a.disagreed = a.disagreement > kChi2Quantile99[k];
+            if (a.disagreed) jointInverse *= a.disagreement / k;
+        }
         a.covariance = geo.Ainv * jointInverse * geo.Ainv.transpose();
         a.success = true;
         return a;

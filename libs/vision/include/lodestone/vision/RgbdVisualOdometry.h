@@ -55,6 +55,9 @@ struct VoTotals {
     std::size_t depthAligned{0};  ///< frames whose features failed and whose depth aligned
     std::size_t depthTried{0};    ///< frames whose features failed and whose depth was tried
     std::size_t depthJoined{0};   ///< frames whose features and depth were solved as one
+    /** ... of those, the ones whose features and depth disagreed beyond their covariances
+     * (DepthAlignment::disagreed: the covariance was widened). */
+    std::size_t depthJoinedDisagreeing{0};
     /** Why depth alignment failed, by DepthAlignFailure (None: it aligned, implausibly). */
     std::array<std::size_t, 4> depthFailures{};
     /** Frames tried, by the number of directions the depth pinned (0..6). */
@@ -97,6 +100,7 @@ struct VoResult {
     int depthObserved{0};
     /** The features aligned and the depth was solved with them (`depthWithFeatures`). */
     bool depthJoined{false};
+    bool depthDisagreed{false};  ///< joined, and DepthAlignment::disagreed
     /** The features aligned and the caller's rotation (a gyro's) joined them
      * (`gyroWithFeatures`): `T_ref_cur` and `covariance` are the joined motion's, and these
      * the camera's own before it (for whoever learns the gyro's bias from them). Otherwise

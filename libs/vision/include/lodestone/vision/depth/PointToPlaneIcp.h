@@ -22,6 +22,12 @@ struct DepthAlignment {
     int observed{0};  ///< directions of the motion the depth measured (of 6)
     std::size_t points{0}, correspondences{0};
     double rmse{0};  ///< point-to-plane residual over the correspondences [m]
+    /** With a measured motion: the joint solve's chi-square of the two against each other
+     * (chi-square with `observed` dof where both covariances are honest); 0 without ... */
+    double disagreement{0};
+    /** ... past its 99 % quantile: one covariance was too tight, and `covariance` is scaled
+     * by disagreement / observed to cover both. */
+    bool disagreed{false};
     int iterations{0};
 };
 
