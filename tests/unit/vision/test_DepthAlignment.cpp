@@ -259,25 +259,44 @@ TEST(RgbdVisualOdometryParams, DepthKeysAreReadAndChecked) {
     }
 }
 
+/** A step of 30 cm down the plain corridor, turned 2 deg: its frames' poses, the true motion
+ * (optical frame) and the directions along and across the corridor in it. */
+struct CorridorStep {
+    Eigen::Isometry3d ref = cameraPose({5.0, 0.1, 1.2}, 0.0, 0.1);
+    Eigen::Isometry3d cur = cameraPose({5.3, 0.13, 1.21}, 0.03, 0.11);
+    Eigen::Isometry3d truth = opticalMotion(ref, cur);
+    Eigen::Vector3d along =
+        opticalMotion(ref, cameraPose({6, 0.1, 1.2}, 0, 0.1)).translation().normalized();
+    Eigen::Vector3d across = along.cross(Eigen::Vector3d::UnitY()).normalized();
+
+    /** The features' motion as measured: the truth moved by `offset`, with these sigmas. */
+    MotionPrior measured(const Eigen::Vector3d& offset, double rotationSigma,
+                         double translationSigma) const {
+        MotionPrior m;
+        m.T_ref_cur = truth;
+        m.T_ref_cur.translation() += offset;
+        m.covariance.setZero();
+        m.covariance.diagonal().head<3>().setConstant(rotationSigma * rotationSigma);
+        m.covariance.diagonal().tail<3>().setConstant(translationSigma * translationSigma);
+        return m;
+    }
+    DepthModel model(const lodestone::sim::World& world) const {
+        DepthModel m(1);
+        m.addReference(sampleDepthCloud(render(world, ref, 11), DepthSampling{}),
+                       Eigen::Isometry3d::Identity());
+        return m;
+    }
+};
+
 // Features and depth solved as one: in a plain corridor the depth pins the move across and the
 // measured motion (the features') supplies the move along, with its own uncertainty there.
 TEST(PointToPlaneIcp, WithAMeasuredMotionTheCorridorsMoveAlongComesFromIt) {
     const lodestone::sim::World world(plainCorridor(), 3);
-    const Eigen::Isometry3d ref = cameraPose({5.0, 0.1, 1.2}, 0.0, 0.1);
-    const Eigen::Isometry3d cur = cameraPose({5.3, 0.13, 1.21}, 0.03, 0.11);
-    const Eigen::Isometry3d truth = opticalMotion(ref, cur);
-    const Eigen::Vector3d along =
-        opticalMotion(ref, cameraPose({6, 0.1, 1.2}, 0, 0.1)).translation().normalized();
-    const Eigen::Vector3d across = along.cross(Eigen::Vector3d::UnitY()).normalized();
+    const CorridorStep step;
+    const auto& [ref, cur, truth, along, across] = step;
     // The measurement: 2 cm off along and 3 cm off across, each with a 5 cm sigma.
-    MotionPrior measured;
-    measured.T_ref_cur = truth;
-    measured.T_ref_cur.translation() += 0.02 * along + 0.03 * across;
-    measured.covariance.setZero();
-    measured.covariance.diagonal() << 1e-4, 1e-4, 1e-4, 25e-4, 25e-4, 25e-4;
-    DepthModel model(1);
-    model.addReference(sampleDepthCloud(render(world, ref, 11), DepthSampling{}),
-                       Eigen::Isometry3d::Identity());
+    const MotionPrior measured = step.measured(0.02 * along + 0.03 * across, 0.01, 0.05);
+    const DepthModel model = step.model(world);
     const DepthAlignment a =
         PointToPlaneIcp().align(model, sampleDepthCloud(render(world, cur, 12), DepthSampling{}),
                                 measured.T_ref_cur, &measured);
@@ -297,20 +316,10 @@ TEST(PointToPlaneIcp, WithAMeasuredMotionTheCorridorsMoveAlongComesFromIt) {
 // where the solve landed - a graph is not handed a confident wrong step.
 TEST(PointToPlaneIcp, AMeasurementThatDisagreesWithTheDepthWidensTheJointCovariance) {
     const lodestone::sim::World world(plainCorridor(), 3);
-    const Eigen::Isometry3d ref = cameraPose({5.0, 0.1, 1.2}, 0.0, 0.1);
-    const Eigen::Isometry3d cur = cameraPose({5.3, 0.13, 1.21}, 0.03, 0.11);
-    const Eigen::Isometry3d truth = opticalMotion(ref, cur);
-    const Eigen::Vector3d along =
-        opticalMotion(ref, cameraPose({6, 0.1, 1.2}, 0, 0.1)).translation().normalized();
-    const Eigen::Vector3d across = along.cross(Eigen::Vector3d::UnitY()).normalized();
-    MotionPrior measured;
-    measured.T_ref_cur = truth;
-    measured.T_ref_cur.translation() += 0.03 * across;
-    measured.covariance.setZero();
-    measured.covariance.diagonal() << 1e-6, 1e-6, 1e-6, 4e-6, 4e-6, 4e-6;
-    DepthModel model(1);
-    model.addReference(sampleDepthCloud(render(world, ref, 11), DepthSampling{}),
-                       Eigen::Isometry3d::Identity());
+    const CorridorStep step;
+    const auto& [ref, cur, truth, along, across] = step;
+    MotionPrior measured = step.measured(0.03 * across, 0.001, 0.002);
+    const DepthModel model = step.model(world);
     const DepthCloud current = sampleDepthCloud(render(world, cur, 12), DepthSampling{});
     const DepthAlignment a = PointToPlaneIcp().align(model, current, measured.T_ref_cur, &measured);
     ASSERT_TRUE(a.success);
