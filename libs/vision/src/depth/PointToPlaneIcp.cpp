@@ -194,6 +194,7 @@ DepthAlignment PointToPlaneIcp::align(const DepthModel& model, const DepthCloud&
     Geometry geo;
     Eigen::MatrixXd reducedInverse;  // (U_o^T H_s U_o)^-1 of the last pass
     Matrix6d jointInverse;           // with a measured motion: (H_o + Lambda_s)^-1
+    double varianceFactor = 1;       // the last pass's residuals' chi-square per dof (>= 1)
     Matrix6d measuredInformation = Matrix6d::Zero();
     if (measured) {
         measuredInformation = measured->covariance.ldlt().solve(Matrix6d::Identity());
@@ -206,7 +207,7 @@ DepthAlignment PointToPlaneIcp::align(const DepthModel& model, const DepthCloud&
         if (e.n < params_.minCorrespondences) break;
         geo = geometryOf(e, params_.normalNoiseChi2, params_.minStructure);
         // Gauss-Newton in the pinned directions only; along the others T keeps the initial motion.
-        const double varianceFactor = std::max(1.0, e.chi2 / static_cast<double>(e.n - 6));
+        varianceFactor = std::max(1.0, e.chi2 / static_cast<double>(e.n - 6));
         const Matrix6d Hs = geo.Ainv.transpose() * e.H * geo.Ainv / varianceFactor;
         const Vector6d gs = geo.Ainv.transpose() * e.g / varianceFactor;
         const auto& U = geo.observed;
@@ -247,7 +248,7 @@ DepthAlignment PointToPlaneIcp::align(const DepthModel& model, const DepthCloud&
         const auto& U = geo.observed;
         const int k = static_cast<int>(U.cols());
         if (k > 0) {
-            const double vf = std::max(1.0, e.chi2 / static_cast<double>(e.n - 6));
+            const double vf = varianceFactor;  // (the last pass's, as its Hessian was scaled)
             const Eigen::MatrixXd Hu =
                 U.transpose() * (geo.Ainv.transpose() * e.H * geo.Ainv / vf) * U;
             const Eigen::VectorXd offset =
