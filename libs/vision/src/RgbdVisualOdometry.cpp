@@ -84,6 +84,8 @@ void RgbdVisualOdometry::Params::loadFromConfigFile(const mrpt::config::CConfigF
     depthStart = s.getBool("depth_start", depthStart);
     depthModelKeyframes = s.getInt("depth_model_keyframes", depthModelKeyframes);
     depthSampling.columns = s.getInt("depth_grid_columns", depthSampling.columns);
+    depthSampling.pointsFromCellMean =
+        s.getBool("depth_points_from_cell_mean", depthSampling.pointsFromCellMean);
     depthSampling.depthNoise = ransac.depthNoise;
     depthIcp.minObserved = s.getInt("depth_min_observed", depthIcp.minObserved);
     gyroDepthMinObserved = s.getInt("gyro_depth_min_observed", gyroDepthMinObserved);
@@ -134,6 +136,7 @@ void RgbdVisualOdometry::Params::dumpToTextStream(std::ostream& out) const {
         << "depth_start        = " << (depthStart ? "true" : "false") << "\n"
         << "depth_model_keyframes = " << depthModelKeyframes << "\n"
         << "depth_grid_columns = " << depthSampling.columns << "\n"
+        << "depth_points_from_cell_mean = " << (depthSampling.pointsFromCellMean ? "true" : "false") << "\n"
         << "depth_min_observed = " << depthIcp.minObserved << "  [of 6 directions]\n"
         << "gyro_depth_min_observed = " << gyroDepthMinObserved << "  [of 6; 0: off]\n"
         << "gyro_with_features = "

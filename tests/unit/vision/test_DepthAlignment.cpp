@@ -233,13 +233,15 @@ TEST(DepthModel, ALooseMotionDropsTheOlderKeyframes) {
 TEST(RgbdVisualOdometryParams, DepthKeysAreReadAndChecked) {
     mrpt::config::CConfigFileMemory ini(
         "[vo]\ndepth_alignment = true\ndepth_min_observed = 4\ndepth_model_keyframes = 2\n"
-        "depth_grid_columns = 40\n");
+        "depth_grid_columns = 40\ndepth_points_from_cell_mean = true\n");
     RgbdVisualOdometry::Params p;
+    EXPECT_FALSE(p.depthSampling.pointsFromCellMean) << "single pixels unless asked for";
     p.loadFromConfigFile(ini, "vo");
     EXPECT_TRUE(p.depthAlignment);
     EXPECT_EQ(p.depthIcp.minObserved, 4);
     EXPECT_EQ(p.depthModelKeyframes, 2);
     EXPECT_EQ(p.depthSampling.columns, 40);
+    EXPECT_TRUE(p.depthSampling.pointsFromCellMean);
     EXPECT_EQ(p.gyroDepthMinObserved, 0) << "off unless asked for";
     mrpt::config::CConfigFileMemory withGyro("[vo]\ngyro_depth_min_observed = 3\n");
     p.loadFromConfigFile(withGyro, "vo");

@@ -39,6 +39,27 @@ DepthCloud sampleDepthCloud(const RgbdFrame& frame, const DepthSampling& samplin
         const float c = count.at<float>(v, u);
         return c >= 0.5f ? sum.at<float>(v, u) / c : 0.0f;
     };
+    // A point's depth: the mean inverse depth over its cell, of pixels in pairs mirrored about
+    // it that are both known. Inverse depth is linear across a plane and the pairs are
+    // symmetric, so the mean is the plane's at the centre, holes or not; and it is what
+    // structured light measures. A single pixel's depth comes in disparity steps, and the
+    // alignment of two such clouds snaps to them.
+    const int half = window / 2;
+    const auto cellMeanDepth = [&](int u, int v, float z) {
+        double inverseSum = 1.0 / z;
+        int n = 1;
+        for (int dv = 0; dv <= half; ++dv) {
+            const float* ahead = depth.ptr<float>(v + dv);
+            const float* behind = depth.ptr<float>(v - dv);
+            for (int du = dv == 0 ? 1 : -half; du <= half; ++du) {
+                const float z1 = ahead[u + du], z2 = behind[u - du];
+                if (!valid(z1) || !valid(z2)) continue;
+                inverseSum += 1.0 / z1 + 1.0 / z2;
+                n += 2;
+            }
+        }
+        return static_cast<float>(n / inverseSum);
+    };
     std::vector<Eigen::Vector3f> pts, nrm;
     std::vector<float> sig, nvar;
     const float edge = static_cast<float>(sampling.edgeRatio);
@@ -57,7 +78,8 @@ DepthCloud sampleDepthCloud(const RgbdFrame& frame, const DepthSampling& samplin
                 std::abs(zd - z) > limit) {
                 continue;
             }
-            const Eigen::Vector3f p = point(u, v, z);
+            const float zp = sampling.pointsFromCellMean ? cellMeanDepth(u, v, z) : z;
+            const Eigen::Vector3f p = point(u, v, zp);
             const Eigen::Vector3f du =
                 point(u + step, v, smooth(u + step, v)) - point(u - step, v, smooth(u - step, v));
             const Eigen::Vector3f dv =

@@ -183,7 +183,7 @@ class RgbdVisualOdometry {
         enum class GyroJoin { Off, Tilt, All };
         GyroJoin gyroWithFeatures{GyroJoin::Off};
         int depthModelKeyframes{1};  ///< keyframes in the local model depth aligns with (1: see docs/results/camera-only.md)
-        DepthSampling depthSampling;  ///< columns from `depth_grid_columns`; noise from RANSAC's
+        DepthSampling depthSampling;  ///< `depth_grid_columns`, `depth_points_from_cell_mean`; noise from RANSAC's
         PointToPlaneIcp::Params depthIcp;
 
         /** All keys in one section (ORB, matcher and RANSAC keys included). */
