@@ -34,9 +34,10 @@ struct DepthSampling {
     /** A point's depth is its cell's mean (of the inverse depth, over the normals' window, of
      * pixel pairs mirrored about it), not its one pixel's. A structured-light depth comes in
      * disparity steps, and aligning two clouds of single pixels snaps to them: on the simulated
-     * Kinect the depth-alone rotation error falls from 0.105 to 0.016 deg with cell means
-     * (bench_depth_honesty). Off: end to end it was worse - the hand-held loop with the gyro
-     * 0.039 m against 0.033, the robot's camera on one floor 1.1 m against 0.045
+     * Kinect the depth-alone NEES per direction falls from 7.7 to 1.0 with cell means and the
+     * rotation error from 0.084 to 0.013 deg (bench_depth_honesty). Off: end to end on one
+     * seed it was mixed - the hand-held loop without an IMU 0.040 m against 0.061, with the
+     * gyro 0.039 against 0.033, the robot's camera on one floor 1.1 m against 0.045
      * (docs/results/camera-only.md, session 60). The noise a point carries is one pixel's
      * either way. */
     bool pointsFromCellMean{false};
