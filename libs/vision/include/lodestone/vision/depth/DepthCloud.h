@@ -35,9 +35,9 @@ struct DepthSampling {
      * pixel pairs mirrored about it), not its one pixel's. A structured-light depth comes in
      * disparity steps, and aligning two clouds of single pixels snaps to them: on the simulated
      * Kinect the depth-alone NEES per direction falls from 7.7 to 1.0 with cell means and the
-     * rotation error from 0.084 to 0.013 deg (bench_depth_honesty). Off: end to end on one
-     * seed it was mixed - the hand-held loop without an IMU 0.040 m against 0.061, with the
-     * gyro 0.039 against 0.033, the robot's camera on one floor 1.1 m against 0.045
+     * rotation error from 0.084 to 0.013 deg (bench_depth_honesty). Off: end to end it moved
+     * the hand-held seeds by centimetres both ways, the worst seed worse with the gyro and
+     * without, and the robot's camera on one floor went 1.1 m off
      * (docs/results/camera-only.md, session 60). The noise a point carries is one pixel's
      * either way. */
     bool pointsFromCellMean{false};
