@@ -1,6 +1,8 @@
 #include <lodestone/graphslam/Se3Pose.h>
 #include <mrpt/math/wrap2pi.h>
 
+#include <Eigen/Cholesky>
+
 namespace lodestone::graphslam {
 
 Eigen::Isometry3d isometryOf(const mrpt::poses::CPose3D& p) {
@@ -48,6 +50,32 @@ mrpt::poses::CPose3DPDFGaussian heightHeld(const mrpt::poses::CPose3DPDFGaussian
     held.mean = mrpt::poses::CPose3D(x(0), x(1), x(2), x(3), x(4), x(5));
     Eigen::Matrix<double, 6, 6> P = C - K * Ch.transpose();
     if (!moveRotation) {  // (the rotation's block as it was, and no cross terms left to it)
+        P.topRightCorner<3, 3>().setZero();
+        P.bottomLeftCorner<3, 3>().setZero();
+        P.bottomRightCorner<3, 3>() = C.bottomRightCorner<3, 3>();
+    }
+    held.cov = mrpt::math::CMatrixDouble66(P);
+    return held;
+}
+
+mrpt::poses::CPose3DPDFGaussian translationHeld(const mrpt::poses::CPose3DPDFGaussian& pdf,
+                                                const Eigen::Vector3d& m, const Eigen::Matrix3d& M,
+                                                bool moveRotation) {
+    using Matrix6d = Eigen::Matrix<double, 6, 6>;
+    using Vector6d = Eigen::Matrix<double, 6, 1>;
+    const Matrix6d C = pdf.cov.asEigen();  // (x, y, z, yaw, pitch, roll)
+    Eigen::Matrix<double, 6, 3> Ct = C.leftCols<3>();
+    if (!moveRotation) Ct.bottomRows<3>().setZero();
+    const Eigen::Matrix3d S = C.topLeftCorner<3, 3>() + M;
+    const Eigen::Matrix<double, 6, 3> K = Ct * S.ldlt().solve(Eigen::Matrix3d::Identity());
+    const auto& p = pdf.mean;
+    const Vector6d x = (Vector6d() << p.x(), p.y(), p.z(), p.yaw(), p.pitch(), p.roll()).finished() +
+                       K * (m - Eigen::Vector3d(p.x(), p.y(), p.z()));
+    mrpt::poses::CPose3DPDFGaussian held;
+    held.mean = mrpt::poses::CPose3D(x(0), x(1), x(2), x(3), x(4), x(5));
+    Matrix6d P = C - K * Ct.transpose();
+    P = 0.5 * (P + P.transpose());
+    if (!moveRotation) {  // (as heightHeld's)
         P.topRightCorner<3, 3>().setZero();
         P.bottomLeftCorner<3, 3>().setZero();
         P.bottomRightCorner<3, 3>() = C.bottomRightCorner<3, 3>();

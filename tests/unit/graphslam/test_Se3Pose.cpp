@@ -86,3 +86,33 @@ TEST(Se3Pose, HeightHeldBoundsOnlyARiseNothingMeasured) {
     EXPECT_EQ(translationOnly.cov(3, 2), 0.0);
     EXPECT_LT(std::abs(translationOnly.mean.z()), 0.01);
 }
+
+TEST(Se3Pose, TranslationHeldFillsOnlyTheDirectionsNotMeasured) {
+    // VO's step at a plain wall: the distance to it (x) and the height measured to a
+    // millimetre, sideways (y) not at all (1 m); the motion model: 0.1 m ahead, 0.05 m sure.
+    mrpt::poses::CPose3DPDFGaussian step;
+    step.mean = mrpt::poses::CPose3D(0.10, 0.30, 0.0, 0.02, 0.0, 0.0);
+    step.cov.setZero();
+    step.cov(0, 0) = step.cov(2, 2) = 1e-6;
+    step.cov(1, 1) = 1.0;
+    for (int k = 3; k < 6; ++k) step.cov(k, k) = 1e-6;
+    step.cov(1, 3) = step.cov(3, 1) = 0.5 * 1e-3;  // (sideways with the turn)
+    const Eigen::Vector3d model(0.12, 0.0, 0.0);
+    const Eigen::Matrix3d M = 0.05 * 0.05 * Eigen::Matrix3d::Identity();
+    const auto held = lodestone::graphslam::translationHeld(step, model, M);
+    EXPECT_NEAR(held.mean.y(), 0.30 * 0.0025 / 1.0025, 1e-6) << "sideways: the model's, nearly";
+    EXPECT_NEAR(std::sqrt(held.cov(1, 1)), 0.05, 0.001);
+    EXPECT_NEAR(held.mean.x(), 0.10, 1e-5) << "ahead: VO's, measured 50x better than the model";
+    EXPECT_NEAR(held.cov(0, 0), 1e-6, 1e-9);
+    EXPECT_LT(held.mean.yaw(), 0.02) << "the turn moves with the sideways shift it correlates with";
+    const auto kept = lodestone::graphslam::translationHeld(step, model, M, false);
+    EXPECT_NEAR(kept.mean.yaw(), 0.02, 1e-12);
+    EXPECT_EQ(kept.cov(1, 3), 0.0);
+    // A model far looser than every measured direction changes nothing that counts.
+    mrpt::poses::CPose3DPDFGaussian sure = step;
+    sure.cov(1, 1) = 1e-6;
+    sure.cov(1, 3) = sure.cov(3, 1) = 0;
+    const auto same = lodestone::graphslam::translationHeld(sure, model, M);
+    EXPECT_NEAR(same.mean.y(), 0.30, 0.30 * 1e-3);
+    EXPECT_NEAR(same.cov(1, 1), 1e-6, 1e-9);
+}

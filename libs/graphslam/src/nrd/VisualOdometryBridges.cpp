@@ -27,6 +27,21 @@ mrpt::poses::CPose3DPDFGaussian VisualOdometryNRD::lastTrackedHeld() const {
     return heightHeld(last_tracked_.pdf, params_.stepHeightSigma, params_.edgeCrossCovariance);
 }
 
+mrpt::poses::CPose3DPDFGaussian VisualOdometryNRD::motionHeld(
+    const mrpt::poses::CPose3DPDFGaussian& edge, double seconds) const {
+    // The velocity at this frame (VO's, the edge's end) turned into the last node's axes with
+    // the edge's turn; trusted to the model's speed spread only, so that consecutive edges do
+    // not each count VO's velocity as known (it came from the edges before).
+    const auto& fading = params_.bridgeVelocity;
+    const Eigen::Matrix3d R = edge.mean.getRotationMatrix().asEigen();
+    const auto v0 = velocityAtLastTracked();
+    const double rate = Eigen::AngleAxisd(R).angle() / seconds;
+    const Eigen::Vector3d m = R * fading.meanDisplacement(v0.mean, seconds, cruise_.at(rate));
+    const Eigen::Matrix3d M =
+        R * fading.displacementVariances(seconds, fading.speedSigma).asDiagonal() * R.transpose();
+    return translationHeld(edge, m, M, params_.edgeCrossCovariance);
+}
+
 mrpt::poses::CPose3DPDFGaussian VisualOdometryNRD::bridge(double gap) const {
     // The last step scaled to the gap (first order in its angles), from the last tracked frame.
     const double k = gap / last_step_seconds_;

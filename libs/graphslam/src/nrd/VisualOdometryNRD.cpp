@@ -81,6 +81,7 @@ void VisualOdometryNRD::configure(const mrpt::config::CConfigFileBase& ini) {
     if (!(p.bridgeHeightSigma >= 0)) s.fail("bridge_height_sigma", "must be >= 0");
     p.stepHeightSigma = s.getDouble("step_height_sigma", p.stepHeightSigma);
     if (!(p.stepHeightSigma >= 0)) s.fail("step_height_sigma", "must be >= 0");
+    p.stepMotionPrior = s.getBool("step_motion_prior", p.stepMotionPrior);
     p.bridgeTurnByDepth = s.getBool("bridge_turn_by_depth", p.bridgeTurnByDepth);
     auto& turn = p.bridgeTurn;
     turn.rate.speedSigma =
@@ -351,8 +352,9 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
         return;
     // (through the rotation only where the edge keeps VO's correlations of the two: a loose
     // rise correlated with a turn would otherwise turn the step as it is held)
-    registerAt(*scan, t, r.frameFeatures,
-               heightHeld(cur, params_.stepHeightSigma, params_.edgeCrossCovariance), false);
+    auto edge = heightHeld(cur, params_.stepHeightSigma, params_.edgeCrossCovariance);
+    if (params_.stepMotionPrior && t > node_time_) edge = motionHeld(edge, t - node_time_);
+    registerAt(*scan, t, r.frameFeatures, edge, false);
     // Seen from the new node, the reference lies where VO measured it - the motion inverted,
     // with the motion's own covariance (not the node's: that is the edge's).
     mrpt::poses::CPose3DPDFGaussian back;
@@ -418,6 +420,7 @@ void VisualOdometryNRD::registerAt(const mrpt::obs::CObservation3DRangeScan& sca
                                    const mrpt::poses::CPose3DPDFGaussian& edge, bool restart) {
     bool keyframe = true;
     TNodeID id = m_graph->root;
+    node_time_ = t;
     const double lostAfter = last_tracked_.t;  // (last_tracked_ becomes this frame below)
     if (m_prev_registered_nodeID == mrpt::graphs::INVALID_NODEID) {
         m_graph->nodes[m_graph->root] = mrpt::poses::CPose3D();  // the camera starts the map
@@ -502,6 +505,7 @@ JsonObject VisualOdometryNRD::describe() const {
         .set("edge_cross_covariance", params_.edgeCrossCovariance)
         .set("bridge_max_seconds", params_.bridgeMaxSeconds)
         .set("step_height_sigma", params_.stepHeightSigma)
+        .set("step_motion_prior", params_.stepMotionPrior)
         .set("camera_label", params_.cameraLabel);
     if (params_.useGyro) {
         params.set("gyro_label", params_.gyroLabel)

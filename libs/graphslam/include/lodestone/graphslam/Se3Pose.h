@@ -34,4 +34,12 @@ double squaredMahalanobis(const mrpt::poses::CPose3DPDFGaussian& a,
 mrpt::poses::CPose3DPDFGaussian heightHeld(const mrpt::poses::CPose3DPDFGaussian& pdf, double sigma,
                                            bool moveRotation = true);
 
+/** A relative pose whose translation is also measured as `m` with covariance `M` (both in the
+ * pose's first frame) - a motion model's guess of it: a Kalman update of the translation, the
+ * other components moving with it by their correlations (`moveRotation` as heightHeld's).
+ * Nothing changes where the pose's translation is known far better than `M`. */
+mrpt::poses::CPose3DPDFGaussian translationHeld(const mrpt::poses::CPose3DPDFGaussian& pdf,
+                                                const Eigen::Vector3d& m, const Eigen::Matrix3d& M,
+                                                bool moveRotation = true);
+
 }  // namespace lodestone::graphslam

@@ -71,6 +71,14 @@ class VisualOdometryNRD : public NodeDecider {
          * this at most (`step_height_sigma`; 0: no such prior) - VO's steps towards a plain wall
          * can leave the height to a few features, metres loose. */
         double stepHeightSigma{0};
+        /** VO's edge from node to node fused with the carrier's motion model over the same
+         * time (`step_motion_prior`): `bridgeVelocity` from VO's velocity, trusted only to the
+         * model's speed spread, towards the cruise. Where VO measured the translation (features,
+         * depth that pins it) nothing changes; where it did not (depth alone at a plain wall: a
+         * direction `unobservedSigma`, metres, loose) the edge holds what a carrier can do in
+         * that time, not anything - a graph otherwise slides such nodes along that direction
+         * at almost no cost. */
+        bool stepMotionPrior{false};
         /** An edge keeps the correlations of its translation with its rotation that VO's
          * covariance holds (false: each block alone, `edge_cross_covariance`). */
         bool edgeCrossCovariance{true};
@@ -178,6 +186,10 @@ class VisualOdometryNRD : public NodeDecider {
     /** The last tracked frame relative to the last node, its rise held to `bridgeHeightSigma`
      * (where a gap's bridge starts). */
     mrpt::poses::CPose3DPDFGaussian lastTrackedHeld() const;
+    /** A tracked edge from the last node, `seconds` long, fused with the motion model over
+     * that time (`stepMotionPrior`). */
+    mrpt::poses::CPose3DPDFGaussian motionHeld(const mrpt::poses::CPose3DPDFGaussian& edge,
+                                               double seconds) const;
     /** From the last node to a frame `gap` seconds after the last tracked one, by the last
      * velocity. */
     mrpt::poses::CPose3DPDFGaussian bridge(double gap) const;
@@ -268,6 +280,7 @@ class VisualOdometryNRD : public NodeDecider {
     std::optional<vision::DepthCloud> frame_cloud_;  // ... and its depth cloud, where prepared
     std::size_t gyro_priors_{0};  // frames given the gyro's rotation
     Anchor reference_;    // VO's reference frame
+    double node_time_{NAN};  // the last node's frame's time
     Anchor last_tracked_;  // the last frame VO tracked (it may become the reference)
     std::shared_ptr<const vision::FrameFeatures> last_tracked_features_;
     std::optional<vision::RgbdFrame> last_tracked_frame_;  // (its images shared, not copied)
