@@ -6,16 +6,17 @@
 # recordings carry a gyro (--gyro: its own noise stream, so every other sample is as without
 # it), and each is run four times with rgbd_only.ini: without the IMU (use_gyro, use_gravity
 # false: the gaps' turns then measured by their frames' depth) and with it (the INI as it
-# ships), each also as a level carrier on one floor (carrier_tilt_sigma_deg = 5 where no
-# accelerometer gives the up, carrier_height_sigma = 0.05: opt-in; it helps the hand-held
-# loop and, measured, not the robot's camera).
+# ships), each also with VO's edges alone (floor_level, step_motion_prior false: no floor as a
+# landmark, no carrier's motion holding what VO left unmeasured - the INI before session 62).
 # Beside them the robot with its wheels and visual_only.ini. One row per run: ATE, VO's gaps
 # and how they were bridged, closures, the real-time factor; then median and worst over the
 # seeds.
-# Usage: scripts/bench/camera_only.sh ["SEED..."] [SCENARIO.ini ...]
+# Usage: [CARRIERS="wheels cam hand"] [JOBS=1] scripts/bench/camera_only.sh ["SEED..."] [SCENARIO.ini ...]
 #        (default: seed 1; office and paper_loop, 640x480 at 30 Hz: about 1.5 hours a seed on
 #        2 cores, and up to 13 GB of disk while a recording is in use; REC_DIR=DIR reads
-#        DIR/NAME_{wheels,cam,hand}SEED.rawlog where they exist and keeps what it records there)
+#        DIR/NAME_{wheels,cam,hand}SEED.rawlog where they exist - what is missing is recorded
+#        and removed after its runs, as without REC_DIR; JOBS=2 runs a recording's runs two at a
+#        time: the real-time factor is then of two runs sharing the 2 cores)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 "$root/scripts/build.sh" > /dev/null
@@ -31,51 +32,75 @@ scenarios=("$@")
 base="$root/config_ini/slam/rgbd_only.ini"
 source "$root/scripts/bench/ini_variant.bash"
 variant rgbd_no_imu use_gyro=false use_gravity=false
-variant rgbd_level_no_imu use_gyro=false use_gravity=false carrier_tilt_sigma_deg=5 carrier_height_sigma=0.05
-variant rgbd_floor carrier_height_sigma=0.05
+variant rgbd_vo_edges_no_imu use_gyro=false use_gravity=false floor_level=false step_motion_prior=false
+variant rgbd_vo_edges floor_level=false step_motion_prior=false
 cp "$base" "$out/rgbd_only.ini"
 cp "$root/config_ini/slam/visual_only.ini" "$out/visual_only.ini"
 results="$out/results.txt"
 : > "$results"
-echo "| scenario | camera | seed | carrier | frames | ATE [m] | VO gaps: bridged by the gyro (of them by depth) / by the depth's turn / relocalized | segments | loop closures kept | real-time factor (one run on 2 cores) |"
+sharing="one run on 2 cores"
+[[ ${JOBS:-1} -gt 1 ]] && sharing="$JOBS runs sharing 2 cores"
+echo "| scenario | camera | seed | carrier | frames | ATE [m] | VO gaps: bridged by the gyro (of them by depth) / by the depth's turn / relocalized | segments | loop closures kept | real-time factor ($sharing) |"
 echo "|---|---|---|---|---|---|---|---|---|---|"
+max_jobs=${JOBS:-1}
+carriers=${CARRIERS:-wheels cam hand}
+# One run: its table row into $out/rows/INDEX, its ATE into $results (the summary).
+run_one() {
+    local index=$1 name=$2 cameraSpec=$3 seed=$4 rawlog=$5 carrier=$6 config=$7
+    local run="$out/${name}_$index-$config"
+    local log report ate rt closures gaps gyro depth turn bridged
+    log=$("$slam" -r "$rawlog" --config "$out/$config.ini" \
+        --ground-truth "${rawlog%.rawlog}.gt.tum" --out "$run" --quiet 2>&1 | grep -v "^\[")
+    report="$run/report.json"
+    ate=$(echo "$log" | grep -o "ATE RMSE [0-9.]*" | awk '{print $3}')
+    rt=$(echo "$log" | grep -o "([0-9.]*x real time)" | tr -d '()' | awk '{print $1}')
+    closures=$(echo "$log" | grep -o "[0-9]* loop closures ([0-9]* rejected)" | awk '{print $1 - substr($4, 2)}')
+    gaps=$(field "$report" vo_gaps)
+    gyro=$(field "$report" vo_gaps_bridged_by_gyro)
+    depth=$(field "$report" vo_gaps_bridged_by_depth)
+    turn=$(field "$report" vo_gaps_bridged_by_depth_turn)
+    bridged="${gaps:--}: ${gyro:-0} (${depth:-0}) / ${turn:-0} / $(field "$report" vo_gaps_relocalized)"
+    [[ $config == visual_only ]] && bridged="-"
+    echo "| $name | $cameraSpec | $seed | $carrier | $(field "$report" rgbd_frames) | $ate | $bridged | $(field "$report" segments) | $closures | $rt |" > "$out/rows/$index"
+    echo "$name|$carrier|$ate" > "$out/rows/$index.summary"
+    rm -rf "$run"
+}
+mkdir -p "$out/rows"
 for ini in "${scenarios[@]}"; do
     name=$(basename "$ini" .ini)
     # width x height @ rate from the scenario's [camera] section
     cameraSpec=$(awk '/^\[/{s=($0=="[camera]")} s && /^(width|height|rate) *=/{v[$1]=$3} END{printf "%sx%s@%s", v["width"], v["height"], v["rate"]}' "$ini")
     for seed in $seeds; do
-        for tag in wheels cam hand; do
+        for tag in $carriers; do
             case $tag in
                 wheels) flags=(); runs=("robot, wheels + VO:visual_only") ;;
                 cam) flags=(--camera-only --gyro)
-                     runs=("robot, camera only:rgbd_no_imu" "robot, camera only, level on one floor:rgbd_level_no_imu"
-                           "robot, camera + gyro:rgbd_only" "robot, camera + gyro, one floor:rgbd_floor") ;;
+                     runs=("robot, camera only:rgbd_no_imu" "robot, camera only, VO's edges alone:rgbd_vo_edges_no_imu"
+                           "robot, camera + gyro:rgbd_only" "robot, camera + gyro, VO's edges alone:rgbd_vo_edges") ;;
                 hand) flags=(--handheld --gyro)
-                      runs=("hand, camera only:rgbd_no_imu" "hand, camera only, level on one floor:rgbd_level_no_imu"
-                            "hand, camera + gyro:rgbd_only" "hand, camera + gyro, one floor:rgbd_floor") ;;
+                      runs=("hand, camera only:rgbd_no_imu" "hand, camera only, VO's edges alone:rgbd_vo_edges_no_imu"
+                            "hand, camera + gyro:rgbd_only" "hand, camera + gyro, VO's edges alone:rgbd_vo_edges") ;;
+                *) echo "unknown carrier $tag (wheels, cam, hand)" >&2; exit 2 ;;
             esac
             rawlog="$recordings/${name}_$tag$seed.rawlog"
-            [[ -f $rawlog ]] || "$sim" -c "$ini" -o "$rawlog" -s "$seed" "${flags[@]}" > /dev/null
-            for r in "${runs[@]}"; do
-                carrier=${r%%:*} config=${r#*:}
-                run="$out/${name}_$tag$seed-$config"
-                log=$("$slam" -r "$rawlog" --config "$out/$config.ini" \
-                    --ground-truth "${rawlog%.rawlog}.gt.tum" --out "$run" --quiet 2>&1 | grep -v "^\[")
-                report="$run/report.json"
-                ate=$(echo "$log" | grep -o "ATE RMSE [0-9.]*" | awk '{print $3}')
-                rt=$(echo "$log" | grep -o "([0-9.]*x real time)" | tr -d '()' | awk '{print $1}')
-                closures=$(echo "$log" | grep -o "[0-9]* loop closures ([0-9]* rejected)" | awk '{print $1 - substr($4, 2)}')
-                gaps=$(field "$report" vo_gaps)
-                gyro=$(field "$report" vo_gaps_bridged_by_gyro)
-                depth=$(field "$report" vo_gaps_bridged_by_depth)
-                turn=$(field "$report" vo_gaps_bridged_by_depth_turn)
-                bridged="${gaps:--}: ${gyro:-0} (${depth:-0}) / ${turn:-0} / $(field "$report" vo_gaps_relocalized)"
-                [[ $config == visual_only ]] && bridged="-"
-                echo "| $name | $cameraSpec | $seed | $carrier | $(field "$report" rgbd_frames) | $ate | $bridged | $(field "$report" segments) | $closures | $rt |"
-                echo "$name|$carrier|$ate" >> "$results"
-                rm -rf "$run"
+            recorded=false
+            if [[ ! -f $rawlog ]]; then
+                rawlog="$out/${name}_$tag$seed.rawlog"
+                "$sim" -c "$ini" -o "$rawlog" -s "$seed" "${flags[@]}" > /dev/null
+                recorded=true
+            fi
+            rm -f "$out"/rows/*
+            for i in "${!runs[@]}"; do
+                r=${runs[$i]}
+                run_one "$i" "$name" "$cameraSpec" "$seed" "$rawlog" "${r%%:*}" "${r#*:}" &
+                while [[ $(jobs -rp | wc -l) -ge $max_jobs ]]; do wait -n; done
             done
-            [[ -n ${REC_DIR:-} ]] || rm -rf "$rawlog" "${rawlog%.rawlog}"{.gt.tum,.events.txt,_Images}
+            wait
+            for i in "${!runs[@]}"; do
+                cat "$out/rows/$i"
+                cat "$out/rows/$i.summary" >> "$results"
+            done
+            $recorded && rm -rf "$rawlog" "${rawlog%.rawlog}"{.gt.tum,.events.txt,_Images}
         done
     done
 done

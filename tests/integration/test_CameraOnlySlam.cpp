@@ -7,9 +7,13 @@
 #include <lodestone/io/RawlogWriter.h>
 #include <lodestone/io/TumTrajectory.h>
 #include <lodestone/obs/registerAllClasses.h>
+#include <lodestone/odometry/FadingVelocity.h>
 #include <mrpt/graphs/CNetworkOfPoses.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/obs/CObservationIMU.h>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 
 #include <filesystem>
 #include <fstream>
@@ -579,4 +583,105 @@ TEST(CameraOnlySlam, TheFloorInViewGivesTheNodesTheirUpAndHeight) {
         " --out " + dir.file("both") + " --quiet");
     EXPECT_NE(both.exitCode, 0);
     EXPECT_NE(both.output.find("floor_level"), std::string::npos) << both.output;
+}
+
+namespace {
+/** A room whose far wall is plain paint, as are its floor and ceiling (no lamps): the robot's
+ * camera alone (with a gyro) drives 4 m at it, with posters on the side walls, and turns left
+ * 1 m before it - there the view holds one plane and the floor, whose depth pins the distance
+ * to the wall and the height but not a step along the wall. Returns the rawlog's path. */
+std::string plainWallRun(const lodestone::test::TempDir& dir) {
+    std::ofstream(dir.file("wall.ini")) << R"([scenario]
+name       = plain_wall
+seed       = 3
+start_time = 1700000000
+[world]
+wall_height        = 2.6
+texture_resolution = 200
+floor              = plain
+ceiling            = plain
+lamp_spacing       = 1000
+wall_1 = posters 0 0  6 0
+wall_2 = plain   6 0  6 4
+wall_3 = posters 6 4  0 4  0 0
+[path]
+waypoints = 1 2  5 2  5 3.2
+laps      = 1
+[robot]
+speed         = 0.4
+turn_rate_deg = 35
+wheel_base    = 0.23
+wheel_radius  = 0.035
+radius        = 0.18
+[camera]
+label     = RGBD
+rate      = 30
+width     = 640
+height    = 480
+pose      = 0.10 0 0.45 0
+rgb_noise = 2.0
+)";
+    const auto sim = lodestone::test::runCommand(kSim + " -c " + dir.file("wall.ini") + " -o " +
+                                                 dir.file("wall.rawlog") +
+                                                 " --camera 320x240@15 --embedded-images --camera-only --gyro");
+    EXPECT_EQ(sim.exitCode, 0) << sim.output;
+    return dir.file("wall.rawlog");
+}
+
+/** Each consecutive edge of a run's graph, but the restarts' (a lost edge): its loosest
+ * translational sigma [m] and its time [s], by the first node. */
+std::map<mrpt::graphs::TNodeID, std::pair<double, double>> edgeLooseness(const std::string& dir) {
+    const auto stamps = nodeStamps(dir);
+    mrpt::graphs::CNetworkOfPoses3DInf graph;
+    graph.loadFromTextFile(dir + "/graph.graph");
+    std::map<mrpt::graphs::TNodeID, std::pair<double, double>> edges;
+    for (const auto& [id, t] : stamps) {
+        const auto edge = graph.edges.find({id, id + 1});
+        if (edge == graph.edges.end() || !stamps.count(id + 1)) continue;
+        const Eigen::Matrix<double, 6, 6> info = edge->second.cov_inv.asEigen();
+        const Eigen::Matrix3d cov = info.ldlt().solve(Eigen::Matrix<double, 6, 6>::Identity()).topLeftCorner<3, 3>();
+        const double loosest = std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvalues().maxCoeff());
+        if (loosest > 10) continue;  // (a restart: lost_edge_sigma, no motion claimed)
+        edges[id] = {loosest, stamps.at(id + 1) - t};
+    }
+    return edges;
+}
+}  // namespace
+
+// Where VO tracks by the depth alone at a plain wall, the steps along it are unmeasured: their
+// edges a quarter of a metre loose and more (PointToPlaneIcp's unobserved sigma, shrunk only by
+// the frames' chaining), so a graph slides those nodes along the wall at no cost. With
+// step_motion_prior each edge is held by what the carrier can do in its time - the fading
+// velocity's spread (bridge_speed_sigma 0.5 m/s, bridge_velocity_seconds 1 s) - and a gap's
+// edge in its tracked part too: no edge looser than twice the model's variance over its time
+// allows, the edges VO measured as they were.
+TEST(CameraOnlySlam, AStepTheDepthLeftLooseIsHeldByTheCarriersMotion) {
+    lodestone::test::TempDir dir;
+    const std::string rawlog = plainWallRun(dir);
+    const auto runWith = [&](const std::string& name, const char* prior) {
+        const auto run = lodestone::test::runCommand(
+            kSlam + " --rawlog " + rawlog + " --config " +
+            rgbdOnlyWith(dir.file(name + ".ini"), {{"step_motion_prior", prior}}) + " --out " +
+            dir.file(name) + " --quiet");
+        EXPECT_EQ(run.exitCode, 0) << run.output;
+        return edgeLooseness(dir.file(name));
+    };
+    const auto loose = runWith("off", "false"), held = runWith("on", "true");
+    ASSERT_EQ(loose.size(), held.size()) << "the same frames, the same nodes";
+    lodestone::odometry::FadingVelocity model;  // (rgbd_only.ini's bridge_* values)
+    model.speedSigma = 0.5;
+    model.correlationSeconds = 1.0;
+    model.acrossSeconds = 0.25;
+    int unmeasured = 0;
+    for (const auto& [id, off] : loose) {
+        const auto& [sigmaOff, seconds] = off;
+        const double sigmaOn = held.at(id).first;
+        const double bound = std::sqrt(2 * model.displacementVariances(seconds, model.speedSigma).maxCoeff());
+        if (sigmaOff > bound) ++unmeasured;
+        EXPECT_LE(sigmaOn, bound) << "edge " << id << " of " << seconds << " s (without: " << sigmaOff << ")";
+        if (sigmaOff < 0.01) {
+            EXPECT_NEAR(sigmaOn, sigmaOff, 0.1 * sigmaOff) << "edge " << id << ": measured";
+        }
+    }
+    EXPECT_GE(unmeasured, 1) << "the plain wall leaves a step's edge looser than the carrier can move";
 }

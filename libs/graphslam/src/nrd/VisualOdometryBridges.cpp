@@ -24,7 +24,12 @@ void VisualOdometryNRD::trackedFrame(const vision::RgbdFrame& frame,
 mrpt::poses::CPose3DPDFGaussian VisualOdometryNRD::lastTrackedHeld() const {
     // (VO's steps since the last node, as a step's: a loose rise held to the carrier's bound -
     // else a gap's edge took VO's 1.4 m sigma in height from the frames before a plain wall)
-    return heightHeld(last_tracked_.pdf, params_.stepHeightSigma, params_.edgeCrossCovariance);
+    auto held = heightHeld(last_tracked_.pdf, params_.stepHeightSigma, params_.edgeCrossCovariance);
+    // (as a node's edge: else a gap's edge kept the metre VO's depth-alone steps left loose
+    // before it, beside the bridge's own spread)
+    if (params_.stepMotionPrior && last_tracked_.t > node_time_)
+        held = motionHeld(held, last_tracked_.t - node_time_);
+    return held;
 }
 
 mrpt::poses::CPose3DPDFGaussian VisualOdometryNRD::motionHeld(

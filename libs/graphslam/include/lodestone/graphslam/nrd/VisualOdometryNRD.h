@@ -77,7 +77,8 @@ class VisualOdometryNRD : public NodeDecider {
          * depth that pins it) nothing changes; where it did not (depth alone at a plain wall: a
          * direction `unobservedSigma`, metres, loose) the edge holds what a carrier can do in
          * that time, not anything - a graph otherwise slides such nodes along that direction
-         * at almost no cost. */
+         * at almost no cost. A gap's edge the same in its tracked part (last node to last
+         * tracked frame), before the bridge. */
         bool stepMotionPrior{false};
         /** An edge keeps the correlations of its translation with its rotation that VO's
          * covariance holds (false: each block alone, `edge_cross_covariance`). */
@@ -183,8 +184,9 @@ class VisualOdometryNRD : public NodeDecider {
     /** The gyro's rotation from VO's reference frame to time t, in the optical frame. */
     std::optional<vision::RotationPrior> gyroSinceReference(double t,
                                                             const Eigen::Isometry3d& T_robot_optical) const;
-    /** The last tracked frame relative to the last node, its rise held to `bridgeHeightSigma`
-     * (where a gap's bridge starts). */
+    /** The last tracked frame relative to the last node, its rise held to `stepHeightSigma`
+     * and, with `stepMotionPrior`, held by the motion model over its time (where a gap's
+     * bridge starts). */
     mrpt::poses::CPose3DPDFGaussian lastTrackedHeld() const;
     /** A tracked edge from the last node, `seconds` long, fused with the motion model over
      * that time (`stepMotionPrior`). */
