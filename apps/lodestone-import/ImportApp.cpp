@@ -4,6 +4,7 @@
 #include <lodestone/datasets/MagneticRecordingImport.h>
 #include <lodestone/datasets/SevenScenesImport.h>
 #include <lodestone/datasets/TumRgbdImport.h>
+#include <lodestone/obs/MagneticUnit.h>
 #include <lodestone/obs/registerAllClasses.h>
 
 #include <vector>
@@ -175,6 +176,11 @@ int importMagnetic(const std::string& kind, const std::vector<std::string>& word
         "ARGS", aalto ? "DIR TRIAL OUT.rawlog" : "FILE.csv OUT.rawlog", true,
         aalto ? "DIR TRIAL OUT" : "FILE OUT", cmd);
     DriftArgs drift(cmd);
+    TCLAP::ValueArg<std::string> unitArg(
+        "", "unit",
+        std::string("the field's unit in the files (both datasets document uT): ") +
+            obs::kMagneticUnitChoices,
+        false, "uT", "UNIT", cmd);
     const auto outcome = config::parseCommandLine(cmd, words);
     if (outcome.kind == config::ParseOutcome::Kind::HelpShown) return 0;
     const auto usage = [&](const std::string& why) {
@@ -183,6 +189,12 @@ int importMagnetic(const std::string& kind, const std::vector<std::string>& word
         return 2;
     };
     if (outcome.kind == config::ParseOutcome::Kind::UsageError) return usage(outcome.error);
+    obs::MagneticUnit unit;
+    try {
+        unit = obs::MagneticUnit::parse(unitArg.getValue());
+    } catch (const std::invalid_argument& e) {
+        return usage(std::string("--unit: ") + e.what());
+    }
     const auto& args = positional.getValue();
     if (args.size() != (aalto ? 3u : 2u)) {
         return usage(aalto ? "expected DIR, TRIAL and OUT" : "expected FILE and OUT");
@@ -204,9 +216,9 @@ int importMagnetic(const std::string& kind, const std::vector<std::string>& word
         } catch (const std::exception&) {
             return usage("TRIAL '" + args[1] + "' is not a positive number");
         }
-        recording = readAaltoTrial(args[0], trial);
+        recording = readAaltoTrial(args[0], trial, 0.05, unit);
     } else {
-        recording = readKokWalk(args[0]);
+        recording = readKokWalk(args[0], unit);
     }
     printMagneticImport(writeMagneticRecording(recording, args.back(), model), out);
     return 0;
@@ -224,8 +236,10 @@ int runImportApp(int argc, const char* const* argv, std::ostream& out, std::ostr
         "                              [--rate 30] [the same --depth-intrinsics / --depth-to-colour]\n"
         "       lodestone-import aalto DIR TRIAL OUT.rawlog [--seed 1] [--bias 0.005] [--sp2 "
         "1e-4]\n"
-        "                              [--sh2 1e-4] [--odometry-rate 10]\n"
-        "       lodestone-import kok FILE.csv OUT.rawlog [same drift options]\n"
+        "                              [--sh2 1e-4] [--odometry-rate 10] [--unit uT]\n"
+        "       lodestone-import kok FILE.csv OUT.rawlog [same drift options] [--unit uT]\n"
+        "         (--unit gauss|uT|T|normalized:<field strength in uT>: the field's unit in the\n"
+        "          files; a field that is not Earth's in it is refused)\n"
         "exit codes: 0 ok, 1 bad input, 2 usage\n";
     if (argc < 2) {
         err << usage;

@@ -175,7 +175,7 @@ int toImu(const Args& args, std::ostream& out) {
         "FILE OUT", cmd);
     TCLAP::ValueArg<std::string> unit("", "unit",
                                       "IMU magnetometer unit: gauss (MRPT's documented unit), uT, "
-                                      "T or xsens:<local field uT>",
+                                      "T or normalized:<local field uT>",
                                       false, "gauss", "UNIT", cmd);
     if (!parse(cmd, "to-imu", args)) return kExitOk;
     lodestone::obs::MagneticUnit imuUnit;

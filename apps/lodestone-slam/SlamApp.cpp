@@ -1,5 +1,6 @@
 #include <lodestone/config/CommandLine.h>
 #include <SlamApp.h>
+#include <lodestone/obs/MagneticUnit.h>
 #include <lodestone/slamapp/SlamRun.h>
 
 #include <filesystem>
@@ -49,6 +50,11 @@ int runSlamApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
     TCLAP::ValueArg<int> decodeThreads("", "decode-threads",
                                        "threads that read and decode ahead (0: one per core this process may use)",
                                        false, 0, "N", cmd);
+    TCLAP::ValueArg<std::string> magneticUnit(
+        "", "magnetic-unit",
+        "the unit the rawlog's magnetometer numbers are in, if not microtesla (a rawlog written "
+        "by another tool): gauss|uT|T|normalized:<field strength in uT>",
+        false, "", "UNIT", cmd);
     TCLAP::SwitchArg quiet("q", "quiet", "no progress output", cmd);
     const auto outcome = config::parseCommandLine(cmd, std::vector<std::string>(argv, argv + argc));
     if (outcome.kind == config::ParseOutcome::Kind::HelpShown) return 0;
@@ -84,6 +90,16 @@ int runSlamApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
     if (usage.empty() && (decodeThreads.getValue() < 0 || decodeThreads.getValue() > 64)) {
         usage = "--decode-threads must be 0..64";
     }
+    if (usage.empty() && magneticUnit.isSet() && !rawlog.isSet()) {
+        usage = "--magnetic-unit is for --rawlog (the simulator writes microtesla)";
+    }
+    if (usage.empty() && magneticUnit.isSet()) {
+        try {
+            obs::MagneticUnit::parse(magneticUnit.getValue());
+        } catch (const std::invalid_argument& e) {
+            usage = std::string("--magnetic-unit: ") + e.what();
+        }
+    }
     if (!usage.empty()) {
         err << "lodestone-slam: " << usage << " (see lodestone-slam --help)\n";
         return 2;
@@ -103,6 +119,7 @@ int runSlamApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
     o.decodeThreads = static_cast<std::size_t>(decodeThreads.getValue());
     o.quiet = quiet.getValue();
     o.terminal = terminal;
+    o.magneticUnit = magneticUnit.getValue();
     return runSlam(o, out, err).exitCode;
 }
 

@@ -142,7 +142,7 @@ TEST(BadInputEveryApp, OutputsThatCannotBeWrittenAreNamedFirst) {
     lodestone::test::TempDir dir;
     fs::create_directory(dir.file("a_folder.rawlog"));
     const std::string walk = dir.file("walk.csv");
-    writeBytes(walk, "t,tm,px,py,pz,q0,q1,q2,q3,mx,my,mz\n0,0,0,0,0,1,0,0,0,1,2,3\n1,1,1,0,0,1,0,0,0,1,2,3\n");
+    writeBytes(walk, "t,tm,px,py,pz,q0,q1,q2,q3,mx,my,mz\n0,0,0,0,0,1,0,0,0,10,20,30\n1,1,1,0,0,1,0,0,0,10,20,30\n");
     const std::string unwritable = "/proc/lodestone_cannot_be_here/out.rawlog";
     const std::vector<Case> cases{
         {"sim: an unwritable folder", kSim + " -c " + kConfigDir + "/scenarios/office.ini -o " + unwritable, 1,

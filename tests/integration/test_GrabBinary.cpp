@@ -171,7 +171,7 @@ TEST(GrabBinary, AnXsensImuOnAMissingPortIsGivenUpOnInBoundedTime) {
     lodestone::test::TempDir dir;
     std::ofstream(dir.file("xsens.ini"))
         << "[global]\nrawlog_prefix = " << dir.file("run") << "\n\n[MAG]\ndriver = CMagnetometerFromImu\n"
-        << "imu_driver = CIMUXSens_MT4\nimu_section = XSENS\nunit = xsens:50\ninit_timeout_s = 1\n\n"
+        << "imu_driver = CIMUXSens_MT4\nimu_section = XSENS\nunit = normalized:50\ninit_timeout_s = 1\n\n"
         << "[XSENS]\nportname_LIN = /dev/ttyUSB-lodestone-missing\n";
     const auto start = std::chrono::steady_clock::now();
     const auto r = runCommand("timeout 60 " + kGrab + " " + dir.file("xsens.ini") + " -q");

@@ -4,6 +4,7 @@
 // odometry from Kok & Solin's drift model, as lodestone-import writes for real recordings.
 #include <gtest/gtest.h>
 #include <lodestone/datasets/MagneticRecordingImport.h>
+#include <lodestone/obs/MagneticUnit.h>
 #include <lodestone/obs/registerAllClasses.h>
 
 #include <cmath>
@@ -101,4 +102,50 @@ TEST(MagneticSlam, AFieldThatBarelyVariesGivesNoClosures) {
     lodestone::datasets::writeMagneticRecording(lapsThrough(0), dir.file("flat.rawlog"), {});
     const auto mag = slam(dir.file("flat.rawlog"), "magnetic_only.ini", dir.file("mag"));
     EXPECT_EQ(mag.closures, 0) << mag.output;
+}
+
+TEST(MagneticSlam, AMagnetometerInOtherUnitsIsRefusedOrGivesTheSameClosuresOnceItsUnitIsSaid) {
+    // The laps imported from a Kok-layout walk written in microtesla and in gauss (the user's
+    // path: lodestone-import --unit), and a rawlog whose magnetometers read normalized units (an
+    // IMU calibrated to the unit sphere, written by another tool): lodestone-slam refuses it
+    // before any work naming --magnetic-unit, and with it finds the same closures.
+    lodestone::registerAllClasses();
+    lodestone::test::TempDir dir;
+    const auto laps = lapsThrough(40);
+    lodestone::datasets::writeKokWalk(laps, dir.file("uT.csv"));
+    lodestone::datasets::writeKokWalk(laps, dir.file("gauss.csv"),
+                                      lodestone::obs::MagneticUnit::gauss());
+    const std::string kImport = LODESTONE_IMPORT_BINARY;
+    for (const auto& [name, unit] : {std::pair{"uT", "uT"}, std::pair{"gauss", "gauss"}}) {
+        const auto r = lodestone::test::runCommand(kImport + " kok " + dir.file(std::string(name) + ".csv") + " " +
+                                                   dir.file(std::string(name) + ".rawlog") + " --unit " + unit);
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+    }
+    auto normalized = laps;
+    for (auto& s : normalized.samples) s.field *= 1.0 / 47.5;
+    lodestone::datasets::writeMagneticRecording(normalized, dir.file("normalized.rawlog"), {});
+    const auto refused = lodestone::test::runCommand(
+        kSlam + " --rawlog " + dir.file("normalized.rawlog") + " --config " + kConfigDir +
+        "/slam/magnetic_only.ini --quiet --out " + dir.file("refused"));
+    EXPECT_EQ(refused.exitCode, 1) << refused.output;
+    EXPECT_NE(refused.output.find(dir.file("normalized.rawlog") + ": its magnetometers, read as uT"),
+              std::string::npos)
+        << refused.output;
+    EXPECT_NE(refused.output.find("--magnetic-unit"), std::string::npos) << refused.output;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("refused") + "/trajectory.tum"));
+
+    const auto uT = slam(dir.file("uT.rawlog"), "magnetic_only.ini", dir.file("run_uT"));
+    const auto gauss = slam(dir.file("gauss.rawlog"), "magnetic_only.ini", dir.file("run_gauss"));
+    const auto r = lodestone::test::runCommand(
+        kSlam + " --rawlog " + dir.file("normalized.rawlog") + " --ground-truth " +
+        dir.file("normalized.gt.tum") + " --config " + kConfigDir +
+        "/slam/magnetic_only.ini --magnetic-unit normalized:47.5 --quiet --out " +
+        dir.file("run_normalized"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const double normalizedClosures = numberAfter(r.output, "([0-9]+) loop closures");
+    EXPECT_GT(uT.closures, 10) << uT.output;
+    EXPECT_EQ(gauss.closures, uT.closures) << gauss.output;
+    EXPECT_EQ(normalizedClosures, uT.closures) << r.output;
+    EXPECT_NEAR(gauss.ate, uT.ate, 1e-3);
+    EXPECT_NEAR(numberAfter(r.output, "ATE RMSE ([0-9.]+) m"), uT.ate, 1e-3);
 }

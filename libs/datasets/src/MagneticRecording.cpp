@@ -3,6 +3,8 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <cstdio>
+#include <fstream>
 #include <stdexcept>
 
 namespace lodestone::datasets {
@@ -79,7 +81,8 @@ double MagneticRecording::pathLength() const {
     return length;
 }
 
-MagneticRecording readAaltoTrial(const std::string& dir, int trial, double headingBaseline) {
+MagneticRecording readAaltoTrial(const std::string& dir, int trial, double headingBaseline,
+                                 const obs::MagneticUnit& unit) {
     const std::string stem = dir + "/" + std::to_string(trial) + "-";
     const auto times = io::CsvTable::read(stem + "time.csv", 1);
     requireFiniteSamples(times, 1);
@@ -115,13 +118,15 @@ MagneticRecording readAaltoTrial(const std::string& dir, int trial, double headi
         s.heading = heading[r];
         // World frame -> robot frame: rotate by -heading about the vertical.
         const double c = std::cos(heading[r]), sn = std::sin(heading[r]);
-        const double wx = mag.at(r, 0), wy = mag.at(r, 1);
-        s.field = {c * wx + sn * wy, -sn * wx + c * wy, mag.at(r, 2)};
+        const double k = unit.microteslaPerUnit;
+        const double wx = k * mag.at(r, 0), wy = k * mag.at(r, 1);
+        s.field = {c * wx + sn * wy, -sn * wx + c * wy, k * mag.at(r, 2)};
     }
+    requirePlausibleField(rec, mag.path());
     return rec;
 }
 
-MagneticRecording readKokWalk(const std::string& csvPath) {
+MagneticRecording readKokWalk(const std::string& csvPath, const obs::MagneticUnit& unit) {
     const auto t = io::CsvTable::read(csvPath, 12, 1);
     requireFiniteSamples(t, 12);
     requireTimeOrder(t, 0);
@@ -149,12 +154,46 @@ MagneticRecording readKokWalk(const std::string& csvPath) {
         s.heading = r == 0 ? yaw : unwrapNear(yaw, previousHeading);
         previousHeading = s.heading;
         // Levelled: the world-frame field turned back by the heading only.
-        const Eigen::Vector3d m(t.at(r, 9), t.at(r, 10), t.at(r, 11));
+        const Eigen::Vector3d m =
+            unit.microteslaPerUnit * Eigen::Vector3d(t.at(r, 9), t.at(r, 10), t.at(r, 11));
         const Eigen::Vector3d level =
             Eigen::AngleAxisd(-yaw, Eigen::Vector3d::UnitZ()) * (R * (magOnDevice * m));
         s.field = {level.x(), level.y(), level.z()};
     }
+    requirePlausibleField(rec, csvPath);
     return rec;
+}
+
+void writeKokWalk(const MagneticRecording& recording, const std::string& csvPath,
+                  const obs::MagneticUnit& unit) {
+    std::ofstream out(csvPath);
+    if (!out) throw std::runtime_error(csvPath + ": cannot open for writing");
+    out << "t,tm,px,py,pz,q0,q1,q2,q3,mx,my,mz\n";
+    // readKokWalk's quarter turn of the magnetometer on the device, undone.
+    const Eigen::Matrix3d deviceOnMag =
+        Eigen::AngleAxisd(-M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    char line[512];
+    for (const auto& s : recording.samples) {
+        const Eigen::Vector3d m = deviceOnMag * Eigen::Vector3d(s.field.x, s.field.y, s.field.z) /
+                                  unit.microteslaPerUnit;
+        std::snprintf(line, sizeof line,
+                      "%.17g,%.17g,%.17g,%.17g,0,%.17g,0,0,%.17g,%.17g,%.17g,%.17g\n", s.t, s.t,
+                      s.x, s.y, std::cos(0.5 * s.heading), std::sin(0.5 * s.heading), m.x(), m.y(),
+                      m.z());
+        out << line;
+    }
+    out.close();
+    if (!out) throw std::runtime_error(csvPath + ": write failed");
+}
+
+void requirePlausibleField(const MagneticRecording& recording, const std::string& source) {
+    std::vector<double> magnitudes;
+    magnitudes.reserve(recording.samples.size());
+    for (const auto& s : recording.samples) magnitudes.push_back(s.field.norm());
+    if (const auto why = obs::implausibleFieldMagnitude(std::move(magnitudes))) {
+        throw std::runtime_error(source + ": " + *why + "; give the readings' unit with --unit " +
+                                 obs::kMagneticUnitChoices);
+    }
 }
 
 }  // namespace lodestone::datasets

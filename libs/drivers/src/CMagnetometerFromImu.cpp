@@ -47,8 +47,17 @@ void CMagnetometerFromImu::loadConfig_sensorSpecific(const mrpt::config::CConfig
     if (imu_driver_.empty()) throw std::runtime_error(detail::sectionKey(section, "imu_driver") + ": missing (e.g. CIMUXSens_MT4)");
     imu_section_ = config.read_string(section, "imu_section", "");
     if (imu_section_.empty()) throw std::runtime_error(detail::sectionKey(section, "imu_section") + ": missing");
+    // No default: MRPT documents these channels in gauss, Xsens fills them in its normalized
+    // units, other IMUs in microtesla - a guess is wrong by 50x or 100x for someone.
+    const std::string unit = config.read_string(section, "unit", "");
+    if (unit.empty()) {
+        throw std::runtime_error(detail::sectionKey(section, "unit") +
+                                 ": missing - the IMU's magnetometer unit, " +
+                                 obs::kMagneticUnitChoices +
+                                 " (Xsens: normalized:<the field strength at calibration, uT>)");
+    }
     try {
-        unit_ = obs::MagneticUnit::parse(config.read_string(section, "unit", "gauss"));
+        unit_ = obs::MagneticUnit::parse(unit);
     } catch (const std::exception& e) {
         throw std::runtime_error(detail::sectionKey(section, "unit") + ": " + e.what());
     }
@@ -117,6 +126,21 @@ void CMagnetometerFromImu::doProcess() {
         }
         auto mag = obs::magnetometerFromImu(*imu, unit_, calibrated_, {noise_std_, noise_std_, noise_std_});
         if (!m_sensorLabel.empty()) mag->sensorLabel = m_sensorLabel;
+        if (held_.size() < kPlausibilityReadings) {
+            // Held back until the unit is shown right: nothing in a wrong unit is recorded.
+            held_.push_back(mag);
+            if (held_.size() < kPlausibilityReadings) continue;
+            std::vector<double> magnitudes;
+            for (const auto& h : held_) magnitudes.push_back(h->magnitude());
+            if (const auto why = obs::implausibleFieldMagnitude(std::move(magnitudes))) {
+                m_state = ssError;
+                throw std::runtime_error(detail::sectionKey(section_, "unit") + " = " +
+                                         unit_.name + ": " + *why + "; set the IMU's unit (" +
+                                         obs::kMagneticUnitChoices + ")");
+            }
+            for (auto& h : held_) appendObservation(h);
+            continue;
+        }
         appendObservation(mag);
     }
 }

@@ -5,6 +5,8 @@
 #include <lodestone/io/KidnapEvents.h>
 #include <lodestone/io/RawlogPaths.h>
 #include <lodestone/io/RawlogSource.h>
+#include <lodestone/obs/CObservationMagnetometer.h>
+#include <lodestone/obs/MagneticUnit.h>
 #include <lodestone/outputs/RunFiles.h>
 #include <lodestone/sim/RobotConfig.h>
 #include <mrpt/config/CConfigFile.h>
@@ -26,6 +28,9 @@ using outputs::RunFile;
 // How far into a rawlog to look for the observation classes the deciders need: every sensor
 // of a recording shows up within its first seconds.
 constexpr std::size_t kPrescanObservations = 3000;
+// Magnetometer readings whose median magnitude must be Earth's field, where the deciders take
+// magnetometers (within the prescan's reach): a few seconds of any magnetometer.
+constexpr std::size_t kPlausibilityReadings = 100;
 
 std::string join(const std::set<std::string>& items) {
     std::string out;
@@ -34,17 +39,26 @@ std::string join(const std::set<std::string>& items) {
 }
 
 /** A rawlog whose first observations were read to check that the deciders' observation
- * classes are there (until each has shown up), then handed out again before the rest: the file
- * is opened and read once. */
+ * classes are there (until each has shown up) and, where they take magnetometers, that the
+ * field is Earth's in microtesla (the first kPlausibilityReadings readings), then handed out
+ * again before the rest: the file is opened and read once. Magnetometer readings are converted
+ * from `unit` as they are read. */
 class PrescannedRawlog : public io::DataSource {
   public:
-    /** Throws InputError naming the classes missing from the first kPrescanObservations. */
-    PrescannedRawlog(const std::string& path, const std::set<std::string>& required)
-        : source_(path) {
+    /** Throws InputError naming the classes missing from the first kPrescanObservations, or
+     * the rawlog and --magnetic-unit when the field is implausible. */
+    PrescannedRawlog(const std::string& path, const std::set<std::string>& required,
+                     const obs::MagneticUnit& unit)
+        : source_(path), unit_(unit) {
         std::set<std::string> missing = required, classes;
-        while (!missing.empty() && ahead_.size() < kPrescanObservations) {
-            auto obs = source_.next();
+        const bool magnetic = required.count("CObservationMagnetometer") > 0;
+        std::vector<double> magnitudes;
+        while ((!missing.empty() || (magnetic && magnitudes.size() < kPlausibilityReadings)) &&
+               ahead_.size() < kPrescanObservations) {
+            auto obs = next();
             if (!obs) break;
+            if (const auto* m = dynamic_cast<const obs::CObservationMagnetometer*>(obs.get()))
+                magnitudes.push_back(m->magnitude());
             // MRPT names classes with their namespace; deciders ask by the bare class name.
             const std::string name = obs->GetRuntimeClass()->className;
             const auto colons = name.rfind("::");
@@ -66,10 +80,16 @@ class PrescannedRawlog : public io::DataSource {
                               "with config_ini/slam/rgbd_only.ini"
                             : ""));
         }
+        if (const auto why = obs::implausibleFieldMagnitude(std::move(magnitudes))) {
+            throw InputError(path + ": its magnetometers, read as " + unit_.name + ": " + *why +
+                             "; give the unit they are in with --magnetic-unit " +
+                             obs::kMagneticUnitChoices);
+        }
+        prescanned_ = true;
     }
 
     mrpt::obs::CObservation::Ptr next() override {
-        if (ahead_.empty()) return source_.next();
+        if (!prescanned_ || ahead_.empty()) return converted(source_.next());
         auto obs = std::move(ahead_.front());
         ahead_.pop_front();
         return obs;
@@ -80,7 +100,19 @@ class PrescannedRawlog : public io::DataSource {
     const std::set<std::string>& magnetometers() const { return magnetometers_; }
 
   private:
+    /** A magnetometer's reading in microtesla. */
+    mrpt::obs::CObservation::Ptr converted(mrpt::obs::CObservation::Ptr obs) const {
+        if (unit_.microteslaPerUnit == 1.0) return obs;
+        if (auto* m = dynamic_cast<obs::CObservationMagnetometer*>(obs.get())) {
+            m->field *= unit_.microteslaPerUnit;
+            m->noiseStd *= unit_.microteslaPerUnit;
+        }
+        return obs;
+    }
+
     io::RawlogSource source_;
+    obs::MagneticUnit unit_;
+    bool prescanned_{false};
     std::set<std::string> magnetometers_;
     std::deque<mrpt::obs::CObservation::Ptr> ahead_;
 };
@@ -109,7 +141,14 @@ class SharedSource : public io::DataSource {
 /** The rawlog, read and decoded ahead on worker threads unless decodeAhead is 0. */
 void openRawlog(const SlamRunOptions& options, RunInputs& in) {
     if (!fs::exists(options.rawlog)) throw InputError("cannot open rawlog '" + options.rawlog + "'");
-    auto rawlog = std::make_unique<PrescannedRawlog>(options.rawlog, in.engine->requiredObservations());
+    obs::MagneticUnit unit;
+    try {
+        if (!options.magneticUnit.empty()) unit = obs::MagneticUnit::parse(options.magneticUnit);
+    } catch (const std::invalid_argument& e) {
+        throw InputError(std::string("--magnetic-unit: ") + e.what());
+    }
+    auto rawlog = std::make_unique<PrescannedRawlog>(options.rawlog,
+                                                     in.engine->requiredObservations(), unit);
     const PrescannedRawlog* inner = rawlog.get();
     in.prescannedMagnetometers = inner->magnetometers();
     if (options.decodeAhead == 0) {

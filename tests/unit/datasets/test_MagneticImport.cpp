@@ -252,3 +252,52 @@ TEST(MagneticImport, AppRefusesBadArgumentsAndNamesBadFiles) {
         << err.str();
     EXPECT_FALSE(fs::exists(o));
 }
+
+TEST(MagneticImport, AFieldInAnotherUnitIsRefusedNamingTheFileAndTheOptionAndReadRightWithIt) {
+    test::TempDir tmp;
+    // A walk east through a field of (20, 5, -40) uT written by writeKokWalk in each unit.
+    MagneticRecording rec;
+    for (int i = 0; i < 50; ++i)
+        rec.samples.push_back({0.1 * i, 0.05 * i, 0, 0.01 * i, {20, 5.0 + 0.1 * i, -40}});
+    const std::string uT = tmp.file("uT.csv"), gauss = tmp.file("gauss.csv"),
+                      normalized = tmp.file("normalized.csv");
+    writeKokWalk(rec, uT);
+    writeKokWalk(rec, gauss, obs::MagneticUnit::gauss());
+    writeKokWalk(rec, normalized, obs::MagneticUnit::normalized(45));
+    const auto reference = readKokWalk(uT);
+    for (const auto& [file, unit] : {std::pair{gauss, "gauss"}, std::pair{normalized, "normalized:45"}}) {
+        const auto e = errorOf([&] { readKokWalk(file); });
+        EXPECT_NE(e.find(file + ": the field's median magnitude is"), std::string::npos) << e;
+        EXPECT_NE(e.find("--unit gauss|uT|T|normalized:"), std::string::npos) << e;
+        const auto read = readKokWalk(file, obs::MagneticUnit::parse(unit));
+        ASSERT_EQ(read.samples.size(), reference.samples.size());
+        for (std::size_t i = 0; i < read.samples.size(); ++i) {
+            EXPECT_NEAR((read.samples[i].field - reference.samples[i].field).norm(), 0, 1e-9) << i;
+            EXPECT_NEAR(read.samples[i].heading, reference.samples[i].heading, 1e-12) << i;
+        }
+        // The app: refused (exit 1, nothing written) without --unit, imported with it.
+        std::ostringstream out, err;
+        const std::string o = tmp.file("walk.rawlog");
+        const char* without[] = {"lodestone-import", "kok", file.c_str(), o.c_str()};
+        EXPECT_EQ(datasets::runImportApp(4, without, out, err), 1);
+        EXPECT_NE(err.str().find("--unit"), std::string::npos) << err.str();
+        EXPECT_FALSE(fs::exists(o));
+        const char* with[] = {"lodestone-import", "kok", file.c_str(), o.c_str(), "--unit", unit};
+        EXPECT_EQ(datasets::runImportApp(6, with, out, err), 0) << err.str();
+        EXPECT_TRUE(fs::exists(o));
+        fs::remove(o);
+    }
+    // An Aalto trial in gauss, the same.
+    writeAaltoTrial(tmp.path(), 6);
+    writeText(tmp.file("6-mag.csv"), [] {
+        std::string m;
+        for (int i = 0; i < 221; ++i) m += "0.2,0,-0.4\n";
+        return m;
+    }());
+    const auto e = errorOf([&] { readAaltoTrial(tmp.path().string(), 6); });
+    EXPECT_NE(e.find("6-mag.csv: the field's median magnitude is 0.4472 uT"), std::string::npos) << e;
+    EXPECT_NEAR(readAaltoTrial(tmp.path().string(), 6, 0.05, obs::MagneticUnit::gauss())
+                    .samples.front()
+                    .field.norm(),
+                std::sqrt(2000.0), 1e-9);
+}

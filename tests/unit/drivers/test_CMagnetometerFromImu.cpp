@@ -72,16 +72,30 @@ TEST(CMagnetometerFromImu, IMUMagnetometerChannelsBecomeMicrotesla) {
                      "noise_std_uT = 0.3\n[IMU]\n");
     s->initialize();
     std::vector<lodestone::obs::CObservationMagnetometer::Ptr> got;
-    for (int i = 0; i < 6; ++i) {
+    const auto take = [&] {
         s->doProcess();
         for (auto& [t, o] : s->getObservations()) {
             auto m = std::dynamic_pointer_cast<lodestone::obs::CObservationMagnetometer>(o);
             ASSERT_TRUE(m) << "not a magnetometer: " << o->GetRuntimeClass()->className;
             got.push_back(m);
         }
+    };
+    // The first readings are held back until their field is shown to be Earth's.
+    auto& driver = dynamic_cast<lodestone::drivers::CMagnetometerFromImu&>(*s);
+    const auto held = lodestone::drivers::CMagnetometerFromImu::kPlausibilityReadings;
+    std::size_t calls = 0;
+    const auto withField = [&] { return calls - driver.droppedImuWithoutMagnetometer(); };
+    while (withField() < held - 1) {
+        take();
+        ++calls;
     }
-    ASSERT_EQ(got.size(), 4u);  // two of six had no magnetometer channels
-    EXPECT_EQ(dynamic_cast<lodestone::drivers::CMagnetometerFromImu&>(*s).droppedImuWithoutMagnetometer(), 2u);
+    EXPECT_TRUE(got.empty()) << got.size() << " readings out before the unit was checked";
+    while (withField() < held + 4) {
+        take();
+        ++calls;
+    }
+    ASSERT_EQ(got.size(), held + 4);
+    EXPECT_EQ(driver.droppedImuWithoutMagnetometer(), calls / 3);  // every third had no field
     EXPECT_NEAR(got[0]->field.x, 20.0, 1e-9);
     EXPECT_NEAR(got[0]->field.z, -40.0, 1e-9);
     EXPECT_NEAR(got[0]->noiseStd.y, 0.3, 1e-12);
@@ -89,7 +103,7 @@ TEST(CMagnetometerFromImu, IMUMagnetometerChannelsBecomeMicrotesla) {
 }
 
 TEST(CMagnetometerFromImu, AHangingImuIsGivenUpOnNamingItsPort) {
-    auto s = wrapper("[MAG]\nimu_driver = CHangingImu\nimu_section = XSENS\ninit_timeout_s = 0.3\n"
+    auto s = wrapper("[MAG]\nimu_driver = CHangingImu\nimu_section = XSENS\nunit = uT\ninit_timeout_s = 0.3\n"
                      "[XSENS]\nportname_LIN = /dev/ttyUSB-missing\n");
     const auto start = std::chrono::steady_clock::now();
     try {
@@ -115,8 +129,32 @@ TEST(CMagnetometerFromImu, ConfigurationMistakesNameTheKey) {
         return "(accepted)";
     };
     EXPECT_NE(refusal("[MAG]\nimu_section = IMU\n").find("key 'imu_driver'"), std::string::npos);
-    EXPECT_NE(refusal("[MAG]\nimu_driver = CNoSuchImu\nimu_section = IMU\n").find("CNoSuchImu"),
+    EXPECT_NE(refusal("[MAG]\nimu_driver = CNoSuchImu\nimu_section = IMU\nunit = uT\n").find("CNoSuchImu"),
               std::string::npos);
     EXPECT_NE(refusal("[MAG]\nimu_driver = CFakeImu\nimu_section = IMU\nunit = furlongs\n").find("key 'unit'"),
               std::string::npos);
+    // The unit is never assumed: MRPT says gauss, Xsens writes normalized units.
+    const auto missing = refusal("[MAG]\nimu_driver = CFakeImu\nimu_section = IMU\n");
+    EXPECT_NE(missing.find("key 'unit': missing"), std::string::npos) << missing;
+}
+
+TEST(CMagnetometerFromImu, AFieldThatIsNotEarthsInTheGivenUnitFailsNamingTheKeyAndRecordsNothing) {
+    // The fake reports 0.45 gauss; read as microtesla (or as normalized units of a 50 uT field:
+    // 22 uT, plausible) - uT is 100 times off.
+    auto s = wrapper("[MAG]\nsensorLabel = MAG\nimu_driver = CFakeImu\nimu_section = IMU\nunit = uT\n[IMU]\n");
+    s->initialize();
+    std::size_t out = 0;
+    std::string error;
+    for (int i = 0; i < 100 && error.empty(); ++i) {
+        try {
+            s->doProcess();
+        } catch (const std::exception& e) {
+            error = e.what();
+        }
+        out += s->getObservations().size();
+    }
+    EXPECT_EQ(out, 0u) << "readings in a wrong unit were recorded";
+    EXPECT_NE(error.find("sensor section 'MAG', key 'unit' = uT"), std::string::npos) << error;
+    EXPECT_NE(error.find("0.4472 uT"), std::string::npos) << error;
+    EXPECT_NE(error.find("as gauss they would be plausible"), std::string::npos) << error;
 }

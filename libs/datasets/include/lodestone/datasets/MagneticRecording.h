@@ -1,5 +1,6 @@
 #pragma once
 
+#include <lodestone/obs/MagneticUnit.h>
 #include <mrpt/math/TPoint3D.h>
 
 #include <string>
@@ -29,16 +30,31 @@ struct MagneticRecording {
  * Vicon), `N-mag.csv` (field [uT] in the world frame), row-aligned. Aalto gives positions only:
  * the heading is the direction of travel (the robot drives forward), taken over
  * `headingBaseline` metres of path either side of a sample and held where the robot stands
- * still; the field is rotated into the robot frame with it. Throws std::runtime_error naming
- * the file and line on a missing file, a bad number, a missing column or a row-count
- * mismatch. */
-MagneticRecording readAaltoTrial(const std::string& dir, int trial, double headingBaseline = 0.05);
+ * still; the field is rotated into the robot frame with it. The field's numbers are in `unit`
+ * (the dataset documents microtesla). Throws std::runtime_error naming the file and line on a
+ * missing file, a bad number, a missing column or a row-count mismatch, and naming the file and
+ * `--unit` when the field in that unit is not Earth's (requirePlausibleField). */
+MagneticRecording readAaltoTrial(const std::string& dir, int trial, double headingBaseline = 0.05,
+                                 const obs::MagneticUnit& unit = obs::MagneticUnit::microtesla());
 
 /** Kok & Solin walk CSV: `t,tm,px,py,pz,q0,q1,q2,q3,mx,my,mz` (the header line first), field
  * in the device frame [uT], orientation a unit quaternion (w, x, y, z) of the device in the
  * world (z up). The field is levelled with the reference pitch and roll (inclination known,
  * heading not, as Kok & Solin do) so it is expressed in a frame that turns with the device's
- * heading only. Errors as readAaltoTrial. */
-MagneticRecording readKokWalk(const std::string& csvPath);
+ * heading only. The field's numbers are in `unit` (the dataset's: microtesla). Errors as
+ * readAaltoTrial. */
+MagneticRecording readKokWalk(const std::string& csvPath,
+                              const obs::MagneticUnit& unit = obs::MagneticUnit::microtesla());
+
+/** `recording` as readKokWalk reads it: a Kok & Solin CSV at `csvPath` with the field in `unit`
+ * (the orientation the heading alone, the position at height 0). Throws std::runtime_error
+ * naming the file on a write error. */
+void writeKokWalk(const MagneticRecording& recording, const std::string& csvPath,
+                  const obs::MagneticUnit& unit = obs::MagneticUnit::microtesla());
+
+/** Throws std::runtime_error naming `source` and the option `--unit` when the recording's field
+ * (converted to microtesla as read) cannot be Earth's (obs::implausibleFieldMagnitude): a
+ * magnetometer in gauss or normalized units read as microtesla is refused before any work. */
+void requirePlausibleField(const MagneticRecording& recording, const std::string& source);
 
 }  // namespace lodestone::datasets

@@ -1,10 +1,12 @@
 #pragma once
 
+#include <lodestone/obs/CObservationMagnetometer.h>
 #include <lodestone/obs/MagneticUnit.h>
 #include <mrpt/hwdrivers/CGenericSensor.h>
 #include <mrpt/math/TPoint3D.h>
 
 #include <string>
+#include <vector>
 
 namespace lodestone::drivers {
 
@@ -20,9 +22,14 @@ namespace lodestone::drivers {
  * timeout the error names the port, and the hung driver is abandoned (never destroyed: its
  * destructor is where it hangs).
  *
+ * The unit is never assumed: the first kPlausibilityReadings readings are held back and their
+ * median magnitude checked against Earth's field (obs::implausibleFieldMagnitude); in a wrong
+ * unit the sensor fails naming its `unit` key, and nothing it read is recorded.
+ *
  * INI keys (the sensor's section): imu_driver (required: a CGenericSensor class), imu_section
- * (required: the section the inner driver reads), unit = gauss | uT | T | xsens:<uT>,
- * calibrated = true, noise_std_uT = 0 (per axis), init_timeout_s = 10. */
+ * (required: the section the inner driver reads), unit (required) = gauss | uT | T |
+ * normalized:<uT> (xsens:<uT> the same), calibrated = true, noise_std_uT = 0 (per axis),
+ * init_timeout_s = 10. */
 class CMagnetometerFromImu : public mrpt::hwdrivers::CGenericSensor {
     DEFINE_GENERIC_SENSOR(CMagnetometerFromImu)
 
@@ -35,6 +42,8 @@ class CMagnetometerFromImu : public mrpt::hwdrivers::CGenericSensor {
     void setPathForExternalImages(const std::string& directory) override;
 
     std::size_t droppedImuWithoutMagnetometer() const { return dropped_; }
+    /** Readings held back at the start until their field is shown to be Earth's. */
+    static constexpr std::size_t kPlausibilityReadings = 20;
 
   protected:
     void loadConfig_sensorSpecific(const mrpt::config::CConfigFileBase& config,
@@ -47,6 +56,7 @@ class CMagnetometerFromImu : public mrpt::hwdrivers::CGenericSensor {
     double noise_std_{0}, init_timeout_s_{10};
     mrpt::hwdrivers::CGenericSensor* inner_{nullptr};  // owned unless abandoned (see above)
     std::size_t dropped_{0};
+    std::vector<obs::CObservationMagnetometer::Ptr> held_;  // the first readings, until checked
 };
 
 }  // namespace lodestone::drivers

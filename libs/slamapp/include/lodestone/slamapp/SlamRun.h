@@ -49,6 +49,12 @@ struct SlamRunOptions {
     std::size_t decodeThreads{0};
     bool quiet{false};
     bool terminal{false};  ///< draw the progress bar in place
+    /** The unit the rawlog's CObservationMagnetometer numbers are really in, when a tool wrote
+     * them in another than the class's microtesla (lodestone-slam --magnetic-unit): every
+     * reading is converted as it is read. Empty: microtesla. Either way, where the deciders take
+     * magnetometers, a rawlog whose field is not Earth's in that unit is refused before any
+     * work (obs::implausibleFieldMagnitude). */
+    std::string magneticUnit;
 };
 
 /** The checks runSlam makes of a SLAM INI before any work (the file, its sections, every
