@@ -1,0 +1,133 @@
+#include "magnetic_variants.h"
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <random>
+#include <stdexcept>
+
+using lodestone::datasets::MagneticRecording;
+
+namespace {
+
+Eigen::Vector3d toWorld(const lodestone::datasets::MagneticRecordingSample& s) {
+    const double c = std::cos(s.heading), n = std::sin(s.heading);
+    return {c * s.field.x - n * s.field.y, n * s.field.x + c * s.field.y, s.field.z};
+}
+
+void setFromWorld(lodestone::datasets::MagneticRecordingSample& s, const Eigen::Vector3d& w) {
+    const double c = std::cos(s.heading), n = std::sin(s.heading);
+    s.field = {c * w.x() + n * w.y(), -n * w.x() + c * w.y(), w.z()};
+}
+
+double numberAfter(const std::string& spec, const std::string& prefix) {
+    std::size_t used = 0;
+    double v = NAN;
+    try {
+        v = std::stod(spec.substr(prefix.size()), &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    if (used == 0 || used != spec.size() - prefix.size() || !(v > 0))
+        throw std::invalid_argument("variant '" + spec + "': expected " + prefix + "<number > 0>");
+    return v;
+}
+
+MagneticRecording withNoise(MagneticRecording rec, double sigma, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> n(0, sigma);
+    for (auto& s : rec.samples) {
+        s.field.x += n(rng);
+        s.field.y += n(rng);
+        s.field.z += n(rng);
+    }
+    return rec;
+}
+
+MagneticRecording quieter(MagneticRecording rec, double scale, unsigned seed) {
+    const double repeatability =
+        std::max(std::isfinite(passRepeatability(rec)) ? passRepeatability(rec) : 0.0,
+                 kRepeatabilityFloor);
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (const auto& s : rec.samples) mean += toWorld(s);
+    mean /= double(rec.samples.size());
+    for (auto& s : rec.samples) setFromWorld(s, mean + scale * (toWorld(s) - mean));
+    rec.name += " quiet " + std::to_string(scale);
+    return withNoise(std::move(rec), repeatability * std::sqrt(std::max(0.0, 1 - scale * scale)),
+                     seed);
+}
+
+MagneticRecording resampled(const MagneticRecording& rec, double rate) {
+    MagneticRecording out = rec;
+    out.samples.clear();
+    const auto& in = rec.samples;
+    std::size_t k = 0;
+    for (double t = in.front().t; t <= in.back().t; t += 1.0 / rate) {
+        while (k + 2 < in.size() && in[k + 1].t <= t) ++k;
+        const auto& a = in[k];
+        const auto& b = in[k + 1];
+        const double f = std::clamp((t - a.t) / (b.t - a.t), 0.0, 1.0);
+        lodestone::datasets::MagneticRecordingSample s;
+        s.t = t;
+        s.x = a.x + f * (b.x - a.x);
+        s.y = a.y + f * (b.y - a.y);
+        s.heading = a.heading + f * (b.heading - a.heading);  // (headings are unwrapped)
+        setFromWorld(s, toWorld(a) + f * (toWorld(b) - toWorld(a)));
+        out.samples.push_back(s);
+    }
+    return out;
+}
+
+MagneticRecording inUnit(const MagneticRecording& rec, const std::string& unitText,
+                         const std::string& scratch, unsigned seed) {
+    const auto unit = lodestone::obs::MagneticUnit::parse(unitText);
+    std::filesystem::create_directories(scratch);
+    const std::string csv = scratch + "/variant_" + std::to_string(seed) + ".csv";
+    lodestone::datasets::writeKokWalk(rec, csv, unit);
+    auto read = lodestone::datasets::readKokWalk(csv, unit);
+    std::filesystem::remove(csv);
+    read.name = rec.name;
+    read.calibrated = rec.calibrated;
+    return read;
+}
+
+}  // namespace
+
+double passRepeatability(const MagneticRecording& rec, double radius, double gap) {
+    const auto& s = rec.samples;
+    std::vector<double> walk(s.size(), 0.0);
+    for (std::size_t i = 1; i < s.size(); ++i)
+        walk[i] = walk[i - 1] + std::hypot(s[i].x - s[i - 1].x, s[i].y - s[i - 1].y);
+    std::vector<Eigen::Vector3d> world(s.size());
+    for (std::size_t i = 0; i < s.size(); ++i) world[i] = toWorld(s[i]);
+    std::vector<double> d;
+    for (std::size_t j = 0; j < s.size(); ++j) {
+        for (std::size_t i = 0; i < j && walk[j] - walk[i] > gap; ++i) {
+            if (std::hypot(s[j].x - s[i].x, s[j].y - s[i].y) > radius) continue;
+            const Eigen::Vector3d e = world[j] - world[i];
+            d.insert(d.end(), {e.x(), e.y(), e.z()});
+        }
+    }
+    if (d.size() < 30) return NAN;
+    const auto median = [](std::vector<double> v) {
+        const auto mid = v.begin() + std::ptrdiff_t(v.size() / 2);
+        std::nth_element(v.begin(), mid, v.end());
+        return *mid;
+    };
+    const double m = median(d);
+    for (auto& v : d) v = std::abs(v - m);
+    return 1.4826 * median(d) / std::sqrt(2.0);
+}
+
+MagneticRecording magneticVariant(const MagneticRecording& rec, const std::string& spec,
+                                  unsigned seed, const std::string& scratch) {
+    if (spec.empty() || spec == "original") return rec;
+    if (spec.rfind("quiet:", 0) == 0) return quieter(rec, numberAfter(spec, "quiet:"), seed);
+    if (spec.rfind("noise:", 0) == 0) return withNoise(rec, numberAfter(spec, "noise:"), seed);
+    if (spec.rfind("rate:", 0) == 0) return resampled(rec, numberAfter(spec, "rate:"));
+    if (spec == "gauss" || spec.rfind("normalized:", 0) == 0)
+        return inUnit(rec, spec, scratch, seed);
+    throw std::invalid_argument("unknown variant '" + spec +
+                                "' (original, quiet:A, gauss, normalized:F, rate:HZ, noise:S)");
+}
