@@ -210,10 +210,12 @@ TEST(MagneticWindowERD, ConfirmedClosuresWaitForASecondIndependentWindow) {
 TEST(MagneticWindowERD, WalkedBackTheMirrorImageSensorReadsTheSameLine) {
     // Two magnetometers 0.15 m either side of the centre line. Walked back, the left one
     // passes where the right one passed on the way out - and 0.3 m from where it did itself.
+    // (Each window alone: windows in sequence find the pass 0.3 m beside too, within 0.5 m.)
     const FloorField field(14);
     const std::vector<Mount> pair = {{"LEFT", 0.15}, {"RIGHT", -0.15}};
-    const auto mirrored = walk({{0, 0}, {20, 0}, {0, 0}}, field, "", pair);
-    const auto alone = walk({{0, 0}, {20, 0}, {0, 0}}, field, "mirror_sensors = false\n", pair);
+    const auto mirrored = walk({{0, 0}, {20, 0}, {0, 0}}, field, "chain_windows = 1\n", pair);
+    const auto alone = walk({{0, 0}, {20, 0}, {0, 0}}, field,
+                            "chain_windows = 1\nmirror_sensors = false\n", pair);
     EXPECT_GT(mirrored.stats.backward, 5u);
     for (const auto& c : errors(mirrored)) EXPECT_LT(c.position, 0.2);
     EXPECT_LT(alone.stats.backward, mirrored.stats.backward / 2);
@@ -271,4 +273,19 @@ TEST(MagneticWindowERD, ABadIniNamesTheKey) {
                      "[MagneticWindowERD]\nwindow_length = 1.5\nwindow_sigma = -1\n")),
                  config::ConfigError);
     EXPECT_DOUBLE_EQ(erd.params().window, 2.0);
+}
+
+TEST(MagneticWindowERD, AQuietFieldUndecidedWindowByWindowClosesOnWindowsInSequence) {
+    // A building a third as lively as the others here: most 2 m windows' field is hardly beyond
+    // the 1 uT pass noise, so a window alone calls it flat or leaves its place undecided; the
+    // windows before it, followed back along each candidate's path, decide - and right.
+    const FloorField quiet(16, 2.0);
+    const std::vector<Eigen::Vector2d> twice = {{0, 0}, {20, 0}, {20, 4}, {-3, 4}, {-3, 0}, {20, 0}};
+    const auto alone = walk(twice, quiet, "chain_windows = 1\n");
+    const auto chained = walk(twice, quiet, "chain_windows = 6\n");
+    EXPECT_GT(chained.stats.chainedAccepted, 0u);
+    EXPECT_GT(chained.stats.edges, alone.stats.edges + 5) << alone.stats.edges;
+    const auto e = errors(chained);
+    ASSERT_FALSE(e.empty());
+    for (const auto& c : e) EXPECT_LT(c.position, 0.5);
 }

@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -61,6 +62,14 @@ class MagneticWindowERD : public EdgeDecider {
         double step{0.05};          ///< [m] readings resampled by travel
         double window{2.0};      ///< [m] of path per window (Kok & Solin: ~1 s of walking; README)
         double queryEvery{0.1};  ///< [m] of travel between queries
+        /** A query whose place falls short of min_posterior for want of field gathers the
+         * windows before it, in sequence: every candidate's place is followed back along its
+         * own path through up to `chain_windows` - 1 earlier windows of the query (each
+         * `window_length`, not overlapping), each aligned again within what the passes'
+         * distance through that window's turn allows, and their evidence (near and beside,
+         * against the null of unrelated places) is added to its own. Where the field is quiet
+         * the closer decides on more of it. 1: each window alone. */
+        int chainWindows{6};
         /** How the readings of one place differ between two passes (magnetic::PassNoise):
          * white noise of `window_sigma` [uT] per component, plus over a window an offset of
          * `window_bias_sigma` [uT] and a trend of `window_trend_sigma` [uT/m]. (`step` is
@@ -111,6 +120,8 @@ class MagneticWindowERD : public EdgeDecider {
     struct Stats {
         std::size_t queries{0}, flat{0}, noCandidate{0}, noFit{0}, ambiguous{0}, accepted{0},
             unmeasured{0}, confirmed{0}, forward{0}, backward{0}, edges{0};
+        /** Queries that gathered earlier windows (chain_windows), and of them those accepted. */
+        std::size_t chained{0}, chainedAccepted{0};
         std::size_t mapReadings{0}, mapReadingsThinned{0};  ///< of a loaded map (thinMap)
         std::vector<double> queryMs;
     };
@@ -187,6 +198,11 @@ class MagneticWindowERD : public EdgeDecider {
     void rebuild();
     void onNode(TNodeID id);
     void query(std::size_t first);
+    /** The earlier windows' evidence added to every candidate within reach of the best, a
+     * window at a time until `decided` says so or chain_windows are in
+     * (MagneticWindowChain.cpp); false when there was no earlier window. */
+    bool chainEvidence(std::vector<Candidate>& all, std::size_t first,
+                       const std::function<bool()>& decided) const;
     /** The tests on a query's candidates (fit, posterior), then its closure. */
     void decide(std::size_t first, double excitation, std::vector<Candidate>& candidates,
                 Outcome& out);
@@ -213,13 +229,14 @@ class MagneticWindowERD : public EdgeDecider {
     double mapFrameSpread(std::size_t first) const;
     /** The query window's excitation in the map's frame (squared deviations from its mean over
      * the reading noise and the heading's interpolation within a node interval), as
-     * magnetic::windowExcitation in the robot's. */
-    double mapFrameExcitation(std::size_t first) const;
+     * magnetic::windowExcitation in the robot's; or of `count` readings from `first`. */
+    double mapFrameExcitation(std::size_t first, std::size_t count = 0) const;
     /** A stored reading a query at `queryTravel` may be compared with: min_travel_gap behind
      * it, or a loaded map's. */
     bool leftBehind(const magnetic::TrackSample& stored, double queryTravel) const;
-    /** The query window's readings, each horizontal part turned by the graph's heading. */
-    std::vector<Eigen::Vector3d> mapFrameWindow(std::size_t first) const;
+    /** The query window's readings (or `count` from `first`), each horizontal part turned by the
+     * graph's heading. */
+    std::vector<Eigen::Vector3d> mapFrameWindow(std::size_t first, std::size_t count = 0) const;
     /** The amplitude of the field's fine part in the query window (fine_amplitude): from the
      * mean square difference of readings gp_length_scale apart, 2 sigma^2 (1 - exp(-1/2)) for
      * the squared-exponential kernel; the smaller of the robot and map frames' (as the spread). */
