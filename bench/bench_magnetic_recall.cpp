@@ -15,9 +15,10 @@
 // inside its position gate.
 // --drift-scale F scales the drift model's heading bias and noise (0: odometry without error,
 // so what is left of the ATE is what the closures themselves do to the reference trajectory).
-// --variant SPEC runs each recording made harder (bench/magnetic_variants.h: quiet:A, gauss,
+// --variant SPEC runs each recording made harder (datasets/MagneticRecordingVariants.h: quiet:A, gauss,
 // normalized:F, rate:HZ, noise:S), its draws seeded by the run's seed.
 #include <lodestone/datasets/MagneticRecordingImport.h>
+#include <lodestone/datasets/MagneticRecordingVariants.h>
 #include <lodestone/eval/ClosureEval.h>
 #include <lodestone/eval/ClosureFunnel.h>
 #include <lodestone/io/TumTrajectory.h>
@@ -34,7 +35,6 @@
 #include <map>
 
 #include "magnetic_recordings.h"
-#include "magnetic_variants.h"
 
 using namespace lodestone;
 
@@ -163,14 +163,14 @@ int main(int argc, char** argv) {
         if (!only.empty() && rec.name.find(only) == std::string::npos) continue;
         const auto recording = rec.read();
         const std::string name = rec.name + (variant.empty() ? "" : " [" + variant + "]");
-        repeatability.emplace_back(name, passRepeatability(magneticVariant(recording, variant, 1, out)));
+        repeatability.emplace_back(name, datasets::passRepeatability(datasets::magneticVariant(recording, variant, 1, out)));
         for (const auto& ini : inis) {
             Row row;
             for (int seed = 1; seed <= seeds; ++seed) {
                 std::string stem = rec.name + "_s" + std::to_string(seed);
                 std::replace(stem.begin(), stem.end(), ' ', '_');
                 const auto imported =
-                    importSeed(magneticVariant(recording, variant, unsigned(seed), out),
+                    importSeed(datasets::magneticVariant(recording, variant, unsigned(seed), out),
                                out + "/" + stem + ".rawlog", seed, driftScale);
                 const auto run = runImported(imported, ini, out + "/" + stem + "_run");
                 if (!run.ok()) {

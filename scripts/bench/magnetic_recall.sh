@@ -7,7 +7,7 @@
 # and INI (bench/bench_magnetic_recall.cpp says what each column counts).
 # Usage: scripts/bench/magnetic_recall.sh [SEEDS] [INI ...]   (SIM_SEEDS=N: corridor_shuttle seeds, 3; 0: none)
 #   VARIANTS="quiet:0.5 quiet:0.3 gauss normalized:45 rate:50 noise:0.3": each recording also
-#   made harder (bench/magnetic_variants.h), a table each; ONLY=NAME: the recordings whose name
+#   made harder (datasets/MagneticRecordingVariants.h), a table each; ONLY=NAME: the recordings whose name
 #   holds NAME ("kok", "synthetic", "aalto 3"); JUDGE=M: passes and right closures within M
 #   metres (0.5); ANOMALY_SCALE=A: the simulated corridor in a quieter building
 #   ([magnetic_field] anomaly_scale).

@@ -274,18 +274,3 @@ TEST(MagneticWindowERD, ABadIniNamesTheKey) {
                  config::ConfigError);
     EXPECT_DOUBLE_EQ(erd.params().window, 2.0);
 }
-
-TEST(MagneticWindowERD, AQuietFieldUndecidedWindowByWindowClosesOnWindowsInSequence) {
-    // A building a third as lively as the others here: most 2 m windows' field is hardly beyond
-    // the 1 uT pass noise, so a window alone calls it flat or leaves its place undecided; the
-    // windows before it, followed back along each candidate's path, decide - and right.
-    const FloorField quiet(16, 2.0);
-    const std::vector<Eigen::Vector2d> twice = {{0, 0}, {20, 0}, {20, 4}, {-3, 4}, {-3, 0}, {20, 0}};
-    const auto alone = walk(twice, quiet, "chain_windows = 1\n");
-    const auto chained = walk(twice, quiet, "chain_windows = 6\n");
-    EXPECT_GT(chained.stats.chainedAccepted, 0u);
-    EXPECT_GT(chained.stats.edges, alone.stats.edges + 5) << alone.stats.edges;
-    const auto e = errors(chained);
-    ASSERT_FALSE(e.empty());
-    for (const auto& c : e) EXPECT_LT(c.position, 0.5);
-}

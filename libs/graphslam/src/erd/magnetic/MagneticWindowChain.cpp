@@ -45,9 +45,21 @@ bool MagneticWindowERD::chainEvidence(std::vector<Candidate>& all, std::size_t f
         const std::size_t back = std::size_t(j) * n_;
         if (first < back || query[first - back].segment != query[newest].segment) break;
         const std::size_t f = first - back;
-        const double spread = std::min(
-            windowSpread(magnetic::windowExcitation(query, f, n_, params_.noise.sigma)),
-            mapFrameSpread(f));
+        const double excitation = magnetic::windowExcitation(query, f, n_, params_.noise.sigma);
+        // A flat window matches anywhere: it is passed over (the candidates followed on
+        // through it as the passes ran alike), its evidence none.
+        if (std::min(excitation, mapFrameExcitation(f)) <
+            magnetic::chiSquareQuantile(3.0 * double(n_) - 3, params_.quantile)) {
+            for (std::size_t i = 0; i < all.size(); ++i) {
+                if (start[i] < 0) continue;
+                const bool forward = all[i].direction == WindowDirection::Forward;
+                start[i] = forward ? start[i] - long(n_) : start[i] + long(n_);
+                if (start[i] < 0 || std::size_t(start[i]) + n_ > all[i].track->samples().size())
+                    start[i] = -1;
+            }
+            continue;
+        }
+        const double spread = std::min(windowSpread(excitation), mapFrameSpread(f));
         const magnetic::WindowDisplacementModel model(basis_, spread, params_.sigmaCross,
                                                       params_.distinctRadius);
         const Eigen::MatrixX3d projected = projectedWindow(queried(), f, false);
@@ -71,8 +83,15 @@ bool MagneticWindowERD::chainEvidence(std::vector<Candidate>& all, std::size_t f
             // (walked back).
             const double turnVariance = k.fit.turnVariance + turnFloor * turnFloor;
             const long predicted = forward ? start[i] - long(n_) : start[i] + long(n_);
-            double bestNear = -INFINITY, bestFar = -INFINITY;
-            long bestStart = -1;
+            // The realignment is a nuisance: its positions weighed alike (their likelihoods
+            // averaged, an Occam factor), the window followed on from the likeliest.
+            double bestNear = -INFINITY, sumNear = -INFINITY, sumFar = -INFINITY;
+            long bestStart = -1, positions = 0;
+            const auto logAdd = [](double a, double b) {
+                if (a == -INFINITY) return b;
+                if (b == -INFINITY) return a;
+                return std::max(a, b) + std::log1p(std::exp(-std::abs(a - b)));
+            };
             for (long s = predicted - tolerance; s <= predicted + tolerance; ++s) {
                 if (s < 0 || std::size_t(s) + n_ > stored.size()) continue;
                 const auto t = static_cast<std::size_t>(s);
@@ -91,20 +110,24 @@ bool MagneticWindowERD::chainEvidence(std::vector<Candidate>& all, std::size_t f
                              .first;
                 }
                 const auto& e = it->second;
+                ++positions;
+                sumNear = logAdd(sumNear, e.logNear);
+                sumFar = logAdd(sumFar, e.logFar);
                 if (e.logNear > bestNear) {
                     bestNear = e.logNear;
-                    bestFar = e.logFar;
                     bestStart = s;
                 }
             }
+            const double meanNear = sumNear - std::log(double(std::max(positions, 1L)));
+            const double meanFar = sumFar - std::log(double(std::max(positions, 1L)));
             start[i] = bestStart;  // (the path ends, or leaves the segment: followed no further)
             if (bestStart < 0) continue;
             any = true;
-            k.logWeight += bestNear;
-            k.logFar += std::isfinite(bestFar) ? bestFar : 0.0;
+            k.logWeight += meanNear;
+            k.logFar += std::isfinite(meanFar) ? meanFar : 0.0;
             k.total = -2 * k.logWeight;
-            gainNear = std::max(gainNear, bestNear);
-            gainFar = std::max(gainFar, std::isfinite(bestFar) ? bestFar : 0.0);
+            gainNear = std::max(gainNear, meanNear);
+            gainFar = std::max(gainFar, std::isfinite(meanFar) ? meanFar : 0.0);
         }
         if (!any) break;
         chained = true;
@@ -114,8 +137,10 @@ bool MagneticWindowERD::chainEvidence(std::vector<Candidate>& all, std::size_t f
             all[i].logFar += gainFar;
             all[i].total = -2 * all[i].logWeight;
         }
-        if (decided()) break;
     }
+    // Decided on the whole chain, not at the first window that tips it: evidence looked at
+    // window by window until it crosses the bar crosses it by chance more often.
+    if (chained) decided();
     return chained;
 }
 

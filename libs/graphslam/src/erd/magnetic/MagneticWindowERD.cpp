@@ -238,32 +238,6 @@ void MagneticWindowERD::query(std::size_t first) {
     // (The map frame's own artefact, the graph's heading through a turn, is weighed down.)
     out.flat = std::min(excitation, mapFrameExcitation(first)) <
                magnetic::chiSquareQuantile(dof - 3, params_.quantile);
-    if (out.flat && params_.passDisplacement && params_.chainWindows > 1) {
-        // Flat alone, the window may still end a stretch that is not: the windows before it in
-        // sequence, as many as chain_windows gathers (their evidence is added in decide).
-        std::size_t count = n_;
-        while (count < std::size_t(params_.chainWindows) * n_ && first + n_ >= count + n_ &&
-               samples[first + n_ - count - n_].segment == samples[newest].segment)
-            count += n_;
-        if (count > n_) {
-            // Over a stretch the graph's heading drifts: in the map frame an even field varies
-            // by it, in the robot frame by every turn. The field's vertical part and its
-            // horizontal magnitude know no heading: an even field is flat in them.
-            const std::size_t from = newest + 1 - count;
-            Eigen::Vector2d mean = Eigen::Vector2d::Zero();
-            std::vector<Eigen::Vector2d> invariant(count);
-            for (std::size_t k = 0; k < count; ++k) {
-                const auto& v = samples[from + k].value;
-                invariant[k] = {std::hypot(double(v[0]), double(v[1])), double(v[2])};
-                mean += invariant[k];
-            }
-            mean /= double(count);
-            double sum = 0;
-            for (const auto& v : invariant) sum += (v - mean).squaredNorm();
-            out.flat = sum / (params_.noise.sigma * params_.noise.sigma) <
-                       magnetic::chiSquareQuantile(2.0 * double(count - 1), params_.quantile);
-        }
-    }
     std::vector<Candidate> candidates;
     if (out.flat) {
         ++stats_.flat;  // a flat field matches anywhere
@@ -357,8 +331,7 @@ void MagneticWindowERD::decide(std::size_t first, double excitation,
     out.posterior = placePosterior(*out.best, candidates);
     if (out.posterior < params_.minPosterior && params_.passDisplacement &&
         params_.chainWindows > 1) {
-        // Windows in sequence, one at a time, until the likeliest place over them (whose own
-        // window fits) reaches min_posterior.
+        // Windows in sequence; then the likeliest place over them, if its own window fits.
         const double fitLimit = magnetic::chiSquareQuantile(3.0 * double(n_), params_.quantile);
         const auto decided = [&] {
             const auto best = std::min_element(
@@ -396,12 +369,10 @@ double MagneticWindowERD::windowSpread(double excitation) const {
     return std::sqrt(std::max(spread2, 1e-6));
 }
 
-std::vector<Eigen::Vector3d> MagneticWindowERD::mapFrameWindow(std::size_t first,
-                                                               std::size_t count) const {
+std::vector<Eigen::Vector3d> MagneticWindowERD::mapFrameWindow(std::size_t first) const {
     const auto& samples = queried().samples();
-    if (count == 0) count = n_;
-    std::vector<Eigen::Vector3d> b(count);
-    for (std::size_t k = 0; k < count; ++k) {
+    std::vector<Eigen::Vector3d> b(n_);
+    for (std::size_t k = 0; k < n_; ++k) {
         const Eigen::Vector3d v = samples[first + k].value.head<3>().cast<double>();
         const double yaw = yawAtSample(queried(), first + k), c = std::cos(yaw), s = std::sin(yaw);
         b[k] = {c * v.x() - s * v.y(), s * v.x() + c * v.y(), v.z()};
@@ -425,19 +396,18 @@ double MagneticWindowERD::fineAmplitude(std::size_t first) const {
     return std::sqrt(std::max(d2 / (2 * -std::expm1(-0.5 * h * h)), 1e-6));
 }
 
-double MagneticWindowERD::mapFrameExcitation(std::size_t first, std::size_t count) const {
+double MagneticWindowERD::mapFrameExcitation(std::size_t first) const {
     // A sample's heading is interpolated over its node's interval, but its readings may lie in
     // the interval before (a bin is closed by the first reading past it): where the carrier
     // turned by dpsi over the two, the heading is known to dpsi / sqrt(12) (uniform), and the
     // horizontal field's direction no better - a turn's readings weigh less, not more.
-    if (count == 0) count = n_;
-    const auto b = mapFrameWindow(first, count);
+    const auto b = mapFrameWindow(first);
     const auto& samples = queried().samples();
     const double n2 = params_.noise.sigma * params_.noise.sigma;
-    std::vector<double> variance(count);
+    std::vector<double> variance(n_);
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();
     double weights = 0;
-    for (std::size_t k = 0; k < count; ++k) {
+    for (std::size_t k = 0; k < n_; ++k) {
         const auto node = static_cast<TNodeID>(samples[first + k].node);
         TNodeID from = node;  // the interval's start: up to two nodes back, in its segment
         while (from + 2 > node && from > 0 && path_.segment[from - 1] == path_.segment[node])
@@ -449,7 +419,7 @@ double MagneticWindowERD::mapFrameExcitation(std::size_t first, std::size_t coun
     }
     mean /= weights;
     double sum = 0;
-    for (std::size_t k = 0; k < count; ++k) sum += (b[k] - mean).squaredNorm() / variance[k];
+    for (std::size_t k = 0; k < n_; ++k) sum += (b[k] - mean).squaredNorm() / variance[k];
     return sum;
 }
 

@@ -69,7 +69,7 @@ class MagneticWindowERD : public EdgeDecider {
          * distance through that window's turn allows, and their evidence (near and beside,
          * against the null of unrelated places) is added to its own. Where the field is quiet
          * the closer decides on more of it. 1: each window alone. */
-        int chainWindows{6};
+        int chainWindows{1};
         /** How the readings of one place differ between two passes (magnetic::PassNoise):
          * white noise of `window_sigma` [uT] per component, plus over a window an offset of
          * `window_bias_sigma` [uT] and a trend of `window_trend_sigma` [uT/m]. (`step` is
@@ -229,14 +229,13 @@ class MagneticWindowERD : public EdgeDecider {
     double mapFrameSpread(std::size_t first) const;
     /** The query window's excitation in the map's frame (squared deviations from its mean over
      * the reading noise and the heading's interpolation within a node interval), as
-     * magnetic::windowExcitation in the robot's; or of `count` readings from `first`. */
-    double mapFrameExcitation(std::size_t first, std::size_t count = 0) const;
+     * magnetic::windowExcitation in the robot's. */
+    double mapFrameExcitation(std::size_t first) const;
     /** A stored reading a query at `queryTravel` may be compared with: min_travel_gap behind
      * it, or a loaded map's. */
     bool leftBehind(const magnetic::TrackSample& stored, double queryTravel) const;
-    /** The query window's readings (or `count` from `first`), each horizontal part turned by the
-     * graph's heading. */
-    std::vector<Eigen::Vector3d> mapFrameWindow(std::size_t first, std::size_t count = 0) const;
+    /** The query window's readings, each horizontal part turned by the graph's heading. */
+    std::vector<Eigen::Vector3d> mapFrameWindow(std::size_t first) const;
     /** The amplitude of the field's fine part in the query window (fine_amplitude): from the
      * mean square difference of readings gp_length_scale apart, 2 sigma^2 (1 - exp(-1/2)) for
      * the squared-exponential kernel; the smaller of the robot and map frames' (as the spread). */

@@ -1,4 +1,4 @@
-#include "magnetic_variants.h"
+#include <lodestone/datasets/MagneticRecordingVariants.h>
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -7,16 +7,16 @@
 #include <random>
 #include <stdexcept>
 
-using lodestone::datasets::MagneticRecording;
+namespace lodestone::datasets {
 
 namespace {
 
-Eigen::Vector3d toWorld(const lodestone::datasets::MagneticRecordingSample& s) {
+Eigen::Vector3d toWorld(const MagneticRecordingSample& s) {
     const double c = std::cos(s.heading), n = std::sin(s.heading);
     return {c * s.field.x - n * s.field.y, n * s.field.x + c * s.field.y, s.field.z};
 }
 
-void setFromWorld(lodestone::datasets::MagneticRecordingSample& s, const Eigen::Vector3d& w) {
+void setFromWorld(MagneticRecordingSample& s, const Eigen::Vector3d& w) {
     const double c = std::cos(s.heading), n = std::sin(s.heading);
     s.field = {c * w.x() + n * w.y(), -n * w.x() + c * w.y(), w.z()};
 }
@@ -68,7 +68,7 @@ MagneticRecording resampled(const MagneticRecording& rec, double rate) {
         const auto& a = in[k];
         const auto& b = in[k + 1];
         const double f = std::clamp((t - a.t) / (b.t - a.t), 0.0, 1.0);
-        lodestone::datasets::MagneticRecordingSample s;
+        MagneticRecordingSample s;
         s.t = t;
         s.x = a.x + f * (b.x - a.x);
         s.y = a.y + f * (b.y - a.y);
@@ -81,11 +81,11 @@ MagneticRecording resampled(const MagneticRecording& rec, double rate) {
 
 MagneticRecording inUnit(const MagneticRecording& rec, const std::string& unitText,
                          const std::string& scratch, unsigned seed) {
-    const auto unit = lodestone::obs::MagneticUnit::parse(unitText);
+    const auto unit = obs::MagneticUnit::parse(unitText);
     std::filesystem::create_directories(scratch);
     const std::string csv = scratch + "/variant_" + std::to_string(seed) + ".csv";
-    lodestone::datasets::writeKokWalk(rec, csv, unit);
-    auto read = lodestone::datasets::readKokWalk(csv, unit);
+    writeKokWalk(rec, csv, unit);
+    auto read = readKokWalk(csv, unit);
     std::filesystem::remove(csv);
     read.name = rec.name;
     read.calibrated = rec.calibrated;
@@ -131,3 +131,5 @@ MagneticRecording magneticVariant(const MagneticRecording& rec, const std::strin
     throw std::invalid_argument("unknown variant '" + spec +
                                 "' (original, quiet:A, gauss, normalized:F, rate:HZ, noise:S)");
 }
+
+}  // namespace lodestone::datasets
