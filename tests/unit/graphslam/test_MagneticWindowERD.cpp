@@ -23,6 +23,7 @@ struct Walk {
     std::unique_ptr<graphslam::SlamEngine> engine;
     graphslam::MagneticWindowERD::Stats stats;
     std::vector<graphslam::MagneticWindowERD::TruthQuery> funnel;
+    double sigmaInUse{0};  ///< [uT] the pass noise the tests used at the end
 };
 
 /** Walks the polyline `corners` (test::floorWalkScript) with MagneticWindowERD. */
@@ -43,6 +44,7 @@ Walk walk(const std::vector<Eigen::Vector2d>& corners, const FloorField& field,
         "[MagneticWindowERD]\ngate_heading_drift = 0\n" + extraIni, truth);
     w.stats = r.erd->stats();
     w.funnel = r.erd->truthQueries();
+    w.sigmaInUse = r.erd->params().noise.sigma;
     w.engine = std::move(r.engine);
     return w;
 }
@@ -273,4 +275,19 @@ TEST(MagneticWindowERD, ABadIniNamesTheKey) {
                      "[MagneticWindowERD]\nwindow_length = 1.5\nwindow_sigma = -1\n")),
                  config::ConfigError);
     EXPECT_DOUBLE_EQ(erd.params().window, 2.0);
+}
+
+TEST(MagneticWindowERD, ThePassNoiseIsLearntFromTheRunsOwnMatches) {
+    // Readings that repeat exactly between passes (a scripted field, no noise): from the
+    // 1 uT prior the learnt pass noise falls well below it, the tests take it, and what closes
+    // is still right.
+    const FloorField field(11);
+    const std::vector<Eigen::Vector2d> twice = {{0, 0}, {20, 0}, {20, 4}, {-3, 4}, {-3, 0}, {20, 0}};
+    const auto fixed = walk(twice, field);
+    const auto learnt = walk(twice, field, "learn_noise = true\n");
+    EXPECT_DOUBLE_EQ(fixed.sigmaInUse, 1.0);
+    EXPECT_GT(learnt.stats.noiseUpdates, 0u);
+    EXPECT_LT(learnt.sigmaInUse, 0.5);
+    ASSERT_GT(learnt.stats.edges, 5u);
+    for (const auto& c : errors(learnt)) EXPECT_LT(c.position, 0.2);
 }

@@ -18,6 +18,7 @@ MagneticWindowERD::MagneticWindowERD() {
 
 void MagneticWindowERD::rebuild() {
     params_.noise.step = params_.step;
+    params_.noise.sigma = prior_sigma_;
     sensors_.clear();
     mirror_.clear();
     poses_.clear();
@@ -28,6 +29,10 @@ void MagneticWindowERD::rebuild() {
     projected_map_.clear();
     basis_ = std::make_shared<const magnetic::WindowDisplacementModel::Basis>(n_, params_.noise,
                                                                               params_.lengthScale);
+    noise_.reset();
+    if (params_.learnNoise)
+        noise_.emplace(prior_sigma_, params_.noisePriorWindows * 3.0 * double(n_));
+    last_learnt_ = -1e18;
     correlated_samples_ = 0;  // the kernel's correlations summed over a window's offsets
     for (int j = 1 - int(n_); j < int(n_); ++j) {
         const double r = j * params_.step / params_.lengthScale;
@@ -45,6 +50,8 @@ void MagneticWindowERD::configure(const mrpt::config::CConfigFileBase& ini) {
     p.window = s.getDouble("window_length", p.window);
     p.queryEvery = s.getDouble("query_every", p.queryEvery);
     p.chainWindows = s.getInt("chain_windows", p.chainWindows);
+    p.learnNoise = s.getBool("learn_noise", p.learnNoise);
+    p.noisePriorWindows = s.getDouble("noise_prior_windows", p.noisePriorWindows);
     p.noise.sigma = s.getDouble("window_sigma", p.noise.sigma);
     p.noise.biasSigma = s.getDouble("window_bias_sigma", p.noise.biasSigma);
     p.noise.trendSigma = s.getDouble("window_trend_sigma", p.noise.trendSigma);
@@ -70,6 +77,7 @@ void MagneticWindowERD::configure(const mrpt::config::CConfigFileBase& ini) {
     if (!(p.window >= 4 * p.step)) s.fail("window_length", "must be >= 4 x resample_step");
     if (!(p.queryEvery > 0)) s.fail("query_every", "must be > 0");
     if (p.chainWindows < 1 || p.chainWindows > 16) s.fail("chain_windows", "must be 1..16");
+    if (!(p.noisePriorWindows > 0)) s.fail("noise_prior_windows", "must be > 0");
     if (!(p.noise.sigma > 0)) s.fail("window_sigma", "must be > 0");
     if (!(p.noise.biasSigma >= 0)) s.fail("window_bias_sigma", "must be >= 0");
     if (!(p.noise.trendSigma >= 0)) s.fail("window_trend_sigma", "must be >= 0");
@@ -89,6 +97,7 @@ void MagneticWindowERD::configure(const mrpt::config::CConfigFileBase& ini) {
         s.fail("sigma_cross", "sigmas must be > 0");
     s.finish();
     params_ = p;
+    prior_sigma_ = p.noise.sigma;
     rebuild();
 }
 
@@ -330,7 +339,7 @@ void MagneticWindowERD::decide(std::size_t first, double excitation,
     }
     out.posterior = placePosterior(*out.best, candidates);
     if (out.posterior < params_.minPosterior && params_.passDisplacement &&
-        params_.chainWindows > 1) {
+        params_.chainWindows > 1 && (!noise_ || noise_->dof() >= noise_->priorDof())) {
         // Windows in sequence; then the likeliest place over them, if its own window fits.
         const double fitLimit = magnetic::chiSquareQuantile(3.0 * double(n_), params_.quantile);
         const auto decided = [&] {
@@ -354,8 +363,32 @@ void MagneticWindowERD::decide(std::size_t first, double excitation,
     ++stats_.accepted;
     if (auto c = measureClosure(*out.best, candidates, first)) {
         out.closed = confirm(*c);
+        if (out.closed && noise_) learnNoise(*out.best, first);
     } else {
         ++stats_.unmeasured;
+    }
+}
+
+void MagneticWindowERD::learnNoise(const Candidate& best, std::size_t first) {
+    // Windows that overlap share readings: one in each window's length.
+    const double s = queried().samples()[first + n_ - 1].s;
+    if (s - last_learnt_ < params_.window) return;
+    last_learnt_ = s;
+    noise_->add(residuals(best, first));
+    const double sigma = noise_->sigma();
+    if (std::abs(sigma / params_.noise.sigma - 1) <= 0.1) return;
+    params_.noise.sigma = sigma;
+    ++stats_.noiseUpdates;
+    rebuildBasis();
+}
+
+void MagneticWindowERD::rebuildBasis() {
+    basis_ = std::make_shared<const magnetic::WindowDisplacementModel::Basis>(n_, params_.noise,
+                                                                              params_.lengthScale);
+    projected_targets_.clear();
+    if (!projected_map_.empty()) {
+        projected_map_.clear();
+        projectMapTargets();
     }
 }
 
@@ -569,7 +602,9 @@ JsonObject MagneticWindowERD::describe() const {
         .set("window_length", params_.window)
         .set("query_every", params_.queryEvery)
         .set("chain_windows", params_.chainWindows)
-        .set("window_sigma", params_.noise.sigma)
+        .set("learn_noise", params_.learnNoise)
+        .set("noise_prior_windows", params_.noisePriorWindows)
+        .set("window_sigma", prior_sigma_)
         .set("window_bias_sigma", params_.noise.biasSigma)
         .set("window_trend_sigma", params_.noise.trendSigma)
         .set("gp_length_scale", params_.lengthScale)
@@ -598,6 +633,9 @@ JsonObject MagneticWindowERD::describe() const {
         .set("ambiguous", stats_.ambiguous)
         .set("chained", stats_.chained)
         .set("chained_accepted", stats_.chainedAccepted)
+        .set("window_sigma_in_use", params_.noise.sigma)
+        .set("noise_learnt_from_readings", noise_ ? noise_->dof() : 0.0)
+        .set("noise_updates", stats_.noiseUpdates)
         .set("accepted", stats_.accepted)
         .set("unmeasured", stats_.unmeasured)
         .set("confirmed", stats_.confirmed)

@@ -3,6 +3,7 @@
 #include <lodestone/graphslam/EdgeDecider.h>
 #include <lodestone/graphslam/erd/magnetic/MagneticPath.h>
 #include <lodestone/graphslam/erd/magnetic/PathUncertainty.h>
+#include <lodestone/magnetic/PassNoiseEstimate.h>
 #include <lodestone/magnetic/SupernodeTrack.h>
 #include <lodestone/magnetic/WindowComparison.h>
 #include <lodestone/magnetic/WindowDisplacement.h>
@@ -70,6 +71,13 @@ class MagneticWindowERD : public EdgeDecider {
          * against the null of unrelated places) is added to its own. Where the field is quiet
          * the closer decides on more of it. 1: each window alone. */
         int chainWindows{1};
+        /** Learn the pass noise from the run's own matches (magnetic::PassNoiseEstimate):
+         * `window_sigma` is then the prior, worth `noise_prior_windows` windows of readings,
+         * and each closed window's differences (windows not overlapping) update it; the
+         * tests follow the estimate. With chain_windows, windows are chained only once the
+         * matches outweigh the prior (a chain adds up whatever the noise model gets wrong). */
+        bool learnNoise{false};
+        double noisePriorWindows{1.0};
         /** How the readings of one place differ between two passes (magnetic::PassNoise):
          * white noise of `window_sigma` [uT] per component, plus over a window an offset of
          * `window_bias_sigma` [uT] and a trend of `window_trend_sigma` [uT/m]. (`step` is
@@ -122,6 +130,7 @@ class MagneticWindowERD : public EdgeDecider {
             unmeasured{0}, confirmed{0}, forward{0}, backward{0}, edges{0};
         /** Queries that gathered earlier windows (chain_windows), and of them those accepted. */
         std::size_t chained{0}, chainedAccepted{0};
+        std::size_t noiseUpdates{0};  ///< (learn_noise) times the tests took a new estimate
         std::size_t mapReadings{0}, mapReadingsThinned{0};  ///< of a loaded map (thinMap)
         std::vector<double> queryMs;
     };
@@ -203,6 +212,11 @@ class MagneticWindowERD : public EdgeDecider {
      * (MagneticWindowChain.cpp); false when there was no earlier window. */
     bool chainEvidence(std::vector<Candidate>& all, std::size_t first,
                        const std::function<bool()>& decided) const;
+    /** (learn_noise) A closed window's differences into the pass noise estimate; the tests
+     * take the estimate once it moved by a tenth. */
+    void learnNoise(const Candidate& best, std::size_t first);
+    /** The displacement model's basis for the current noise, and what was projected in it. */
+    void rebuildBasis();
     /** The tests on a query's candidates (fit, posterior), then its closure. */
     void decide(std::size_t first, double excitation, std::vector<Candidate>& candidates,
                 Outcome& out);
@@ -299,6 +313,9 @@ class MagneticWindowERD : public EdgeDecider {
     const magnetic::SupernodeTrack& mirrored() const;
 
     Params params_;
+    std::optional<magnetic::PassNoiseEstimate> noise_;  // learn_noise
+    double prior_sigma_{1.0};                           // window_sigma as configured
+    double last_learnt_{-1e18};                         // [m] travel of the last window learnt from
     std::size_t n_{0};  // samples per window (rebuild)
     // what the displacement model keeps for every window of n_ samples (rebuild)
     std::shared_ptr<const magnetic::WindowDisplacementModel::Basis> basis_;
