@@ -207,13 +207,13 @@ class MagneticWindowERD : public EdgeDecider {
     void rebuild();
     void onNode(TNodeID id);
     void query(std::size_t first);
-    /** The earlier windows' evidence added to every candidate within reach of the best, a
-     * window at a time until `decided` says so or chain_windows are in
-     * (MagneticWindowChain.cpp); false when there was no earlier window. */
+    /** The earlier windows' evidence added to every candidate within reach of the best, up to
+     * chain_windows, then `decided` asked once on the whole chain (MagneticWindowChain.cpp);
+     * false when there was no earlier window. */
     bool chainEvidence(std::vector<Candidate>& all, std::size_t first,
                        const std::function<bool()>& decided) const;
     /** (learn_noise) A closed window's differences into the pass noise estimate; the tests
-     * take the estimate once it moved by a tenth. */
+     * take the estimate once it moved by a tenth (MagneticWindowNoise.cpp). */
     void learnNoise(const Candidate& best, std::size_t first);
     /** The displacement model's basis for the current noise, and what was projected in it. */
     void rebuildBasis();
