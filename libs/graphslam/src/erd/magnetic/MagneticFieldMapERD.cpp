@@ -1,5 +1,6 @@
 #include <lodestone/config/IniSection.h>
 #include <lodestone/graphslam/erd/magnetic/MagneticFieldMapERD.h>
+#include <lodestone/magnetic/PassNoiseEstimate.h>
 #include <lodestone/magnetic/HyperparameterFit.h>
 #include <mrpt/poses/CPosePDFGaussian.h>
 
@@ -26,6 +27,7 @@ void MagneticFieldMapERD::configure(const mrpt::config::CConfigFileBase& ini) {
     p.filter.particles =
         static_cast<std::size_t>(s.getDouble("particles", static_cast<double>(p.filter.particles)));
     p.filter.passSigma = s.getDouble("pass_sigma", p.filter.passSigma);
+    p.passSigmaFromMap = s.getBool("pass_sigma_from_map", p.passSigmaFromMap);
     p.filter.tailDof = s.getDouble("tail_dof", p.filter.tailDof);
     p.filter.updateSpacing = s.getDouble("update_spacing", p.filter.updateSpacing);
     p.filter.convergedSigma = s.getDouble("converged_sigma", p.filter.convergedSigma);
@@ -154,6 +156,8 @@ void MagneticFieldMapERD::buildFieldMap() {
     // few readings, and at 50 Hz those would span a few centimetres of one pass.
     std::vector<Eigen::Vector2d> points;
     std::vector<Eigen::Vector3d> fields;
+    std::vector<double> binTravel;
+    std::vector<int> binSegment;
     std::size_t inBin = 0;
     double binStart = 0;
     for (std::size_t i = 0; i < map_readings_.size(); ++i) {
@@ -167,6 +171,8 @@ void MagneticFieldMapERD::buildFieldMap() {
             }
             points.push_back(Eigen::Vector2d::Zero());
             fields.push_back(Eigen::Vector3d::Zero());
+            binTravel.push_back(r.travel);
+            binSegment.push_back(r.segment);
             inBin = 0;
             binStart = r.travel;
         }
@@ -196,7 +202,20 @@ void MagneticFieldMapERD::buildFieldMap() {
     stats_.mapReadings = map_readings_.size();
     stats_.gridReadings = points.size();
     stats_.gridCells = grid->cells();
-    filter_ = std::make_unique<magnetic::FieldParticleFilter>(grid, params_.filter);
+    // What a later pass reads beyond the map and the reading noise, from the map's own passes
+    // where they overlap (per reading, the fitted reading noise taken out).
+    auto filter = params_.filter;
+    if (params_.passSigmaFromMap) {
+        const auto repeatability = magnetic::passRepeatabilityAcrossPasses(
+            points, fields, binTravel, binSegment, h.lengthScale / 4, 4 * h.lengthScale);
+        if (repeatability) {
+            stats_.mapRepeatability = *repeatability;
+            filter.passSigma = std::sqrt(
+                std::max(0.0, *repeatability * *repeatability - h.sigmaN * h.sigmaN));
+        }
+    }
+    stats_.passSigma = filter.passSigma;
+    filter_ = std::make_unique<magnetic::FieldParticleFilter>(grid, filter);
     map_readings_ = {};
     stats_.buildSeconds = msSince(t0) / 1e3;
 }
@@ -232,6 +251,7 @@ JsonObject MagneticFieldMapERD::describe() const {
     params.set("sensor_label", params_.sensorLabel)
         .set("particles", params_.filter.particles)
         .set("pass_sigma", params_.filter.passSigma)
+        .set("pass_sigma_from_map", params_.passSigmaFromMap)
         .set("tail_dof", params_.filter.tailDof)
         .set("update_spacing", params_.filter.updateSpacing)
         .set("converged_sigma", params_.filter.convergedSigma)
@@ -249,6 +269,8 @@ JsonObject MagneticFieldMapERD::describe() const {
         .set("fitted_sigma_f", stats_.fitted.sigmaF)
         .set("fitted_length_scale", stats_.fitted.lengthScale)
         .set("fitted_sigma_n", stats_.fitted.sigmaN)
+        .set("map_repeatability", stats_.mapRepeatability)
+        .set("pass_sigma_in_use", stats_.passSigma)
         .set("build_seconds", stats_.buildSeconds)
         .set("resets", stats_.resets)
         .set("weighings", stats_.weighings)

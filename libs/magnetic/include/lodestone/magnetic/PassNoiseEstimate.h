@@ -1,6 +1,9 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstddef>
+#include <optional>
+#include <vector>
 
 namespace lodestone::magnetic {
 
@@ -25,5 +28,16 @@ class PassNoiseEstimate {
   private:
     double prior_sigma2_, prior_dof_, sum_{0}, dof_{0};
 };
+
+/** How a map's readings of one place differ between its passes: every pair of readings within
+ * `radius` of each other on the floor (`positions`, where the map has them), from passes `gap`
+ * or more of travel apart or from different segments (sessions), their per-component
+ * differences' robust spread (1.4826 MAD) over sqrt 2 - per reading, sensor noise included.
+ * Nothing with fewer than `minPairs` pairs (a map walked once). Grid-hashed: O(readings). */
+std::optional<double> passRepeatabilityAcrossPasses(const std::vector<Eigen::Vector2d>& positions,
+                                                    const std::vector<Eigen::Vector3d>& fields,
+                                                    const std::vector<double>& travel,
+                                                    const std::vector<int>& segment, double radius,
+                                                    double gap, std::size_t minPairs = 30);
 
 }  // namespace lodestone::magnetic

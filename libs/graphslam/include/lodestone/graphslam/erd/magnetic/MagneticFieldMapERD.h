@@ -26,7 +26,7 @@ namespace lodestone::graphslam {
  * that crosses the mapped ones is placed too, either way.
  *
  * Without a loaded map it does nothing. INI section [MagneticFieldMapERD]: sensor_label,
- * saturation, particles, pass_sigma, tail_dof, update_spacing, converged_sigma,
+ * saturation, particles, pass_sigma, pass_sigma_from_map, tail_dof, update_spacing, converged_sigma,
  * converged_yaw_sigma_deg, grid_cell, grid_max_cells (a larger map's band: no field map, the
  * localizer off and report.json's `disabled` says why), closure_every, sigma_floor, seed. */
 class MagneticFieldMapERD : public EdgeDecider {
@@ -38,12 +38,20 @@ class MagneticFieldMapERD : public EdgeDecider {
         magnetic::PlanarFieldGrid::Params grid;
         double closureEvery{1.0};  ///< [m] of travel between two closures
         double sigmaFloor{0.03};   ///< [m] added to a closure's position sigma
+        /** The pass noise from the map's own readings where its passes overlap
+         * (magnetic::passRepeatabilityAcrossPasses: readings a quarter of the fitted length
+         * scale apart, passes four length scales of travel apart, less the fitted reading
+         * noise); `pass_sigma` where the map has too few such pairs (a map walked once). */
+        bool passSigmaFromMap{true};
     };
     struct Stats {
         std::size_t mapReadings{0}, gridReadings{0}, gridCells{0}, resets{0}, weighings{0},
             closures{0}, strongClosures{0};
         magnetic::GpHyperparameters fitted;
         double buildSeconds{0};
+        /** [uT] the pass noise the filter weighs with (from the map, or pass_sigma), and the
+         * map's repeatability it came from (NaN: too few overlapping passes). */
+        double passSigma{NAN}, mapRepeatability{NAN};
         double firstConvergedTravel{NAN};  ///< [m] along the run's segment
         std::string disabled;  ///< why there is no field map (empty: there is one, or no map)
         std::vector<double> weighMs;
