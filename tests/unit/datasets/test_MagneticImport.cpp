@@ -265,7 +265,9 @@ TEST(MagneticImport, AFieldInAnotherUnitIsRefusedNamingTheFileAndTheOptionAndRea
     writeKokWalk(rec, gauss, obs::MagneticUnit::gauss());
     writeKokWalk(rec, normalized, obs::MagneticUnit::normalized(45));
     const auto reference = readKokWalk(uT);
-    for (const auto& [file, unit] : {std::pair{gauss, "gauss"}, std::pair{normalized, "normalized:45"}}) {
+    for (const auto& [written, unit] :
+         {std::pair{gauss, "gauss"}, std::pair{normalized, "normalized:45"}}) {
+        const std::string file = written;  // (a structured binding is not captured before C++20)
         const auto e = errorOf([&] { readKokWalk(file); });
         EXPECT_NE(e.find(file + ": the field's median magnitude is"), std::string::npos) << e;
         EXPECT_NE(e.find("--unit gauss|uT|T|normalized:"), std::string::npos) << e;
