@@ -6,6 +6,7 @@
 #include <lodestone/magnetic/FieldFeatures.h>
 #include <lodestone/magnetic/HyperparameterFit.h>
 #include <lodestone/obs/CObservationMagnetometer.h>
+#include <lodestone/obs/MagneticUnit.h>
 #include <lodestone/obs/registerAllClasses.h>
 #include <MagneticFitApp.h>
 #include <mrpt/config/CConfigFile.h>
@@ -51,7 +52,8 @@ struct Recording {
 
 /** Reads the rawlog's odometry poses and magnetometer readings (the first sensor seen, unless
  * `p.sensorLabel` names one: then it is set). Throws on a read error (file, entry, offset). */
-Recording readRecording(const std::string& path, graphslam::MagneticGpERD::Params& p) {
+Recording readRecording(const std::string& path, graphslam::MagneticGpERD::Params& p,
+                        const obs::MagneticUnit& unit) {
     Recording r;
     std::optional<mrpt::poses::CPose2D> lastPose;
     io::RawlogSource source(path);
@@ -77,7 +79,8 @@ Recording readRecording(const std::string& path, graphslam::MagneticGpERD::Param
                 ++r.otherSensors;
                 continue;
             }
-            const Eigen::Vector3d inSensor(m->field.x, m->field.y, m->field.z);
+            const Eigen::Vector3d inSensor =
+                unit.microteslaPerUnit * Eigen::Vector3d(m->field.x, m->field.y, m->field.z);
             if (!magnetic::usableReading(inSensor, p.saturation)) {
                 ++r.dropped;
                 continue;
@@ -126,6 +129,7 @@ std::vector<magnetic::FieldStretch> cutStretches(const Recording& r,
 struct FitArgs {
     std::string rawlog;
     std::optional<std::string> config, sensor, mode;  ///< as given, when given
+    obs::MagneticUnit unit;                            ///< the rawlog's magnetometers
     double stretch{10.0}, step{0.0};                  ///< step 0: the INI's
     bool helpShown{false};
     std::string usage;
@@ -148,6 +152,11 @@ FitArgs parseArgs(int argc, const char* const* argv) {
     TCLAP::ValueArg<double> stretchArg("", "stretch", "length of each fitted stretch [m]", false,
                                        10.0, "M", cmd);
     TCLAP::ValueArg<double> stepArg("", "step", "resampling interval [m]", false, 0.0, "M", cmd);
+    TCLAP::ValueArg<std::string> unitArg(
+        "", "magnetic-unit",
+        std::string("the unit the rawlog's magnetometer numbers are in, if not microtesla: ") +
+            obs::kMagneticUnitChoices,
+        false, "uT", "UNIT", cmd);
     FitArgs a;
     const auto outcome = config::parseCommandLine(cmd, std::vector<std::string>(argv, argv + argc));
     a.helpShown = outcome.kind == config::ParseOutcome::Kind::HelpShown;
@@ -160,6 +169,13 @@ FitArgs parseArgs(int argc, const char* const* argv) {
     const bool stepSet = stepArg.isSet();
     a.step = stepSet ? stepArg.getValue() : 0.0;
     if (a.usage.empty() && !(a.stretch > 0)) a.usage = "--stretch must be > 0";
+    if (a.usage.empty()) {
+        try {
+            a.unit = obs::MagneticUnit::parse(unitArg.getValue());
+        } catch (const std::invalid_argument& e) {
+            a.usage = std::string("--magnetic-unit: ") + e.what();
+        }
+    }
     if (a.usage.empty() && stepSet && !(a.step > 0)) a.usage = "--step must be > 0";
     // A stretch's GP costs the cube of its points: beyond this, a typo (1e-9) not a fit.
     constexpr double kMaxPointsPerStretch = 4000;
@@ -205,7 +221,7 @@ int runMagneticFitApp(int argc, const char* const* argv, std::ostream& out, std:
     }
     Recording recording;
     try {
-        recording = readRecording(path, p);
+        recording = readRecording(path, p, args.unit);
     } catch (const std::exception& e) {  // a read error names the file, entry and offset
         err << "lodestone-magfit: " << e.what() << "\n";
         return 1;
@@ -213,6 +229,14 @@ int runMagneticFitApp(int argc, const char* const* argv, std::ostream& out, std:
     if (recording.readings.empty()) {
         err << "lodestone-magfit: " << path << ": no usable CObservationMagnetometer readings"
             << (p.sensorLabel.empty() ? "" : " from sensor '" + p.sensorLabel + "'") << "\n";
+        return 1;
+    }
+    std::vector<double> magnitudes;
+    for (const auto& reading : recording.readings) magnitudes.push_back(reading.robotField.norm());
+    if (const auto why = obs::implausibleFieldMagnitude(std::move(magnitudes))) {
+        err << "lodestone-magfit: " << path << ": its magnetometer, read as " << args.unit.name
+            << ": " << *why << "; give the unit it is in with --magnetic-unit "
+            << obs::kMagneticUnitChoices << "\n";
         return 1;
     }
     const auto& odometry = recording.odometry;

@@ -4,6 +4,10 @@
 #include <gtest/gtest.h>
 #include <lodestone/datasets/MagneticRecordingImport.h>
 #include <MagneticFitApp.h>
+#include <lodestone/io/RawlogSource.h>
+#include <lodestone/io/RawlogWriter.h>
+#include <lodestone/obs/CObservationMagnetometer.h>
+#include <lodestone/obs/registerAllClasses.h>
 
 #include <cmath>
 #include <fstream>
@@ -110,4 +114,31 @@ TEST(MagneticFitApp, BadInputsAreNamedErrors) {
     r = runFit({rawlog, "--step", "1e-9"});  // 10^10 points a stretch: refused, not attempted
     EXPECT_EQ(r.code, 2);
     EXPECT_NE(r.err.find("--step"), std::string::npos) << r.err;
+}
+
+TEST(MagneticFitApp, AMagnetometerInAnotherUnitIsRefusedOrReadInIt) {
+    // The GP draw's readings (|B| about 40 uT) written in gauss: read as microtesla they are
+    // refused naming the rawlog and the option; with it, the same fit as in microtesla.
+    lodestone::test::TempDir dir;
+    const auto uT = writeGpRecording(dir.file("gp.rawlog"), 0.4, 3.0);
+    lodestone::registerAllClasses();
+    {
+        lodestone::io::RawlogSource in(uT);
+        lodestone::io::RawlogWriter outGauss(dir.file("gauss.rawlog"), {});
+        while (auto obs = in.next()) {
+            if (auto m = std::dynamic_pointer_cast<lodestone::obs::CObservationMagnetometer>(obs))
+                m->field *= 0.01;
+            outGauss.write(*obs);
+        }
+        outGauss.close();
+    }
+    auto r = runFit({dir.file("gauss.rawlog")});
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("gauss.rawlog: its magnetometer, read as uT"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--magnetic-unit"), std::string::npos) << r.err;
+    const auto asGauss = runFit({dir.file("gauss.rawlog"), "--magnetic-unit", "gauss"});
+    const auto asUT = runFit({uT});
+    ASSERT_EQ(asGauss.code, 0) << asGauss.err;
+    EXPECT_NEAR(valueOf(asGauss.out, "gp_length_scale"), valueOf(asUT.out, "gp_length_scale"), 1e-3);
+    EXPECT_EQ(runFit({uT, "--magnetic-unit", "furlongs"}).code, 2);
 }
