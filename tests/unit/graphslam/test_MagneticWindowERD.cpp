@@ -291,3 +291,19 @@ TEST(MagneticWindowERD, ThePassNoiseIsLearntFromTheRunsOwnMatches) {
     ASSERT_GT(learnt.stats.edges, 5u);
     for (const auto& c : errors(learnt)) EXPECT_LT(c.position, 0.2);
 }
+
+TEST(MagneticWindowERD, AQuietFieldIsDecidedOnceTheNoiseIsLearnt) {
+    // A building a third as lively as the others here, its readings repeating exactly: under
+    // the 1 uT prior most 2 m windows are flat and the few matches chain little. Once the run's
+    // own matches have taught it the pass noise (here 0.2 uT), the windows are decisive - and
+    // right.
+    const FloorField quiet(16, 2.0);
+    const std::vector<Eigen::Vector2d> thrice = {{0, 0},  {20, 0}, {20, 4}, {-3, 4}, {-3, 0},
+                                                 {20, 0}, {20, 4}, {-3, 4}, {-3, 0}, {20, 0}};
+    const auto fixed = walk(thrice, quiet, "chain_windows = 6\n");
+    const auto learnt = walk(thrice, quiet, "chain_windows = 6\nlearn_noise = true\n");
+    EXPECT_GT(learnt.stats.noiseUpdates, 0u);
+    EXPECT_GT(learnt.stats.edges, fixed.stats.edges + 10) << fixed.stats.edges;
+    EXPECT_LT(learnt.stats.flat, fixed.stats.flat);
+    for (const auto& c : errors(learnt)) EXPECT_LT(c.position, 0.2);
+}

@@ -46,10 +46,12 @@ bool MagneticWindowERD::chainEvidence(std::vector<Candidate>& all, std::size_t f
         if (first < back || query[first - back].segment != query[newest].segment) break;
         const std::size_t f = first - back;
         const double excitation = magnetic::windowExcitation(query, f, n_, params_.noise.sigma);
-        // A flat window matches anywhere: it is passed over (the candidates followed on
-        // through it as the passes ran alike), its evidence none.
-        if (std::min(excitation, mapFrameExcitation(f)) <
-            magnetic::chiSquareQuantile(3.0 * double(n_) - 3, params_.quantile)) {
+        // A flat window matches anywhere: under a noise not learnt from the run it is passed
+        // over (the candidates followed on through it as the passes ran alike), its evidence
+        // none; under a learnt one its little evidence counts.
+        if (!noiseLearnt() &&
+            std::min(excitation, mapFrameExcitation(f)) <
+                magnetic::chiSquareQuantile(3.0 * double(n_) - 3, params_.quantile)) {
             for (std::size_t i = 0; i < all.size(); ++i) {
                 if (start[i] < 0) continue;
                 const bool forward = all[i].direction == WindowDirection::Forward;

@@ -247,6 +247,8 @@ void MagneticWindowERD::query(std::size_t first) {
     // (The map frame's own artefact, the graph's heading through a turn, is weighed down.)
     out.flat = std::min(excitation, mapFrameExcitation(first)) <
                magnetic::chiSquareQuantile(dof - 3, params_.quantile);
+    if (out.flat && noiseLearnt() && params_.chainWindows > 1 && params_.passDisplacement)
+        out.flat = stretchFlat(first);
     std::vector<Candidate> candidates;
     if (out.flat) {
         ++stats_.flat;  // a flat field matches anywhere
@@ -339,7 +341,7 @@ void MagneticWindowERD::decide(std::size_t first, double excitation,
     }
     out.posterior = placePosterior(*out.best, candidates);
     if (out.posterior < params_.minPosterior && params_.passDisplacement &&
-        params_.chainWindows > 1 && (!noise_ || noise_->dof() >= noise_->priorDof())) {
+        params_.chainWindows > 1 && (!noise_ || noiseLearnt())) {
         // Windows in sequence; then the likeliest place over them, if its own window fits.
         const double fitLimit = magnetic::chiSquareQuantile(3.0 * double(n_), params_.quantile);
         const auto decided = [&] {

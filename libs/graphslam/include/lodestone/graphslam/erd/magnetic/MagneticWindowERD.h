@@ -215,6 +215,12 @@ class MagneticWindowERD : public EdgeDecider {
     /** (learn_noise) A closed window's differences into the pass noise estimate; the tests
      * take the estimate once it moved by a tenth (MagneticWindowNoise.cpp). */
     void learnNoise(const Candidate& best, std::size_t first);
+    /** (learn_noise) The run's matches outweigh the prior: the noise is the run's own. */
+    bool noiseLearnt() const;
+    /** Whether the stretch of windows a chain would gather before the query's (in its segment)
+     * is flat in the heading-free channels (a window flat alone is then queried only where the
+     * noise is learnt: MagneticWindowNoise.cpp). */
+    bool stretchFlat(std::size_t first) const;
     /** The displacement model's basis for the current noise, and what was projected in it. */
     void rebuildBasis();
     /** The tests on a query's candidates (fit, posterior), then its closure. */
