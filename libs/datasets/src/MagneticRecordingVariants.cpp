@@ -1,4 +1,5 @@
 #include <lodestone/datasets/MagneticRecordingVariants.h>
+#include <lodestone/magnetic/PassNoiseEstimate.h>
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -95,29 +96,20 @@ MagneticRecording inUnit(const MagneticRecording& rec, const std::string& unitTe
 }  // namespace
 
 double passRepeatability(const MagneticRecording& rec, double radius, double gap) {
+    // The same pairs as a map's own passes give (magnetic::passRepeatabilityAcrossPasses), by
+    // the reference positions and the walk along them.
     const auto& s = rec.samples;
-    std::vector<double> walk(s.size(), 0.0);
-    for (std::size_t i = 1; i < s.size(); ++i)
-        walk[i] = walk[i - 1] + std::hypot(s[i].x - s[i - 1].x, s[i].y - s[i - 1].y);
+    std::vector<Eigen::Vector2d> positions(s.size());
     std::vector<Eigen::Vector3d> world(s.size());
-    for (std::size_t i = 0; i < s.size(); ++i) world[i] = toWorld(s[i]);
-    std::vector<double> d;
-    for (std::size_t j = 0; j < s.size(); ++j) {
-        for (std::size_t i = 0; i < j && walk[j] - walk[i] > gap; ++i) {
-            if (std::hypot(s[j].x - s[i].x, s[j].y - s[i].y) > radius) continue;
-            const Eigen::Vector3d e = world[j] - world[i];
-            d.insert(d.end(), {e.x(), e.y(), e.z()});
-        }
+    std::vector<double> walk(s.size(), 0.0);
+    for (std::size_t i = 0; i < s.size(); ++i) {
+        positions[i] = {s[i].x, s[i].y};
+        world[i] = toWorld(s[i]);
+        if (i > 0) walk[i] = walk[i - 1] + (positions[i] - positions[i - 1]).norm();
     }
-    if (d.size() < 30) return NAN;
-    const auto median = [](std::vector<double> v) {
-        const auto mid = v.begin() + std::ptrdiff_t(v.size() / 2);
-        std::nth_element(v.begin(), mid, v.end());
-        return *mid;
-    };
-    const double m = median(d);
-    for (auto& v : d) v = std::abs(v - m);
-    return 1.4826 * median(d) / std::sqrt(2.0);
+    const auto sigma = magnetic::passRepeatabilityAcrossPasses(
+        positions, world, walk, std::vector<int>(s.size(), 0), radius, gap, 10);
+    return sigma ? *sigma : NAN;
 }
 
 MagneticRecording magneticVariant(const MagneticRecording& rec, const std::string& spec,
