@@ -132,6 +132,7 @@ WindowDisplacementModel::Evidence WindowDisplacementModel::evidenceProjected(
     e.logFar = std::isfinite(farMax) ? farMax + std::log(far) : -INFINITY;
     e.nearDelta2 = (near * bin_delta2_.head(nearBins).array()).sum() / near.sum();
     e.chi2AtRadius = p2.dot(inverseFactors(nearBins * h));
+    e.logUnrelated = unrelated;
     return e;
 }
 

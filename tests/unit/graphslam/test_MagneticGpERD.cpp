@@ -201,35 +201,43 @@ Verdict judgeProposals(const graphslam::SlamEngine& engine,
 }
 
 /** The decoy run through MagneticWindowERD (its defaults, the gate's heading drift off as for
- * the GP decider). */
-Verdict runWindow(const Decoy& decoy, graphslam::MagneticWindowERD::Stats* stats = nullptr) {
+ * the GP decider; `extraIni` added). */
+Verdict runWindow(const Decoy& decoy, graphslam::MagneticWindowERD::Stats* stats = nullptr,
+                  const std::string& extraIni = "") {
     auto sc = script(decoy);
     const auto r = test::runMagneticScript<graphslam::MagneticWindowERD>(
         std::move(sc.steps), std::move(sc.records),
-        "[MagneticWindowERD]\ngate_heading_drift = 0\n");
+        "[MagneticWindowERD]\ngate_heading_drift = 0\n" + extraIni);
     if (stats) *stats = r.erd->stats();
     return judgeProposals(*r.engine, sc.truth);
 }
 
+// Every null model the window closer has: the decoys fool none of them.
+const char* const kNullModels[] = {"null_model = window\n", "null_model = building\n"};
+
 }  // namespace
 
 TEST(MagneticWindowERD, ALookAlikeOutsideTheGateIsNotMatched) {
-    Decoy d;
-    d.separation = 20;
-    const auto v = runWindow(d);
-    EXPECT_GT(v.closures, 5u);
-    EXPECT_EQ(v.toDecoy, 0u);
-    EXPECT_EQ(v.right, v.closures);
+    for (const char* null : kNullModels) {
+        Decoy d;
+        d.separation = 20;
+        const auto v = runWindow(d, nullptr, null);
+        EXPECT_GT(v.closures, 5u) << null;
+        EXPECT_EQ(v.toDecoy, 0u) << null;
+        EXPECT_EQ(v.right, v.closures) << null;
+    }
 }
 
 TEST(MagneticWindowERD, InsideTheGateTheLikelierPlaceIsChosen) {
-    Decoy d;
-    d.separation = 2.5;
-    d.extra = 1.0;
-    const auto v = runWindow(d);
-    EXPECT_GT(v.closures, 5u);
-    EXPECT_EQ(v.toDecoy, 0u);
-    EXPECT_EQ(v.right, v.closures);
+    for (const char* null : kNullModels) {
+        Decoy d;
+        d.separation = 2.5;
+        d.extra = 1.0;
+        const auto v = runWindow(d, nullptr, null);
+        EXPECT_GT(v.closures, 5u) << null;
+        EXPECT_EQ(v.toDecoy, 0u) << null;
+        EXPECT_EQ(v.right, v.closures) << null;
+    }
 }
 
 // An exact copy inside the gate: the field cannot tell the places apart, the position prior
@@ -237,21 +245,25 @@ TEST(MagneticWindowERD, InsideTheGateTheLikelierPlaceIsChosen) {
 // finds them equally likely and closes nothing). Only where the prior alone reaches
 // min_posterior is a closure made, and then to the true place.
 TEST(MagneticWindowERD, AnExactCopyInsideTheGateIsToldApartByThePositionPriorOnly) {
-    Decoy d;
-    d.separation = 2.5;
-    d.extra = 0;
-    graphslam::MagneticWindowERD::Stats stats;
-    const auto v = runWindow(d, &stats);
-    EXPECT_GT(stats.ambiguous, 0u);
-    EXPECT_EQ(v.toDecoy, 0u);
-    EXPECT_EQ(v.right, v.closures);
+    for (const char* null : kNullModels) {
+        Decoy d;
+        d.separation = 2.5;
+        d.extra = 0;
+        graphslam::MagneticWindowERD::Stats stats;
+        const auto v = runWindow(d, &stats, null);
+        EXPECT_GT(stats.ambiguous, 0u) << null;
+        EXPECT_EQ(v.toDecoy, 0u) << null;
+        EXPECT_EQ(v.right, v.closures) << null;
+    }
 }
 
 TEST(MagneticWindowERD, AFieldNeverSeenBeforeGivesNoClosure) {
-    Decoy d;
-    d.separation = 20;
-    d.freshThirdPass = true;
-    EXPECT_EQ(runWindow(d).closures, 0u);
+    for (const char* null : kNullModels) {
+        Decoy d;
+        d.separation = 20;
+        d.freshThirdPass = true;
+        EXPECT_EQ(runWindow(d, nullptr, null).closures, 0u) << null;
+    }
 }
 
 TEST(MagneticGpERD, ALookAlikeOutsideTheGateIsNotMatchedNorMakesTheTrueOneAmbiguous) {

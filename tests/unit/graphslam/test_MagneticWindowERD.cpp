@@ -264,7 +264,8 @@ TEST(MagneticWindowERD, ABadIniNamesTheKey) {
              {"min_travel_gap = 1\n", "min_travel_gap"},
              {"confirm = perhaps\n", "confirm"},
              {"window_sigma = nan\n", "window_sigma"},
-             {"pass_displacement = 2\n", "pass_displacement"}}) {
+             {"pass_displacement = 2\n", "pass_displacement"},
+             {"null_model = buildings\n", "null_model"}}) {
         const auto e = errorOf(body);
         EXPECT_NE(e.find(key), std::string::npos) << body << " -> " << e;
         EXPECT_NE(e.find("MagneticWindowERD"), std::string::npos) << e;
@@ -306,4 +307,20 @@ TEST(MagneticWindowERD, AQuietFieldIsDecidedOnceTheNoiseIsLearnt) {
     EXPECT_GT(learnt.stats.edges, fixed.stats.edges + 10) << fixed.stats.edges;
     EXPECT_LT(learnt.stats.flat, fixed.stats.flat);
     for (const auto& c : errors(learnt)) EXPECT_LT(c.position, 0.2);
+}
+
+TEST(MagneticWindowERD, AQuietFieldClosesAgainstTheBuildingsOwnNull) {
+    // The quiet building above under the fixed 1 uT noise, never learnt: against a null as
+    // quiet as each window most windows are no evidence of anywhere. Against the building's own
+    // windows (null_model = building) a window that fits few places is evidence however quiet -
+    // more closures, fewer flat queries, and every closure right.
+    const FloorField quiet(16, 2.0);
+    const std::vector<Eigen::Vector2d> thrice = {{0, 0},  {20, 0}, {20, 4}, {-3, 4}, {-3, 0},
+                                                 {20, 0}, {20, 4}, {-3, 4}, {-3, 0}, {20, 0}};
+    const auto window = walk(thrice, quiet, "chain_windows = 6\n");
+    const auto building = walk(thrice, quiet, "chain_windows = 6\nnull_model = building\n");
+    EXPECT_DOUBLE_EQ(building.sigmaInUse, 1.0);
+    EXPECT_GT(building.stats.edges, window.stats.edges + 10) << window.stats.edges;
+    EXPECT_LT(building.stats.flat, window.stats.flat);
+    for (const auto& c : errors(building)) EXPECT_LT(c.position, 0.3);
 }

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <unordered_map>
 
 namespace lodestone::graphslam {
@@ -23,7 +24,9 @@ constexpr double kChainMargin = 25.0;
 }  // namespace
 
 bool MagneticWindowERD::chainEvidence(std::vector<Candidate>& all, std::size_t first,
-                                      const std::function<bool()>& decided) const {
+                                      const std::function<bool()>& decided,
+                                      const magnetic::WindowDisplacementModel* firstModel,
+                                      double firstNull) const {
     const auto& query = queried().samples();
     const std::size_t newest = first + n_ - 1;
     double bestLog = -INFINITY;
@@ -39,6 +42,11 @@ bool MagneticWindowERD::chainEvidence(std::vector<Candidate>& all, std::size_t f
         if (k.logWeight >= bestLog - kChainMargin)
             start[i] = long(k.direction == WindowDirection::Forward ? k.sample + 1 - n_ : k.sample);
     }
+    // With the building's null: each window's evidence on its absolute footing, and the whole
+    // chain against the building's stretches as long (buildingNull) at the end.
+    const bool building = std::isfinite(firstNull) && firstModel;
+    std::vector<NullWindow> windows{{first, firstModel}};
+    std::vector<std::unique_ptr<magnetic::WindowDisplacementModel>> models;  // (kept for them)
     bool chained = false;
     for (int j = 1; j < params_.chainWindows; ++j) {
         // The query's window j back, whole and in its segment.
@@ -46,10 +54,12 @@ bool MagneticWindowERD::chainEvidence(std::vector<Candidate>& all, std::size_t f
         if (first < back || query[first - back].segment != query[newest].segment) break;
         const std::size_t f = first - back;
         const double excitation = magnetic::windowExcitation(query, f, n_, params_.noise.sigma);
-        // A flat window matches anywhere: under a noise not learnt from the run it is passed
-        // over (the candidates followed on through it as the passes ran alike), its evidence
-        // none; under a learnt one its little evidence counts.
-        if (!noiseLearnt() &&
+        // A flat window matches anywhere: under a noise not learnt from the run, against a null
+        // as quiet as itself, it is passed over (the candidates followed on through it as the
+        // passes ran alike), its evidence none; under a learnt noise or the building's null its
+        // little evidence counts (so with the building's null the chain's windows are the
+        // stretch buildingNull follows: none passed over).
+        if (!flatWindowsInform() &&
             std::min(excitation, mapFrameExcitation(f)) <
                 magnetic::chiSquareQuantile(3.0 * double(n_) - 3, params_.quantile)) {
             for (std::size_t i = 0; i < all.size(); ++i) {
@@ -62,8 +72,9 @@ bool MagneticWindowERD::chainEvidence(std::vector<Candidate>& all, std::size_t f
             continue;
         }
         const double spread = std::min(windowSpread(excitation), mapFrameSpread(f));
-        const magnetic::WindowDisplacementModel model(basis_, spread, params_.sigmaCross,
-                                                      params_.distinctRadius);
+        models.push_back(std::make_unique<magnetic::WindowDisplacementModel>(
+            basis_, spread, params_.sigmaCross, params_.distinctRadius));
+        const auto& model = *models.back();
         const Eigen::MatrixX3d projected = projectedWindow(queried(), f, false);
         // Two passes sigma_cross apart differ in length through the window's turn by that times
         // the turn: the realignment a window may need, at least a sample.
@@ -112,11 +123,12 @@ bool MagneticWindowERD::chainEvidence(std::vector<Candidate>& all, std::size_t f
                              .first;
                 }
                 const auto& e = it->second;
+                const double null = building ? e.logUnrelated : 0.0;
                 ++positions;
-                sumNear = logAdd(sumNear, e.logNear);
-                sumFar = logAdd(sumFar, e.logFar);
-                if (e.logNear > bestNear) {
-                    bestNear = e.logNear;
+                sumNear = logAdd(sumNear, e.logNear + null);
+                sumFar = logAdd(sumFar, e.logFar + null);
+                if (e.logNear + null > bestNear) {
+                    bestNear = e.logNear + null;
                     bestStart = s;
                 }
             }
@@ -133,11 +145,24 @@ bool MagneticWindowERD::chainEvidence(std::vector<Candidate>& all, std::size_t f
         }
         if (!any) break;
         chained = true;
+        windows.push_back({f, &model});
         for (std::size_t i = 0; i < all.size(); ++i) {
             if (start[i] >= 0) continue;
             all[i].logWeight += gainNear;
             all[i].logFar += gainFar;
             all[i].total = -2 * all[i].logWeight;
+        }
+    }
+    if (chained && building) {
+        // The query window was weighed against the building's windows (firstNull); the
+        // chain is, as a whole, against its stretches.
+        const double stretch = buildingNull(windows);
+        if (!std::isfinite(stretch)) return false;  // (undecided: too little path)
+        for (auto& k : all) {
+            if (!std::isfinite(k.logWeight)) continue;
+            k.logWeight += firstNull - stretch;
+            k.logFar += firstNull - stretch;
+            k.total = -2 * k.logWeight;
         }
     }
     // Decided on the whole chain, not at the first window that tips it: evidence looked at

@@ -56,6 +56,13 @@ void MagneticWindowERD::configure(const mrpt::config::CConfigFileBase& ini) {
     p.noise.biasSigma = s.getDouble("window_bias_sigma", p.noise.biasSigma);
     p.noise.trendSigma = s.getDouble("window_trend_sigma", p.noise.trendSigma);
     p.lengthScale = s.getDouble("gp_length_scale", p.lengthScale);
+    {
+        const std::string null = s.getString("null_model", "window");
+        using N = Params::NullModel;
+        if (null == "window") p.nullModel = N::Window;
+        else if (null == "building") p.nullModel = N::Building;
+        else s.fail("null_model", "must be window or building (got '" + null + "')");
+    }
     p.nullOdds = s.getDouble("null_odds", p.nullOdds);
     p.minTravelGap = s.getDouble("min_travel_gap", p.minTravelGap);
     p.gateChi2 = s.getDouble("gate_chi2", p.gateChi2);
@@ -247,7 +254,7 @@ void MagneticWindowERD::query(std::size_t first) {
     // (The map frame's own artefact, the graph's heading through a turn, is weighed down.)
     out.flat = std::min(excitation, mapFrameExcitation(first)) <
                magnetic::chiSquareQuantile(dof - 3, params_.quantile);
-    if (out.flat && noiseLearnt() && params_.chainWindows > 1 && params_.passDisplacement)
+    if (out.flat && flatWindowsInform() && params_.chainWindows > 1 && params_.passDisplacement)
         out.flat = stretchFlat(first);
     std::vector<Candidate> candidates;
     if (out.flat) {
@@ -322,18 +329,30 @@ void MagneticWindowERD::decide(std::size_t first, double excitation,
         const double whole = std::min(spread, mapFrameSpread(first));
         if (params_.fineAmplitude) {
             out.displacement.emplace(basis_, std::min(fineAmplitude(first), whole),
-                                     params_.sigmaCross, params_.distinctRadius, whole);
+                                     params_.sigmaCross, params_.distinctRadius,
+                                     whole);
         } else {
             out.displacement.emplace(basis_, whole, params_.sigmaCross, params_.distinctRadius);
         }
-        weighDisplaced(candidates, first, *out.displacement);
+        // (building: weighed on the null's footing, its constant taken off once the best fits -
+        // the null costs a pass over the path)
+        weighDisplaced(candidates, first, *out.displacement,
+                       params_.nullModel == Params::NullModel::Building ? 0.0 : NAN);
     }
-    out.best =
-        *std::min_element(candidates.begin(), candidates.end(),
-                          [](const Candidate& a, const Candidate& b) { return a.total < b.total; });
+    const auto likeliest = [&] {
+        return *std::min_element(
+            candidates.begin(), candidates.end(),
+            [](const Candidate& a, const Candidate& b) { return a.total < b.total; });
+    };
+    out.best = likeliest();
     if (out.best->fitStat > magnetic::chiSquareQuantile(3.0 * double(n_), params_.quantile)) {
         ++stats_.noFit;
         return;
+    }
+    double firstNull = NAN;  // (null_model = building) the query window's
+    if (params_.passDisplacement && params_.nullModel == Params::NullModel::Building) {
+        firstNull = weighAgainstBuilding(candidates, first, *out.displacement);
+        out.best = likeliest();
     }
     if (!params_.passDisplacement) {
         const magnetic::WindowNullModel null(n_, params_.noise, spread, params_.lengthScale);
@@ -341,7 +360,7 @@ void MagneticWindowERD::decide(std::size_t first, double excitation,
     }
     out.posterior = placePosterior(*out.best, candidates);
     if (out.posterior < params_.minPosterior && params_.passDisplacement &&
-        params_.chainWindows > 1 && (!noise_ || noiseLearnt())) {
+        params_.chainWindows > 1 && (!noise_ || flatWindowsInform())) {
         // Windows in sequence; then the likeliest place over them, if its own window fits.
         const double fitLimit = magnetic::chiSquareQuantile(3.0 * double(n_), params_.quantile);
         const auto decided = [&] {
@@ -353,7 +372,8 @@ void MagneticWindowERD::decide(std::size_t first, double excitation,
             out.posterior = placePosterior(*out.best, candidates);
             return out.posterior >= params_.minPosterior;
         };
-        if (chainEvidence(candidates, first, decided)) {
+        if (chainEvidence(candidates, first, decided,
+                          out.displacement ? &*out.displacement : nullptr, firstNull)) {
             ++stats_.chained;
             if (out.posterior >= params_.minPosterior) ++stats_.chainedAccepted;
         }
@@ -445,16 +465,6 @@ double MagneticWindowERD::mapFrameSpread(std::size_t first) const {
     return windowSpread(sum / (params_.noise.sigma * params_.noise.sigma));
 }
 
-double MagneticWindowERD::logPriorNormalizer(const std::vector<Candidate>& all) {
-    // The position prior normalized over the candidates (both directions of every sample).
-    double logZ = -INFINITY;
-    for (const auto& k : all) {
-        const double v = -0.5 * k.gate2;
-        logZ = std::max(logZ, v) + std::log1p(std::exp(-std::abs(logZ - v)));
-    }
-    return logZ;
-}
-
 double MagneticWindowERD::windowTurn(const magnetic::SupernodeTrack& track,
                                      std::size_t start) const {
     const auto& samples = track.samples();
@@ -471,45 +481,6 @@ Eigen::MatrixX3d MagneticWindowERD::residuals(const Candidate& k, std::size_t fi
         queried().samples(), first, k.track->samples(),
         k.direction == WindowDirection::Forward ? k.sample + 1 - n_ : k.sample, n_, k.direction,
         k.fit);
-}
-
-void MagneticWindowERD::weighSameLine(const Candidate& best, std::vector<Candidate>& all,
-                                      std::size_t first,
-                                      const magnetic::WindowNullModel& null) const {
-    const double logZ = logPriorNormalizer(all);
-    // A candidate that fits worse than this beyond the fit test weighs nothing next to one
-    // that passes it: its likelihood ratio is not worth computing.
-    const double negligible =
-        magnetic::chiSquareQuantile(3.0 * double(n_), 1 - 1e-12) + best.fit.chi2;
-    for (auto& k : all) {
-        if (k.fit.chi2 > negligible) continue;
-        k.logWeight = null.logLikelihoodRatio(residuals(k, first)) -
-                      0.5 * (k.gate2 + k.fit.turnPriorChi2) - logZ;
-    }
-}
-
-void MagneticWindowERD::weighDisplaced(std::vector<Candidate>& all, std::size_t first,
-                                       const magnetic::WindowDisplacementModel& model) const {
-    const double logZ = logPriorNormalizer(all);
-    // A candidate whose differences fail the fit test by this much even at distinct_radius
-    // apart weighs nothing (its weight as a pass further beside is left out with it).
-    const double hopeless = magnetic::chiSquareQuantile(3.0 * double(n_), 1 - 1e-12);
-    const Eigen::MatrixX3d queryProjected = projectedWindow(queried(), first, false);
-    for (auto& k : all) {
-        k.fitStat = model.chi2LowerBound(k.fit.chi2 - k.fit.turnPriorChi2, params_.distinctRadius);
-        k.total = INFINITY;
-        if (k.fitStat > hopeless) continue;
-        const std::size_t start =
-            k.direction == WindowDirection::Forward ? k.sample + 1 - n_ : k.sample;
-        const auto e = model.evidenceProjected(projectedResiduals(k, start, queryProjected),
-                                               nearRadius(windowTurn(*k.track, start)));
-        const double prior = -0.5 * (k.gate2 + k.fit.turnPriorChi2) - logZ;
-        k.logWeight = e.logNear + prior;
-        k.logFar = e.logFar + prior;
-        k.nearDelta2 = e.nearDelta2;
-        k.fitStat = e.chi2AtRadius;
-        k.total = -2 * k.logWeight;
-    }
 }
 
 Eigen::MatrixX3d MagneticWindowERD::projectedWindow(const magnetic::SupernodeTrack& track,
@@ -552,26 +523,6 @@ Eigen::MatrixX3d MagneticWindowERD::projectedResiduals(const Candidate& k, std::
     d.col(1) = query.col(1) - (-s * t.col(0) + c * t.col(1));
     d.col(2) = query.col(2) - t.col(2);
     return d;
-}
-
-double MagneticWindowERD::placePosterior(const Candidate& best,
-                                         const std::vector<Candidate>& all) const {
-    double maxLog = std::log(params_.nullOdds);
-    for (const auto& k : all) maxLog = std::max({maxLog, k.logWeight, k.logFar});
-
-    const auto& b = best.track->samples()[best.sample];
-    double same = 0, rest = std::exp(std::log(params_.nullOdds) - maxLog);
-    for (const auto& k : all) {
-        if (std::isfinite(k.logFar)) rest += std::exp(k.logFar - maxLog);
-        if (!std::isfinite(k.logWeight)) continue;
-        const double w = std::exp(k.logWeight - maxLog);
-        // Positions compare within a segment and across joined ones (a loaded map's sessions,
-        // a relocated segment): the passes of one place there are one place.
-        const bool samePlace = sameFrame(k.track->samples()[k.sample].segment, b.segment) &&
-                               (k.position - best.position).norm() <= params_.distinctRadius;
-        (samePlace ? same : rest) += w;
-    }
-    return same / (same + rest);
 }
 
 }  // namespace lodestone::graphslam

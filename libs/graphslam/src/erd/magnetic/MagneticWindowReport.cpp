@@ -19,6 +19,8 @@ JsonObject MagneticWindowERD::describe() const {
         .set("window_bias_sigma", params_.noise.biasSigma)
         .set("window_trend_sigma", params_.noise.trendSigma)
         .set("gp_length_scale", params_.lengthScale)
+        .set("null_model",
+             params_.nullModel == Params::NullModel::Building ? "building" : "window")
         .set("null_odds", params_.nullOdds)
         .set("min_travel_gap", params_.minTravelGap)
         .set("gate_chi2", params_.gateChi2)

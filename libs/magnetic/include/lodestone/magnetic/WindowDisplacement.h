@@ -52,6 +52,10 @@ class WindowDisplacementModel {
         double nearDelta2{0};  ///< E[delta^2 | d, delta <= near radius] [m^2]
         /** d' C(near radius)^-1 d: chi-square with 3n dof if the passes ran that far apart. */
         double chi2AtRadius{0};
+        /** log p(d | unrelated places), up to a constant shared by every window of the basis:
+         * logNear + logUnrelated is log p(d, delta <= near radius) on the same footing, to
+         * weigh against another null (MagneticWindowERD's building null). */
+        double logUnrelated{0};
     };
     Evidence evidence(const Eigen::MatrixX3d& d, double nearRadius) const;
     /** The same from the differences already in the basis (Basis::toEigenbasis * d): the

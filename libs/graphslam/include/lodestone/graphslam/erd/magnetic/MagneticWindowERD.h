@@ -75,7 +75,8 @@ class MagneticWindowERD : public EdgeDecider {
          * `window_sigma` is then the prior, worth `noise_prior_windows` windows of readings,
          * and each closed window's differences (windows not overlapping) update it; the
          * tests follow the estimate. With chain_windows, windows are chained only once the
-         * matches outweigh the prior (a chain adds up whatever the noise model gets wrong). */
+         * matches outweigh the prior (a chain adds up whatever the noise model gets wrong) or
+         * the null is the run's own (null_model). */
         bool learnNoise{false};
         double noisePriorWindows{1.0};
         /** How the readings of one place differ between two passes (magnetic::PassNoise):
@@ -87,6 +88,15 @@ class MagneticWindowERD : public EdgeDecider {
          * the query window's own spread, how two unrelated stretches differ - the null
          * hypothesis every candidate must beat. */
         double lengthScale{0.28};
+        /** How the null hypothesis - no earlier place in the gate - reads the query window.
+         * Window: as two unrelated stretches of a field as lively as the query window (its own
+         * spread) differ; a quiet window then looks as much like any quiet stretch as like its
+         * own place, and never closes. Building: the query window read at a place of the
+         * building taken at random - its likelihood averaged over windows of the whole path
+         * so far, a length scale apart (MagneticWindowNull.cpp): a quiet window at a level
+         * few places share is evidence, one at the building's usual level is not. */
+        enum class NullModel { Window, Building };
+        NullModel nullModel{NullModel::Window};
         double nullOdds{1.0};  ///< prior odds of "no earlier place" against "one of the candidates"
         double minTravelGap{4.0};  ///< [m] targets the robot left at least this long ago
         double gateChi2{11.83};    ///< 2 dof, 99.73 %
@@ -190,6 +200,7 @@ class MagneticWindowERD : public EdgeDecider {
         double logWeight{-INFINITY};  ///< log of its posterior weight: its place within reach
         double logFar{-INFINITY};     ///< ... and its place beside, passed further apart
         double nearDelta2{0};         ///< [m^2] the passes' squared distance, posterior
+        double logUnrelated{0};       ///< Evidence::logUnrelated of its differences
     };
     /** A candidate's prior: the gate's squared Mahalanobis distance, the graph's relative
      * heading and its variance (across a kidnap: 0, 0, infinite). */
@@ -209,20 +220,44 @@ class MagneticWindowERD : public EdgeDecider {
     void query(std::size_t first);
     /** The earlier windows' evidence added to every candidate within reach of the best, up to
      * chain_windows, then `decided` asked once on the whole chain (MagneticWindowChain.cpp);
-     * false when there was no earlier window. */
+     * false when there was no earlier window. With a building null (`firstNull` finite: the
+     * query window's, `firstModel` its model) the chain is weighed against the building's
+     * stretches as long as itself. */
     bool chainEvidence(std::vector<Candidate>& all, std::size_t first,
-                       const std::function<bool()>& decided) const;
+                       const std::function<bool()>& decided,
+                       const magnetic::WindowDisplacementModel* firstModel,
+                       double firstNull) const;
     /** (learn_noise) A closed window's differences into the pass noise estimate; the tests
      * take the estimate once it moved by a tenth (MagneticWindowNoise.cpp). */
     void learnNoise(const Candidate& best, std::size_t first);
     /** (learn_noise) The run's matches outweigh the prior: the noise is the run's own. */
     bool noiseLearnt() const;
+    /** A flat window's evidence counts (in a chain, and a window flat alone is queried where
+     * the stretch before it is not): the noise is learnt, or the null is the building's own
+     * (null_model = building) - a quiet window's level then says how few places it fits
+     * (MagneticWindowNoise.cpp). */
+    bool flatWindowsInform() const;
     /** Whether the stretch of windows a chain would gather before the query's (in its segment)
-     * is flat in the heading-free channels (a window flat alone is then queried only where the
-     * noise is learnt: MagneticWindowNoise.cpp). */
+     * is flat in the heading-free channels (a window flat alone is then queried only where
+     * flatWindowsInform: MagneticWindowNoise.cpp). */
     bool stretchFlat(std::size_t first) const;
     /** The displacement model's basis for the current noise, and what was projected in it. */
     void rebuildBasis();
+    /** A query window (its first sample) and the displacement model it is weighed with. */
+    struct NullWindow {
+        std::size_t first{0};
+        const magnetic::WindowDisplacementModel* model{nullptr};
+    };
+    /** (null_model = building) log of the likelihood of the query's windows (the newest first,
+     * then each a window further back) at a stretch of the building taken at random, on the
+     * footing of Evidence::logNear + logUnrelated; NaN while the path is too short
+     * (MagneticWindowNull.cpp). */
+    double buildingNull(const std::vector<NullWindow>& windows) const;
+    /** (null_model = building) Candidates weighed with logNull = 0 put against buildingNull,
+     * or against unrelated places of the model while the path is too short for it; returns
+     * the null used (NaN: the model's). */
+    double weighAgainstBuilding(std::vector<Candidate>& all, std::size_t first,
+                                const magnetic::WindowDisplacementModel& model) const;
     /** The tests on a query's candidates (fit, posterior), then its closure. */
     void decide(std::size_t first, double excitation, std::vector<Candidate>& candidates,
                 Outcome& out);
@@ -262,9 +297,10 @@ class MagneticWindowERD : public EdgeDecider {
     double fineAmplitude(std::size_t first) const;
     /** log of the position prior's normalizer over the candidates. */
     static double logPriorNormalizer(const std::vector<Candidate>& all);
-    /** With pass_displacement: every candidate's weight near and far, its total and fitStat. */
+    /** With pass_displacement: every candidate's weight near and far, its total and fitStat;
+     * against `logNull` (buildingNull) where finite, else the model's unrelated places. */
     void weighDisplaced(std::vector<Candidate>& all, std::size_t first,
-                        const magnetic::WindowDisplacementModel& model) const;
+                        const magnetic::WindowDisplacementModel& model, double logNull) const;
     /** [rad] how far the robot turned over a window of `track` from `start` (graph poses). */
     double windowTurn(const magnetic::SupernodeTrack& track, std::size_t start) const;
     /** The passes' distance that places the robot within distinct_radius: in a turn `turn` the
