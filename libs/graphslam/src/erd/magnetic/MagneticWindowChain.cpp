@@ -10,7 +10,6 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
-#include <memory>
 #include <unordered_map>
 
 namespace lodestone::graphslam {
@@ -25,7 +24,6 @@ constexpr double kChainMargin = 25.0;
 
 bool MagneticWindowERD::chainEvidence(std::vector<Candidate>& all, std::size_t first,
                                       const std::function<bool()>& decided,
-                                      const magnetic::WindowDisplacementModel* firstModel,
                                       double firstNull) const {
     const auto& query = queried().samples();
     const std::size_t newest = first + n_ - 1;
@@ -42,11 +40,11 @@ bool MagneticWindowERD::chainEvidence(std::vector<Candidate>& all, std::size_t f
         if (k.logWeight >= bestLog - kChainMargin)
             start[i] = long(k.direction == WindowDirection::Forward ? k.sample + 1 - n_ : k.sample);
     }
-    // With the building's null: each window's evidence on its absolute footing, and the whole
-    // chain against the building's stretches as long (buildingNull) at the end.
-    const bool building = std::isfinite(firstNull) && firstModel;
-    std::vector<NullWindow> windows{{first, firstModel}};
-    std::vector<std::unique_ptr<magnetic::WindowDisplacementModel>> models;  // (kept for them)
+    // With the building's null, each earlier window's evidence against the building's windows
+    // (its own buildingNull) - as if each window's place were drawn afresh: what makes a quiet
+    // walk's chain decisive, and what overstates it where the field's broad part (a level that
+    // holds for metres) carries the evidence: docs/results/magnetic-recall.md.
+    const bool building = std::isfinite(firstNull);
     bool chained = false;
     for (int j = 1; j < params_.chainWindows; ++j) {
         // The query's window j back, whole and in its segment.
@@ -57,9 +55,8 @@ bool MagneticWindowERD::chainEvidence(std::vector<Candidate>& all, std::size_t f
         // A flat window matches anywhere: under a noise not learnt from the run, against a null
         // as quiet as itself, it is passed over (the candidates followed on through it as the
         // passes ran alike), its evidence none; under a learnt noise or the building's null its
-        // little evidence counts (so with the building's null the chain's windows are the
-        // stretch buildingNull follows: none passed over).
-        if (!flatWindowsInform() &&
+        // little evidence counts.
+        if (!noiseLearnt() && !building &&
             std::min(excitation, mapFrameExcitation(f)) <
                 magnetic::chiSquareQuantile(3.0 * double(n_) - 3, params_.quantile)) {
             for (std::size_t i = 0; i < all.size(); ++i) {
@@ -72,9 +69,10 @@ bool MagneticWindowERD::chainEvidence(std::vector<Candidate>& all, std::size_t f
             continue;
         }
         const double spread = std::min(windowSpread(excitation), mapFrameSpread(f));
-        models.push_back(std::make_unique<magnetic::WindowDisplacementModel>(
-            basis_, spread, params_.sigmaCross, params_.distinctRadius));
-        const auto& model = *models.back();
+        const magnetic::WindowDisplacementModel model(basis_, spread, params_.sigmaCross,
+                                                      params_.distinctRadius);
+        const double logNull = building ? buildingNull(f, model) : NAN;
+        if (building && !std::isfinite(logNull)) break;  // (too little path outside the gate)
         const Eigen::MatrixX3d projected = projectedWindow(queried(), f, false);
         // Two passes sigma_cross apart differ in length through the window's turn by that times
         // the turn: the realignment a window may need, at least a sample.
@@ -123,7 +121,7 @@ bool MagneticWindowERD::chainEvidence(std::vector<Candidate>& all, std::size_t f
                              .first;
                 }
                 const auto& e = it->second;
-                const double null = building ? e.logUnrelated : 0.0;
+                const double null = building ? e.logUnrelated - logNull : 0.0;
                 ++positions;
                 sumNear = logAdd(sumNear, e.logNear + null);
                 sumFar = logAdd(sumFar, e.logFar + null);
@@ -145,24 +143,11 @@ bool MagneticWindowERD::chainEvidence(std::vector<Candidate>& all, std::size_t f
         }
         if (!any) break;
         chained = true;
-        windows.push_back({f, &model});
         for (std::size_t i = 0; i < all.size(); ++i) {
             if (start[i] >= 0) continue;
             all[i].logWeight += gainNear;
             all[i].logFar += gainFar;
             all[i].total = -2 * all[i].logWeight;
-        }
-    }
-    if (chained && building) {
-        // The query window was weighed against the building's windows (firstNull); the
-        // chain is, as a whole, against its stretches.
-        const double stretch = buildingNull(windows);
-        if (!std::isfinite(stretch)) return false;  // (undecided: too little path)
-        for (auto& k : all) {
-            if (!std::isfinite(k.logWeight)) continue;
-            k.logWeight += firstNull - stretch;
-            k.logFar += firstNull - stretch;
-            k.total = -2 * k.logWeight;
         }
     }
     // Decided on the whole chain, not at the first window that tips it: evidence looked at

@@ -353,6 +353,16 @@ void MagneticWindowERD::decide(std::size_t first, double excitation,
     if (params_.passDisplacement && params_.nullModel == Params::NullModel::Building) {
         firstNull = weighAgainstBuilding(candidates, first, *out.displacement);
         out.best = likeliest();
+        // Too little of the building outside the gate to weigh a quiet window against: the
+        // window's own null, under which a flat window is no evidence (unless the noise is
+        // the run's own).
+        if (!std::isfinite(firstNull) && !noiseLearnt() &&
+            std::min(excitation, mapFrameExcitation(first)) <
+                magnetic::chiSquareQuantile(3.0 * double(n_) - 3, params_.quantile)) {
+            out.flat = true;
+            ++stats_.flat;
+            return;
+        }
     }
     if (!params_.passDisplacement) {
         const magnetic::WindowNullModel null(n_, params_.noise, spread, params_.lengthScale);
@@ -372,8 +382,7 @@ void MagneticWindowERD::decide(std::size_t first, double excitation,
             out.posterior = placePosterior(*out.best, candidates);
             return out.posterior >= params_.minPosterior;
         };
-        if (chainEvidence(candidates, first, decided,
-                          out.displacement ? &*out.displacement : nullptr, firstNull)) {
+        if (chainEvidence(candidates, first, decided, firstNull)) {
             ++stats_.chained;
             if (out.posterior >= params_.minPosterior) ++stats_.chainedAccepted;
         }

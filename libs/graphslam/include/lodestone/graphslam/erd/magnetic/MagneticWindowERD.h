@@ -221,12 +221,10 @@ class MagneticWindowERD : public EdgeDecider {
     /** The earlier windows' evidence added to every candidate within reach of the best, up to
      * chain_windows, then `decided` asked once on the whole chain (MagneticWindowChain.cpp);
      * false when there was no earlier window. With a building null (`firstNull` finite: the
-     * query window's, `firstModel` its model) the chain is weighed against the building's
-     * stretches as long as itself. */
+     * query window's) each earlier window is weighed against the building's windows too
+     * (its own buildingNull), as if its place were drawn afresh. */
     bool chainEvidence(std::vector<Candidate>& all, std::size_t first,
-                       const std::function<bool()>& decided,
-                       const magnetic::WindowDisplacementModel* firstModel,
-                       double firstNull) const;
+                       const std::function<bool()>& decided, double firstNull) const;
     /** (learn_noise) A closed window's differences into the pass noise estimate; the tests
      * take the estimate once it moved by a tenth (MagneticWindowNoise.cpp). */
     void learnNoise(const Candidate& best, std::size_t first);
@@ -243,16 +241,10 @@ class MagneticWindowERD : public EdgeDecider {
     bool stretchFlat(std::size_t first) const;
     /** The displacement model's basis for the current noise, and what was projected in it. */
     void rebuildBasis();
-    /** A query window (its first sample) and the displacement model it is weighed with. */
-    struct NullWindow {
-        std::size_t first{0};
-        const magnetic::WindowDisplacementModel* model{nullptr};
-    };
-    /** (null_model = building) log of the likelihood of the query's windows (the newest first,
-     * then each a window further back) at a stretch of the building taken at random, on the
-     * footing of Evidence::logNear + logUnrelated; NaN while the path is too short
-     * (MagneticWindowNull.cpp). */
-    double buildingNull(const std::vector<NullWindow>& windows) const;
+    /** (null_model = building) log of the query window's likelihood at a place of the path
+     * outside the gate taken at random, on the footing of Evidence::logNear + logUnrelated;
+     * NaN while too little of the path lies outside the gate (MagneticWindowNull.cpp). */
+    double buildingNull(std::size_t first, const magnetic::WindowDisplacementModel& model) const;
     /** (null_model = building) Candidates weighed with logNull = 0 put against buildingNull,
      * or against unrelated places of the model while the path is too short for it; returns
      * the null used (NaN: the model's). */
