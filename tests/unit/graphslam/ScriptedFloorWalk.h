@@ -69,8 +69,10 @@ struct FloorWalkScript {
 inline FloorWalkScript floorWalkScript(const std::vector<Eigen::Vector2d>& corners,
                                        const FloorField& field,
                                        const std::vector<Mount>& mounts = {{"MAG", 0}},
-                                       int carried = -1) {
+                                       int carried = -1, double readingNoise = 0) {
     FloorWalkScript w;
+    std::mt19937 rng(7);  // (white noise of readingNoise uT per component, the same every run)
+    std::normal_distribution<double> noise(0.0, readingNoise > 0 ? readingNoise : 1.0);
     std::vector<graphslam::NodeRecord>& records = w.records;
     std::vector<bool> kidnapped;  // per node: the first after a kidnap
     double yaw = 0;
@@ -107,6 +109,8 @@ inline FloorWalkScript floorWalkScript(const std::vector<Eigen::Vector2d>& corne
                     m.sensorPose = mrpt::poses::CPose3D(0, mount.left, 0.3, 0, 0, 0);
                     const Eigen::Vector2d side(-std::sin(yaw), std::cos(yaw));
                     m.field = field.reading(at + mount.left * side, yaw);
+                    if (readingNoise > 0)
+                        for (int c = 0; c < 3; ++c) m.field[c] += noise(rng);
                     rec.magnetic.push_back(m);
                 }
             }

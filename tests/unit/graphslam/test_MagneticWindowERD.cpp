@@ -29,9 +29,9 @@ struct Walk {
 /** Walks the polyline `corners` (test::floorWalkScript) with MagneticWindowERD. */
 Walk walk(const std::vector<Eigen::Vector2d>& corners, const FloorField& field,
           const std::string& extraIni = "", const std::vector<Mount>& mounts = {{"MAG", 0}},
-          int carried = -1) {
+          int carried = -1, double readingNoise = 0) {
     Walk w;
-    auto script = test::floorWalkScript(corners, field, mounts, carried);
+    auto script = test::floorWalkScript(corners, field, mounts, carried, readingNoise);
     w.truth = script.truth;
     auto& steps = script.steps;
     auto& records = script.records;
@@ -309,18 +309,23 @@ TEST(MagneticWindowERD, AQuietFieldIsDecidedOnceTheNoiseIsLearnt) {
     for (const auto& c : errors(learnt)) EXPECT_LT(c.position, 0.2);
 }
 
-TEST(MagneticWindowERD, AQuietFieldClosesAgainstTheBuildingsOwnNull) {
-    // The quiet building above under the fixed 1 uT noise, never learnt: against a null as
-    // quiet as each window most windows are no evidence of anywhere. Against the building's own
-    // windows (null_model = building) a window that fits few places is evidence however quiet -
-    // more closures, fewer flat queries, and every closure right.
+TEST(MagneticWindowERD, AQuietNoisyFieldStaysRightAgainstTheBuildingsOwnNull) {
+    // The quiet building above with 2 uT of white noise on every reading, the noise learnt
+    // from the run. Its anomalies are sparse over the earth's field, so most quiet windows lie
+    // at the building's usual level: against the building's own windows (null_model =
+    // building) such a window is no evidence of one place, and the closer stays as right as
+    // with its own null while still closing the lively ones. (Where the building null gains -
+    // a quiet field whose level varies from place to place, Kok's walks made quieter - is
+    // measured in docs/results/magnetic-recall.md.)
     const FloorField quiet(16, 2.0);
     const std::vector<Eigen::Vector2d> thrice = {{0, 0},  {20, 0}, {20, 4}, {-3, 4}, {-3, 0},
                                                  {20, 0}, {20, 4}, {-3, 4}, {-3, 0}, {20, 0}};
-    const auto window = walk(thrice, quiet, "chain_windows = 6\n");
-    const auto building = walk(thrice, quiet, "chain_windows = 6\nnull_model = building\n");
-    EXPECT_DOUBLE_EQ(building.sigmaInUse, 1.0);
-    EXPECT_GT(building.stats.edges, window.stats.edges + 10) << window.stats.edges;
-    EXPECT_LT(building.stats.flat, window.stats.flat);
+    const std::string optIn = "chain_windows = 6\nlearn_noise = true\n";
+    const auto window = walk(thrice, quiet, optIn, {{"MAG", 0}}, -1, 2.0);
+    const auto building =
+        walk(thrice, quiet, optIn + "null_model = building\n", {{"MAG", 0}}, -1, 2.0);
+    ASSERT_GT(window.stats.edges, 50u);
+    EXPECT_GT(building.stats.edges, window.stats.edges / 2) << window.stats.edges;
+    EXPECT_GT(building.stats.ambiguous, window.stats.ambiguous);  // the usual level says little
     for (const auto& c : errors(building)) EXPECT_LT(c.position, 0.3);
 }

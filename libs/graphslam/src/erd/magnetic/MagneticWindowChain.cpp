@@ -54,8 +54,8 @@ bool MagneticWindowERD::chainEvidence(std::vector<Candidate>& all, std::size_t f
         const double excitation = magnetic::windowExcitation(query, f, n_, params_.noise.sigma);
         // A flat window matches anywhere: under a noise not learnt from the run, against a null
         // as quiet as itself, it is passed over (the candidates followed on through it as the
-        // passes ran alike), its evidence none; under a learnt noise or the building's null its
-        // little evidence counts.
+        // passes ran alike), its evidence none; under a learnt noise, or against the building's
+        // windows (a quiet window at a rare level is evidence), its little evidence counts.
         if (!noiseLearnt() && !building &&
             std::min(excitation, mapFrameExcitation(f)) <
                 magnetic::chiSquareQuantile(3.0 * double(n_) - 3, params_.quantile)) {

@@ -254,7 +254,7 @@ void MagneticWindowERD::query(std::size_t first) {
     // (The map frame's own artefact, the graph's heading through a turn, is weighed down.)
     out.flat = std::min(excitation, mapFrameExcitation(first)) <
                magnetic::chiSquareQuantile(dof - 3, params_.quantile);
-    if (out.flat && flatWindowsInform() && params_.chainWindows > 1 && params_.passDisplacement)
+    if (out.flat && noiseLearnt() && params_.chainWindows > 1 && params_.passDisplacement)
         out.flat = stretchFlat(first);
     std::vector<Candidate> candidates;
     if (out.flat) {
@@ -353,16 +353,6 @@ void MagneticWindowERD::decide(std::size_t first, double excitation,
     if (params_.passDisplacement && params_.nullModel == Params::NullModel::Building) {
         firstNull = weighAgainstBuilding(candidates, first, *out.displacement);
         out.best = likeliest();
-        // Too little of the building outside the gate to weigh a quiet window against: the
-        // window's own null, under which a flat window is no evidence (unless the noise is
-        // the run's own).
-        if (!std::isfinite(firstNull) && !noiseLearnt() &&
-            std::min(excitation, mapFrameExcitation(first)) <
-                magnetic::chiSquareQuantile(3.0 * double(n_) - 3, params_.quantile)) {
-            out.flat = true;
-            ++stats_.flat;
-            return;
-        }
     }
     if (!params_.passDisplacement) {
         const magnetic::WindowNullModel null(n_, params_.noise, spread, params_.lengthScale);
@@ -370,7 +360,7 @@ void MagneticWindowERD::decide(std::size_t first, double excitation,
     }
     out.posterior = placePosterior(*out.best, candidates);
     if (out.posterior < params_.minPosterior && params_.passDisplacement &&
-        params_.chainWindows > 1 && (!noise_ || flatWindowsInform())) {
+        params_.chainWindows > 1 && (!noise_ || noiseLearnt())) {
         // Windows in sequence; then the likeliest place over them, if its own window fits.
         const double fitLimit = magnetic::chiSquareQuantile(3.0 * double(n_), params_.quantile);
         const auto decided = [&] {

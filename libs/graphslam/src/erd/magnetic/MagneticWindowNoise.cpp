@@ -34,12 +34,6 @@ bool MagneticWindowERD::noiseLearnt() const {
     return noise_ && noise_->dof() >= noise_->priorDof();
 }
 
-bool MagneticWindowERD::flatWindowsInform() const {
-    // Against a null as quiet as the window, a quiet window is as like any quiet stretch as its
-    // own place; against the building's own windows its level says how few places it fits.
-    return noiseLearnt() || params_.nullModel == Params::NullModel::Building;
-}
-
 bool MagneticWindowERD::stretchFlat(std::size_t first) const {
     // The windows before the query's, as many as a chain gathers, in its segment. Over a
     // stretch the graph's heading drifts - in the map frame an even field varies by it, in the

@@ -75,8 +75,7 @@ class MagneticWindowERD : public EdgeDecider {
          * `window_sigma` is then the prior, worth `noise_prior_windows` windows of readings,
          * and each closed window's differences (windows not overlapping) update it; the
          * tests follow the estimate. With chain_windows, windows are chained only once the
-         * matches outweigh the prior (a chain adds up whatever the noise model gets wrong) or
-         * the null is the run's own (null_model). */
+         * matches outweigh the prior (a chain adds up whatever the noise model gets wrong). */
         bool learnNoise{false};
         double noisePriorWindows{1.0};
         /** How the readings of one place differ between two passes (magnetic::PassNoise):
@@ -230,14 +229,9 @@ class MagneticWindowERD : public EdgeDecider {
     void learnNoise(const Candidate& best, std::size_t first);
     /** (learn_noise) The run's matches outweigh the prior: the noise is the run's own. */
     bool noiseLearnt() const;
-    /** A flat window's evidence counts (in a chain, and a window flat alone is queried where
-     * the stretch before it is not): the noise is learnt, or the null is the building's own
-     * (null_model = building) - a quiet window's level then says how few places it fits
-     * (MagneticWindowNoise.cpp). */
-    bool flatWindowsInform() const;
     /** Whether the stretch of windows a chain would gather before the query's (in its segment)
-     * is flat in the heading-free channels (a window flat alone is then queried only where
-     * flatWindowsInform: MagneticWindowNoise.cpp). */
+     * is flat in the heading-free channels (a window flat alone is then queried only where the
+     * noise is learnt: MagneticWindowNoise.cpp). */
     bool stretchFlat(std::size_t first) const;
     /** The displacement model's basis for the current noise, and what was projected in it. */
     void rebuildBasis();
