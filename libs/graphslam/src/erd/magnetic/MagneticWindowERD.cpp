@@ -329,8 +329,7 @@ void MagneticWindowERD::decide(std::size_t first, double excitation,
         const double whole = std::min(spread, mapFrameSpread(first));
         if (params_.fineAmplitude) {
             out.displacement.emplace(basis_, std::min(fineAmplitude(first), whole),
-                                     params_.sigmaCross, params_.distinctRadius,
-                                     whole);
+                                     params_.sigmaCross, params_.distinctRadius, whole);
         } else {
             out.displacement.emplace(basis_, whole, params_.sigmaCross, params_.distinctRadius);
         }

@@ -91,9 +91,9 @@ class MagneticWindowERD : public EdgeDecider {
          * Window: as two unrelated stretches of a field as lively as the query window (its own
          * spread) differ; a quiet window then looks as much like any quiet stretch as like its
          * own place, and never closes. Building: the query window read at a place of the
-         * building taken at random - its likelihood averaged over windows of the whole path
-         * so far, a length scale apart (MagneticWindowNull.cpp): a quiet window at a level
-         * few places share is evidence, one at the building's usual level is not. */
+         * building outside the gate taken at random - its likelihood averaged over the path's
+         * windows there, a length scale apart (MagneticWindowNull.cpp): a quiet window at a
+         * level few places share is evidence, one at the building's usual level is not. */
         enum class NullModel { Window, Building };
         NullModel nullModel{NullModel::Window};
         double nullOdds{1.0};  ///< prior odds of "no earlier place" against "one of the candidates"
