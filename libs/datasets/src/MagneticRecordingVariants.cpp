@@ -47,9 +47,9 @@ MagneticRecording withNoise(MagneticRecording rec, double sigma, unsigned seed) 
 }
 
 MagneticRecording quieter(MagneticRecording rec, double scale, unsigned seed) {
+    const double measured = passRepeatability(rec);
     const double repeatability =
-        std::max(std::isfinite(passRepeatability(rec)) ? passRepeatability(rec) : 0.0,
-                 kRepeatabilityFloor);
+        std::max(std::isfinite(measured) ? measured : 0.0, kRepeatabilityFloor);
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();
     for (const auto& s : rec.samples) mean += toWorld(s);
     mean /= double(rec.samples.size());

@@ -40,8 +40,14 @@ double MagneticWindowERD::buildingNull(std::size_t first,
     const auto average = [&](const magnetic::SupernodeTrack& track, WindowDirection direction) {
         const bool forward = direction == WindowDirection::Forward;
         const auto& stored = track.samples();
-        std::size_t end = 0;  // the windows left behind (min_travel_gap), as candidates are
-        while (end < stored.size() && leftBehind(stored[end], query[newest].s)) ++end;
+        // The windows left behind (min_travel_gap), as candidates are: a prefix of the track
+        // (a loaded map's readings first, then the run's in travel order).
+        const auto end = static_cast<std::size_t>(
+            std::partition_point(stored.begin(), stored.end(),
+                                 [&](const magnetic::TrackSample& t) {
+                                     return leftBehind(t, query[newest].s);
+                                 }) -
+            stored.begin());
         if (end < n_) return;
         const std::size_t stride = std::max(minStride, (end - n_) / kMaxNullWindows + 1);
         for (std::size_t t = 0; t + n_ <= end; t += stride) {
