@@ -8,6 +8,7 @@
 #include <lodestone/graphslam/erd/magnetic/MagneticFieldMapERD.h>
 #include <lodestone/graphslam/erd/magnetic/MagneticGpERD.h>
 #include <lodestone/graphslam/erd/visual/OrbSubmapERD.h>
+#include <lodestone/graphslam/erd/visual/ProximityERD.h>
 #include <lodestone/graphslam/erd/magnetic/MagneticWindowERD.h>
 
 namespace lodestone::graphslam {
@@ -57,6 +58,7 @@ DeciderRegistry::DeciderRegistry() {
             });
     });
     registerEdgeDecider("OrbSubmapERD", [] { return std::make_unique<OrbSubmapERD>(); });
+    registerEdgeDecider("ProximityERD", [] { return std::make_unique<ProximityERD>(); });
     registerEdgeDecider("MagneticGpERD", [] { return std::make_unique<MagneticGpERD>(); });
     registerEdgeDecider("MagneticWindowERD", [] { return std::make_unique<MagneticWindowERD>(); });
     registerEdgeDecider("MagneticFieldMapERD", [] { return std::make_unique<MagneticFieldMapERD>(); });

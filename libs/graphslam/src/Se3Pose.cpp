@@ -84,4 +84,16 @@ mrpt::poses::CPose3DPDFGaussian translationHeld(const mrpt::poses::CPose3DPDFGau
     return held;
 }
 
+mrpt::poses::CPose3DPDFGaussianInf closureConstraint(const Eigen::Isometry3d& T,
+                                                     const Eigen::Matrix<double, 6, 6>& cov,
+                                                     double minSigmaXY, double minSigmaYaw) {
+    mrpt::math::CMatrixDouble66 c = mrptCovarianceOf(cov);
+    for (int k = 0; k < 3; ++k) c(k, k) += minSigmaXY * minSigmaXY;
+    for (int k = 3; k < 6; ++k) c(k, k) += minSigmaYaw * minSigmaYaw;
+    mrpt::poses::CPose3DPDFGaussianInf out;
+    out.mean = poseOf3D(T);
+    out.cov_inv = c.inverse_LLt();
+    return out;
+}
+
 }  // namespace lodestone::graphslam

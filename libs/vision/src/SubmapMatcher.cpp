@@ -1,3 +1,4 @@
+#include <lodestone/vision/KeyframePair.h>
 #include <lodestone/vision/Se3Covariance.h>
 #include <lodestone/vision/SubmapMatcher.h>
 
@@ -100,26 +101,17 @@ SubmapMatcher::Result SubmapMatcher::match(const FeatureSubmap& submap, const Fr
     r.node = m.node;
     const Eigen::Isometry3d fromPhase1 = m.T_submap_robot.inverse() * p1.transform;
     if (m.features && m.features->size() > 0) {
-        const auto m2 = matcher_.match(query.descriptors, m.features->descriptors);
-        r.phase2Matches = m2.size();
-        if (m2.size() >= static_cast<std::size_t>(params_.phase2.minInliers)) {
-            gather(m2, query.points.cast<double>(), m.features->points.cast<double>(), src, dst);
-            const RigidEstimate p2 = phase2_.estimate(src, dst, seed);
-            if (p2.success) {
-                // Optical to robot frames: T_mr_qr = C_m T_mo_qo C_q^-1.
-                const Eigen::Isometry3d T =
-                    m.T_robot_camera * p2.transform * T_robot_queryCamera.inverse();
-                const Eigen::Isometry3d diff = fromPhase1.inverse() * T;
-                if (diff.translation().norm() <= params_.agreementDistance &&
-                    angleOf(diff) <= params_.agreementAngle) {
-                    r.phase2Inliers = p2.inliers.size();
-                    r.usedPhase2 = true;
-                    r.nodeToQuery = T;
-                    // RigidEstimate's covariance: left perturbation of p2.transform in the
-                    // member's optical frame; into its robot frame, then about T's own frame.
-                    const Eigen::Matrix<double, 6, 6> Ad = adjoint(m.T_robot_camera);
-                    r.covariance = leftToRightCovariance(T, Ad * p2.covariance * Ad.transpose());
-                }
+        const KeyframePairAlignment p2 = alignKeyframePair(
+            matcher_, phase2_, *m.features, m.T_robot_camera, query, T_robot_queryCamera, seed);
+        r.phase2Matches = p2.matches;
+        if (p2.success) {
+            const Eigen::Isometry3d diff = fromPhase1.inverse() * p2.referenceToQuery;
+            if (diff.translation().norm() <= params_.agreementDistance &&
+                angleOf(diff) <= params_.agreementAngle) {
+                r.phase2Inliers = p2.inliers;
+                r.usedPhase2 = true;
+                r.nodeToQuery = p2.referenceToQuery;
+                r.covariance = p2.covariance;
             }
         }
     }

@@ -3,6 +3,7 @@
 #include <mrpt/math/CMatrixFixed.h>
 #include <mrpt/poses/CPose3D.h>
 #include <mrpt/poses/CPose3DPDFGaussian.h>
+#include <mrpt/poses/CPose3DPDFGaussianInf.h>
 
 #include <Eigen/Geometry>
 
@@ -16,6 +17,13 @@ mrpt::poses::CPose3D poseOf3D(const Eigen::Isometry3d& T);
  * the vision library's RANSAC and VO report - in MRPT's order x, y, z, yaw, pitch, roll (yaw
  * about z = w_z, pitch = w_y, roll = w_x: first order). */
 mrpt::math::CMatrixDouble66 mrptCovarianceOf(const Eigen::Matrix<double, 6, 6>& twistCovariance);
+
+/** A visual closure's relative pose `T` with its twist covariance `cov` (as mrptCovarianceOf
+ * takes it) as a graph constraint, each position variance floored by minSigmaXY^2 and each
+ * angle's by minSigmaYaw^2 added: what a closer claims is never sharper than that. */
+mrpt::poses::CPose3DPDFGaussianInf closureConstraint(const Eigen::Isometry3d& T,
+                                                     const Eigen::Matrix<double, 6, 6>& cov,
+                                                     double minSigmaXY, double minSigmaYaw);
 
 /** How far apart two independent estimates of one pose are: the squared Mahalanobis distance
  * of their means' difference in MRPT's (x, y, z, yaw, pitch, roll), angles wrapped, under the

@@ -10,22 +10,6 @@
 
 namespace lodestone::graphslam {
 
-namespace {
-
-/** A closure's constraint: the relative pose and the information of its covariance (right
- * perturbation, ordered rotation then translation), floored, in MRPT's x y z yaw pitch roll. */
-Constraint constraintOf(const Eigen::Isometry3d& T, const Eigen::Matrix<double, 6, 6>& cov,
-                        double minSigmaXY, double minSigmaYaw) {
-    mrpt::math::CMatrixDouble66 c = mrptCovarianceOf(cov);
-    for (int k = 0; k < 3; ++k) c(k, k) += minSigmaXY * minSigmaXY;
-    for (int k = 3; k < 6; ++k) c(k, k) += minSigmaYaw * minSigmaYaw;
-    Constraint out;
-    out.mean = poseOf3D(T);
-    out.cov_inv = c.inverse_LLt();
-    return out;
-}
-}  // namespace
-
 OrbSubmapERD::OrbSubmapERD() {
     setClassName("OrbSubmapERD");
     matcher_ = std::make_unique<vision::SubmapMatcher>(params_.matcher);
@@ -158,7 +142,7 @@ void OrbSubmapERD::query(TNodeID id, const NodeRecord& rec) {
                         r.inliers >= static_cast<std::size_t>(params_.strongInliers);
     registerClosure(
         from, id,
-        constraintOf(r.nodeToQuery, r.covariance, params_.minSigmaXY, params_.minSigmaYaw),
+        closureConstraint(r.nodeToQuery, r.covariance, params_.minSigmaXY, params_.minSigmaYaw),
         records_.size(), strong, static_cast<double>(r.inliers));
     records_.push_back({from, id, submap, r.usedPhase2, r.inliers, r.phase2Inliers, r.nodeToQuery});
     ++stats_.accepted;
