@@ -1,5 +1,7 @@
 #include <lodestone/graphslam/PoseGraph.h>
 
+#include <cmath>
+
 namespace lodestone::graphslam {
 
 Constraint planarConstraint(const mrpt::poses::CPosePDFGaussian& motion) {
@@ -15,6 +17,18 @@ Constraint planarConstraint(const mrpt::poses::CPosePDFGaussian& motion) {
         for (int k = 0; k < 3; ++k) c.cov_inv(kAt[r], kAt[k]) = info(r, k);
     c.cov_inv(2, 2) = c.cov_inv(4, 4) = c.cov_inv(5, 5) = kPlanarStiffness;
     return c;
+}
+
+OdometryStep odometryStepInto(const Graph& graph, TNodeID id) {
+    OdometryStep step;
+    if (id == 0) return step;
+    const auto e = graph.edges.find({id - 1, id});
+    if (e == graph.edges.end()) return step;
+    step.length = std::hypot(e->second.mean.x(), e->second.mean.y());
+    const mrpt::math::CMatrixDouble66 cov = e->second.cov_inv.inverse_LLt();
+    step.varianceXY = cov(0, 0) + cov(1, 1);
+    step.varianceYaw = cov(3, 3);
+    return step;
 }
 
 bool eraseEdge(Graph& graph, TNodeID from, TNodeID to, const Constraint& c) {

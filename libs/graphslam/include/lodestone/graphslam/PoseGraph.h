@@ -42,6 +42,13 @@ constexpr double kPlanarStiffness = 1e6;  ///< information of z [1/m^2], pitch a
 /** Removes the edge from->to whose mean is `c.mean` (there may be several between two nodes).
  * Returns false if there is none. */
 bool eraseEdge(Graph& graph, TNodeID from, TNodeID to, const Constraint& c);
+/** The odometry edge that brought node `id` (from id - 1): its length on the floor [m] and its
+ * covariance's x and y variances summed [m^2] and yaw variance [rad^2]; zeros for the root or
+ * where the graph has no such edge. */
+struct OdometryStep {
+    double length{0}, varianceXY{0}, varianceYaw{0};
+};
+OdometryStep odometryStepInto(const Graph& graph, TNodeID id);
 /** Whether the graph holds the edge from->to whose mean is `c.mean`. */
 bool hasEdge(const Graph& graph, TNodeID from, TNodeID to, const Constraint& c);
 

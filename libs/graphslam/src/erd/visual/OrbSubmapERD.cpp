@@ -75,15 +75,8 @@ Eigen::Isometry3d OrbSubmapERD::poseOf(TNodeID id) const {
 
 void OrbSubmapERD::onNode(TNodeID id) {
     // Distance travelled and odometry uncertainty, from the edge that brought the node.
-    double step = 0, variance = 0;
-    if (id > 0) {
-        const auto e = m_graph->edges.find({id - 1, id});
-        if (e != m_graph->edges.end()) {
-            step = std::hypot(e->second.mean.x(), e->second.mean.y());
-            const mrpt::math::CMatrixDouble66 cov = e->second.cov_inv.inverse_LLt();
-            variance = cov(0, 0) + cov(1, 1);
-        }
-    }
+    const OdometryStep odometry = odometryStepInto(*m_graph, id);
+    const double step = odometry.length, variance = odometry.varianceXY;
     travel_.push_back(travel_.empty() ? 0.0 : travel_.back() + step);
     if (++nodes_since_refresh_ >= 25) refreshCentres();
     if (open_) {

@@ -63,19 +63,10 @@ Eigen::Isometry3d ProximityERD::poseOf(TNodeID id) const {
 
 void ProximityERD::onNode(TNodeID id) {
     // Travel and the odometry's variance along the chain, from the edge that brought the node.
-    double step = 0, varXY = 0, varYaw = 0;
-    if (id > 0) {
-        const auto e = m_graph->edges.find({id - 1, id});
-        if (e != m_graph->edges.end()) {
-            step = std::hypot(e->second.mean.x(), e->second.mean.y());
-            const mrpt::math::CMatrixDouble66 cov = e->second.cov_inv.inverse_LLt();
-            varXY = 0.5 * (cov(0, 0) + cov(1, 1));
-            varYaw = cov(3, 3);
-        }
-    }
-    travel_.push_back(travel_.empty() ? 0.0 : travel_.back() + step);
-    chain_xy_.push_back(chain_xy_.empty() ? 0.0 : chain_xy_.back() + varXY);
-    chain_yaw_.push_back(chain_yaw_.empty() ? 0.0 : chain_yaw_.back() + varYaw);
+    const OdometryStep step = odometryStepInto(*m_graph, id);
+    travel_.push_back(travel_.empty() ? 0.0 : travel_.back() + step.length);
+    chain_xy_.push_back((chain_xy_.empty() ? 0.0 : chain_xy_.back()) + 0.5 * step.varianceXY);
+    chain_yaw_.push_back((chain_yaw_.empty() ? 0.0 : chain_yaw_.back()) + step.varianceYaw);
     const NodeRecord& rec = nodes_->at(id);
     if (!rec.keyframe || !rec.features) return;
     ++stats_.keyframes;
