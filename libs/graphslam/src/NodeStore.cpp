@@ -13,6 +13,10 @@ void NodeStore::add(TNodeID id, NodeRecord record) {
     records_.push_back(std::move(record));
 }
 
+void NodeStore::releaseDepth(TNodeID id) {
+    if (has(id)) records_[id].depth.reset();
+}
+
 const NodeRecord& NodeStore::at(TNodeID id) const {
     if (!has(id)) throw std::out_of_range("no node " + std::to_string(id));
     return records_[id];

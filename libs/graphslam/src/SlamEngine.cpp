@@ -29,6 +29,7 @@ SlamEngine::SlamEngine(std::unique_ptr<NodeDecider> nrd, std::unique_ptr<EdgeDec
     erd_->setGraphPtr(&graph_);
     gso_->setGraphPtr(&graph_);
     erd_->setSegmentGroups([this](int segment) { return relocalizer_.groupOfSegment(segment); });
+    nrd_->keepKeyframeDepth(erd_->wantsKeyframeDepth());
 }
 
 std::unique_ptr<SlamEngine> SlamEngine::fromConfig(const mrpt::config::CConfigFileBase& ini) {

@@ -3,6 +3,19 @@
 
 namespace lodestone::vision {
 
+namespace {
+/** `a`'s optical-frame motion into the robots' frames: T_rr_qr = C_r T_ro_qo C_q^-1; its
+ * covariance (a left perturbation in the reference's optical frame) into the reference's robot
+ * frame, then about the motion's own frame. */
+void intoRobotFrames(const Eigen::Isometry3d& T_robot_referenceCamera,
+                     const Eigen::Isometry3d& T_robot_queryCamera, KeyframePairAlignment& a) {
+    a.referenceToQuery =
+        T_robot_referenceCamera * a.opticalReferenceToQuery * T_robot_queryCamera.inverse();
+    const Eigen::Matrix<double, 6, 6> Ad = adjoint(T_robot_referenceCamera);
+    a.covariance = leftToRightCovariance(a.referenceToQuery, Ad * a.opticalCovariance * Ad.transpose());
+}
+}  // namespace
+
 KeyframePairAlignment alignKeyframePair(const DescriptorMatcher& matcher, const RigidRansac& ransac,
                                         const FrameFeatures& reference,
                                         const Eigen::Isometry3d& T_robot_referenceCamera,
@@ -23,15 +36,29 @@ KeyframePairAlignment alignKeyframePair(const DescriptorMatcher& matcher, const 
     }
     const RigidEstimate e = ransac.estimate(src, dst, seed);
     if (!e.success) return a;
-    // Optical to robot frames: T_rr_qr = C_r T_ro_qo C_q^-1.
-    a.referenceToQuery = T_robot_referenceCamera * e.transform * T_robot_queryCamera.inverse();
-    // RigidEstimate's covariance: a left perturbation in the reference's optical frame; into its
-    // robot frame, then about the motion's own frame.
-    const Eigen::Matrix<double, 6, 6> Ad = adjoint(T_robot_referenceCamera);
-    a.covariance = leftToRightCovariance(a.referenceToQuery, Ad * e.covariance * Ad.transpose());
+    a.opticalReferenceToQuery = e.transform;
+    a.opticalCovariance = e.covariance;
+    intoRobotFrames(T_robot_referenceCamera, T_robot_queryCamera, a);
     a.inliers = e.inliers.size();
     a.success = true;
     return a;
+}
+
+void joinKeyframeDepth(const PointToPlaneIcp& icp, const DepthCloud& reference,
+                       const Eigen::Isometry3d& T_robot_referenceCamera, const DepthCloud& query,
+                       const Eigen::Isometry3d& T_robot_queryCamera, KeyframePairAlignment& a) {
+    if (!a.success || reference.size() == 0 || query.size() == 0) return;
+    DepthModel model(1);
+    model.addReference(reference, Eigen::Isometry3d::Identity());
+    const MotionPrior measured{a.opticalReferenceToQuery, a.opticalCovariance};
+    const DepthAlignment d = icp.align(model, query, a.opticalReferenceToQuery, &measured);
+    if (!d.success) return;
+    a.opticalReferenceToQuery = d.T_ref_cur;
+    a.opticalCovariance = d.covariance;
+    a.depthJoined = true;
+    a.depthDisagreed = d.disagreed;
+    a.depthCorrespondences = d.correspondences;
+    intoRobotFrames(T_robot_referenceCamera, T_robot_queryCamera, a);
 }
 
 }  // namespace lodestone::vision

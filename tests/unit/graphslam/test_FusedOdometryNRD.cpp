@@ -193,3 +193,43 @@ TEST(FusedOdometryNRD, ConfigurationMistakesNameTheKey) {
     EXPECT_EQ(errorOf("[FusedOdometryNRD]\nnode_distance = 0.2\n"), "no error");
     EXPECT_DOUBLE_EQ(nrd.params().nodeDistance, 0.2);
 }
+
+namespace {
+/** A loop closer that aligns keyframes' depth and leaves the records as they are. */
+class DepthWantingCloser : public graphslam::EdgeDecider {
+  public:
+    void configure(const mrpt::config::CConfigFileBase&) override {}
+    graphslam::JsonObject describe() const override { return {}; }
+    bool updateState(mrpt::obs::CActionCollection::Ptr, mrpt::obs::CSensoryFrame::Ptr,
+                     mrpt::obs::CObservation::Ptr) override {
+        return false;
+    }
+    bool wantsKeyframeDepth() const override { return true; }
+};
+}  // namespace
+
+TEST(FusedOdometryNRD, KeyframesCarryTheirDepthCloudOnlyWhenALoopCloserAsks) {
+    sim::Scenario sc;
+    const auto& obs = officeObservations(&sc);
+    for (const bool asked : {false, true}) {
+        auto nrd = std::make_unique<graphslam::FusedOdometryNRD>();
+        const mrpt::config::CConfigFileMemory empty;
+        nrd->configure(sim::withScenarioWheels(empty, sc, "test"));
+        auto closers = std::make_unique<graphslam::CompositeERD>();
+        if (asked) closers->addChild(std::make_unique<DepthWantingCloser>());
+        graphslam::SlamEngine engine(std::move(nrd), std::move(closers),
+                                     std::make_unique<graphslam::CeresGSO>());
+        for (const auto& o : obs) engine.process(o);
+        engine.finish();
+        std::size_t withDepth = 0;
+        for (graphslam::TNodeID id = 0; id < engine.nodes().size(); ++id) {
+            const auto& rec = engine.nodes().at(id);
+            EXPECT_TRUE(!rec.depth || rec.keyframe) << id;
+            if (!rec.depth) continue;
+            ++withDepth;
+            EXPECT_GT(rec.depth->size(), 500u) << id;  // (QVGA, VO's 80-column grid)
+            EXPECT_EQ(rec.depth->normals.cols(), rec.depth->points.cols());
+        }
+        EXPECT_EQ(withDepth > 0, asked);
+    }
+}

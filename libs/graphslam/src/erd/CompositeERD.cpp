@@ -1,6 +1,7 @@
 #include <lodestone/config/IniSection.h>
 #include <lodestone/graphslam/erd/CompositeERD.h>
 
+#include <algorithm>
 #include <sstream>
 
 namespace lodestone::graphslam {
@@ -87,6 +88,11 @@ bool CompositeERD::justInsertedLoopClosure() const {
 
 void CompositeERD::getEdgesStats(std::map<std::string, int>* edge_type_to_num) const {
     for (const auto& c : children_) c->getEdgesStats(edge_type_to_num);
+}
+
+bool CompositeERD::wantsKeyframeDepth() const {
+    return std::any_of(children_.begin(), children_.end(),
+                       [](const auto& c) { return c->wantsKeyframeDepth(); });
 }
 
 std::set<std::string> CompositeERD::requiredObservations() const {

@@ -26,6 +26,9 @@ class EdgeDecider : public mrpt::graphslam::deciders::CEdgeRegistrationDecider<G
      * it after solving): what the graph now knows of where its newest nodes are, whoever
      * found it. A decider that gates by its own path's uncertainty pins it there. */
     virtual void closuresKept(const std::vector<LoopClosure>& /*kept*/) {}
+    /** It aligns keyframes' depth: the node decider is to keep each keyframe's depth cloud in
+     * its record (NodeRecord::depth). */
+    virtual bool wantsKeyframeDepth() const { return false; }
     /** MRPT's statistics: this decider's class name and "lc" (what CGraphSlamEngine counts). */
     void getEdgesStats(std::map<std::string, int>* edge_type_to_num) const override;
     std::size_t loopClosuresRegistered() const { return registered_; }

@@ -27,6 +27,10 @@ class NodeDecider : public mrpt::graphslam::deciders::CNodeRegistrationDecider<G
      * before updateState() takes them, so that the frame loop need not. Thread-safe; what it
      * computes is what updateState() computes without it. Empty (the default): nothing. */
     virtual std::function<void(const mrpt::obs::CObservation::Ptr&)> preparer(std::size_t inFlight);
+    /** Whether keyframes' records carry their depth cloud (NodeRecord::depth): the engine
+     * asks it for an edge decider that aligns keyframes' depth. The default ignores it (a
+     * decider without depth frames). */
+    virtual void keepKeyframeDepth(bool /*keep*/) {}
     /** The ID registered by the last updateState() / finish() call, if it added one. */
     std::optional<TNodeID> justRegistered() const { return just_registered_; }
 

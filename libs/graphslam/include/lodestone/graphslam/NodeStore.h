@@ -4,6 +4,7 @@
 #include <lodestone/graphslam/nrd/KeyframeCloud.h>
 #include <lodestone/graphslam/PoseGraph.h>
 #include <lodestone/vision/OrbFeatures.h>
+#include <lodestone/vision/depth/DepthCloud.h>
 
 #include <Eigen/Geometry>
 
@@ -39,6 +40,10 @@ struct NodeRecord {
      * sits on the robot: what the visual loop closer matches. */
     std::shared_ptr<const vision::FrameFeatures> features;
     Eigen::Isometry3d T_robot_camera{Eigen::Isometry3d::Identity()};
+    /** Keyframes, where an edge decider asked for it (NodeDecider::keepKeyframeDepth): the
+     * frame's depth sampled as VO's depth alignment samples it (optical frame), for aligning
+     * keyframes' depth; whoever takes it may release it from the store (releaseDepth). */
+    std::shared_ptr<const vision::DepthCloud> depth;
     /** Magnetometer readings since the previous node, up to this node's time: what the
      * magnetic matcher builds its sequences from (none while the robot was carried). */
     std::vector<MagneticSample> magnetic;
@@ -56,6 +61,8 @@ class NodeStore {
     void add(TNodeID id, NodeRecord record);
     bool has(TNodeID id) const { return id < records_.size(); }
     const NodeRecord& at(TNodeID id) const;
+    /** Drops node `id`'s depth cloud (its one consumer keeps what it still needs). */
+    void releaseDepth(TNodeID id);
     std::size_t size() const { return records_.size(); }
     const std::vector<NodeRecord>& records() const { return records_; }
 

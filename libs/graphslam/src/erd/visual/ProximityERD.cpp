@@ -34,6 +34,7 @@ void ProximityERD::configure(const mrpt::config::CConfigFileBase& ini) {
         s.getInt("max_candidates", static_cast<int>(p.maxCandidates)));
     p.matcher.read(s);
     p.ransac.read(s);
+    p.depth = s.getBool("depth", p.depth);
     p.gateChi2 = s.getDouble("gate_chi2", p.gateChi2);
     p.minSigmaXY = s.getDouble("min_sigma_xy", p.minSigmaXY);
     p.minSigmaYaw = s.getDouble("min_sigma_yaw_deg", p.minSigmaYaw * 180 / M_PI) * M_PI / 180;
@@ -68,6 +69,13 @@ void ProximityERD::onNode(TNodeID id) {
     chain_xy_.push_back((chain_xy_.empty() ? 0.0 : chain_xy_.back()) + 0.5 * step.varianceXY);
     chain_yaw_.push_back((chain_yaw_.empty() ? 0.0 : chain_yaw_.back()) + step.varianceYaw);
     const NodeRecord& rec = nodes_->at(id);
+    if (rec.depth) {
+        if (rec.keyframe && rec.features && params_.depth) depth_[id] = rec.depth;
+        nodes_->releaseDepth(id);
+    }
+    // (the window's older clouds: no later keyframe reaches them)
+    while (!depth_.empty() && travel_[id] - travel_[depth_.begin()->first] > params_.maxTravel)
+        depth_.erase(depth_.begin());
     if (!rec.keyframe || !rec.features) return;
     ++stats_.keyframes;
     if (id >= map_nodes_) {
@@ -104,10 +112,9 @@ void ProximityERD::tryPair(TNodeID from, TNodeID to) {
     const auto t0 = Clock::now();
     const NodeRecord& a = nodes_->at(from);
     const NodeRecord& b = nodes_->at(to);
-    const auto al = vision::alignKeyframePair(matcher_, ransac_, *a.features, a.T_robot_camera,
-                                              *b.features, b.T_robot_camera,
-                                              (std::uint64_t(to) << 20) ^ std::uint64_t(from));
-    stats_.alignMs += msSince(t0);
+    auto al = vision::alignKeyframePair(matcher_, ransac_, *a.features, a.T_robot_camera,
+                                        *b.features, b.T_robot_camera,
+                                        (std::uint64_t(to) << 20) ^ std::uint64_t(from));
     Record r;
     r.from = from;
     r.to = to;
@@ -115,10 +122,28 @@ void ProximityERD::tryPair(TNodeID from, TNodeID to) {
     r.inliers = al.inliers;
     r.aligned = al.success;
     if (!al.success) {
+        stats_.alignMs += msSince(t0);
         records_.push_back(r);
         return;
     }
     ++stats_.aligned;
+    const auto da = depth_.find(from), db = depth_.find(to);
+    if (da != depth_.end() && db != depth_.end()) {
+        vision::joinKeyframeDepth(vision::PointToPlaneIcp(params_.icp), *da->second,
+                                  a.T_robot_camera, *db->second, b.T_robot_camera, al);
+        stats_.depthJoined += al.depthJoined;
+        stats_.depthDisagreed += al.depthDisagreed;
+        r.depthJoined = al.depthJoined;
+        r.depthDisagreed = al.depthDisagreed;
+    }
+    stats_.alignMs += msSince(t0);
+    if (params_.depth && (!al.depthJoined || al.depthDisagreed)) {
+        // (features and depth that disagree beyond their covariances: one of them is wrong -
+        // a link is not needed to hold the chain together, so none is made)
+        ++stats_.depthFailed;
+        records_.push_back(r);
+        return;
+    }
     r.relative = al.referenceToQuery;
     // Against the graph's relative pose: the odometry's variance along the chain between the
     // two nodes (a node's interval only where it moved) plus the alignment's own, floored.
@@ -152,13 +177,17 @@ JsonObject ProximityERD::describe() const {
         .set("max_travel", params_.maxTravel)
         .set("max_candidates", params_.maxCandidates)
         .set("min_inliers", params_.ransac.minInliers)
+        .set("depth", params_.depth)
         .set("gate_chi2", params_.gateChi2);
     JsonObject stats;
     stats.set("keyframes", stats_.keyframes)
         .set("candidates", stats_.candidates)
         .set("aligned", stats_.aligned)
+        .set("depth_failed", stats_.depthFailed)
         .set("refused_by_gate", stats_.refusedByGate)
         .set("accepted", stats_.accepted)
+        .set("depth_joined", stats_.depthJoined)
+        .set("depth_disagreed", stats_.depthDisagreed)
         .set("align_ms_total", stats_.alignMs);
     return JsonObject().set("class", getClassName()).set("params", params).set("stats", stats);
 }

@@ -3,6 +3,7 @@
 #include <lodestone/vision/DescriptorMatcher.h>
 #include <lodestone/vision/OrbFeatures.h>
 #include <lodestone/vision/RigidRansac.h>
+#include <lodestone/vision/depth/PointToPlaneIcp.h>
 
 #include <Eigen/Geometry>
 #include <cstdint>
@@ -18,6 +19,13 @@ struct KeyframePairAlignment {
      * covariance of a right perturbation T exp(xi), xi = (rx, ry, rz, tx, ty, tz). */
     Eigen::Isometry3d referenceToQuery{Eigen::Isometry3d::Identity()};
     Eigen::Matrix<double, 6, 6> covariance{Eigen::Matrix<double, 6, 6>::Identity()};
+    /** The same between the optical frames (p_reference = T p_query), the covariance of a left
+     * perturbation as RigidEstimate's: what a depth alignment starts from. */
+    Eigen::Isometry3d opticalReferenceToQuery{Eigen::Isometry3d::Identity()};
+    Eigen::Matrix<double, 6, 6> opticalCovariance{Eigen::Matrix<double, 6, 6>::Identity()};
+    /** joinKeyframeDepth: the depth solved with the features, and what it said. */
+    bool depthJoined{false}, depthDisagreed{false};
+    std::size_t depthCorrespondences{0};
 };
 
 /** What SubmapMatcher's second phase and ProximityERD do with a pair of keyframes: fewer
@@ -28,5 +36,14 @@ KeyframePairAlignment alignKeyframePair(const DescriptorMatcher& matcher, const 
                                         const FrameFeatures& query,
                                         const Eigen::Isometry3d& T_robot_queryCamera,
                                         std::uint64_t seed);
+
+/** An alignment of features (`a`, successful) solved again with the two keyframes' depth, as
+ * visual odometry's joined step: the query's depth cloud against the reference's (each in its
+ * optical frame), point to plane, the features' motion and covariance a measurement in the
+ * same Gauss-Newton (PointToPlaneIcp::align). Where the depth does not align `a` stays the
+ * features' alone (depthJoined false). */
+void joinKeyframeDepth(const PointToPlaneIcp& icp, const DepthCloud& reference,
+                       const Eigen::Isometry3d& T_robot_referenceCamera, const DepthCloud& query,
+                       const Eigen::Isometry3d& T_robot_queryCamera, KeyframePairAlignment& a);
 
 }  // namespace lodestone::vision

@@ -41,6 +41,7 @@ class CompositeERD : public EdgeDecider {
     bool justInsertedLoopClosure() const override;
     void getEdgesStats(std::map<std::string, int>* edge_type_to_num) const override;
     std::set<std::string> requiredObservations() const override;
+    bool wantsKeyframeDepth() const override;
     JsonObject describe() const override;
 
   private:

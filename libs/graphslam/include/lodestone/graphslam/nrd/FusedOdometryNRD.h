@@ -59,6 +59,8 @@ class FusedOdometryNRD : public NodeDecider {
   protected:
     bool checkRegistrationCondition() override;
 
+    void keepKeyframeDepth(bool keep) override { keep_depth_ = keep; }
+
   private:
     void consume(const mrpt::obs::CObservation::Ptr& obs);
     void take(const odometry::FusedOdometry::Estimate& e);
@@ -78,6 +80,7 @@ class FusedOdometryNRD : public NodeDecider {
     double last_time_{0};
     bool have_estimate_{false};
     bool lifted_{false};
+    bool keep_depth_{false};  // keyframes' records carry their depth cloud
     std::optional<double> lift_time_, down_time_;  // [s] of the kidnap being handled
     double restart_lift_{NAN}, restart_down_{NAN};  // of the kidnap the next node ends
     bool segment_closed_{false}, close_segment_{false}, restart_{false};

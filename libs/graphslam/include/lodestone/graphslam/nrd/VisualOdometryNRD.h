@@ -178,6 +178,8 @@ class VisualOdometryNRD : public NodeDecider {
   protected:
     bool checkRegistrationCondition() override;
 
+    void keepKeyframeDepth(bool keep) override { keep_depth_ = keep; }
+
   private:
     void consume(const mrpt::obs::CObservation3DRangeScan::Ptr& scan);
     void consumeGyro(const mrpt::obs::CObservationIMU& imu);
@@ -269,6 +271,7 @@ class VisualOdometryNRD : public NodeDecider {
 
     Params params_;
     vision::RgbdVisualOdometry vo_;
+    bool keep_depth_{false};  // keyframes' records carry their depth cloud
     /** Frames VO prepares, ahead on a reader's threads or here (vo_'s parameters only). */
     odometry::PreparedFrames prepared_{[this](vision::RgbdFrame f) { return vo_.prepare(std::move(f)); }};
     odometry::GyroIntegrator gyro_;

@@ -3,6 +3,10 @@
 #include <lodestone/graphslam/EdgeDecider.h>
 #include <lodestone/vision/DescriptorMatcher.h>
 #include <lodestone/vision/RigidRansac.h>
+#include <lodestone/vision/depth/PointToPlaneIcp.h>
+
+#include <map>
+#include <memory>
 
 #include <vector>
 
@@ -15,8 +19,9 @@ namespace lodestone::graphslam {
  * `max_travel` of travel back (further back is OrbSubmapERD's domain, its `min_travel_gap`);
  * not the keyframe before it (VO's reference: its step already ties them). At most
  * `max_candidates` a keyframe, the furthest back first (they hold the most drift). Each pair's
- * features are matched and aligned as visual odometry's are (vision::alignKeyframePair), and
- * an alignment becomes a node-to-node loop closure when it agrees with the graph's relative
+ * features are matched and aligned as visual odometry's are (vision::alignKeyframePair), then
+ * with `depth` solved again with the two keyframes' depth clouds as VO's joined step
+ * (vision::joinKeyframeDepth; the node decider keeps them in the records), and an alignment becomes a node-to-node loop closure when it agrees with the graph's relative
  * pose within the odometry's uncertainty between the two nodes plus its own (chi-square, 2 dof
  * position and 1 dof yaw, `gate_quantile`): a keyframe seconds after another cannot be far
  * from where the odometry put it, so a look-alike is refused here before the optimizer's own
@@ -30,6 +35,13 @@ class ProximityERD : public EdgeDecider {
         std::size_t maxCandidates{3};   ///< aligned per keyframe
         vision::DescriptorMatcher::Params matcher;
         vision::RigidRansac::Params ransac;
+        /** Each alignment of features solved again with the keyframes' depth; a pair whose depth
+         * does not align (too little overlap) is not linked - its features alone place it to
+         * centimetres, coarser than the odometry it would correct - nor one whose depth and
+         * features disagree beyond their covariances (one of them is wrong). false: features
+         * alone. */
+        bool depth{true};
+        vision::PointToPlaneIcp::Params icp;
         double gateChi2{14.16};         ///< 3 dof, 99.73 %
         double minSigmaXY{0.01};        ///< [m] floor on a closure's claimed precision
         double minSigmaYaw{0.3 * M_PI / 180};  ///< [rad]
@@ -39,13 +51,19 @@ class ProximityERD : public EdgeDecider {
     struct Record {
         TNodeID from{0}, to{0};
         std::size_t matches{0}, inliers{0};
-        bool aligned{false}, accepted{false};
+        bool aligned{false}, depthJoined{false}, depthDisagreed{false}, accepted{false};
         double gate2{NAN};  ///< the alignment against the graph's relative pose (aligned ones)
         Eigen::Isometry3d relative{Eigen::Isometry3d::Identity()};  ///< `to` in `from`'s frame
     };
     struct Stats {
-        std::size_t keyframes{0}, candidates{0}, aligned{0}, refusedByGate{0}, accepted{0};
-        double alignMs{0};
+        /** (depthFailed: aligned by the features, not linked for the depth - it did not align
+         * or disagreed) */
+        std::size_t keyframes{0}, candidates{0}, aligned{0}, depthFailed{0}, refusedByGate{0},
+            accepted{0};
+        /** Alignments the depth was solved with, and of them those whose depth and features
+         * disagreed beyond their covariances (the covariance then widened to cover both). */
+        std::size_t depthJoined{0}, depthDisagreed{0};
+        double alignMs{0};  ///< [ms] aligning every pair tried: features, then depth
     };
 
     ProximityERD();
@@ -58,6 +76,7 @@ class ProximityERD : public EdgeDecider {
         return {"CObservation3DRangeScan"};
     }
     JsonObject describe() const override;
+    bool wantsKeyframeDepth() const override { return params_.depth; }
     const std::vector<Record>& records() const { return records_; }
     const Stats& stats() const { return stats_; }
 
@@ -72,6 +91,9 @@ class ProximityERD : public EdgeDecider {
     Params params_;
     vision::DescriptorMatcher matcher_;
     vision::RigidRansac ransac_;
+    /** The depth clouds of the keyframes still within max_travel (taken from the node store,
+     * which then forgets them). */
+    std::map<TNodeID, std::shared_ptr<const vision::DepthCloud>> depth_;
     std::vector<double> travel_;  // per node [m], from the odometry edges
     /** Per node: the odometry's variance since the start, summed along the chain - (x, y) per
      * axis [m^2] and yaw [rad^2]; the difference of two nodes' is the chain's between them. */
