@@ -9,37 +9,15 @@
 
 #include "SimTestWorlds.h"
 #include "TestPaths.h"
+#include "ThreeDMatchFrames.h"
 
 using namespace lodestone::vision;
 
 namespace {
-const std::filesystem::path k3dMatch = lodestone::test::sharedDataDir() / "rgbd" / "3dmatch";
+const std::filesystem::path k3dMatch = lodestone::test::threeDMatchDir();
 
-RgbdFrame loadFrame(int index) {
-    char name[64];
-    std::snprintf(name, sizeof(name), "seq-01/frame-%06d", index);
-    RgbdFrame f;
-    const cv::Mat colour = cv::imread((k3dMatch / (std::string(name) + ".color.png")).string());
-    cv::cvtColor(colour, f.gray, cv::COLOR_BGR2GRAY);
-    const cv::Mat depth =
-        cv::imread((k3dMatch / (std::string(name) + ".depth.png")).string(), cv::IMREAD_UNCHANGED);
-    f.depth = depthToMetres(depth, 0.001);
-    f.intrinsics = {570.342205, 570.342205, 320.0, 240.0, 640, 480};
-    return f;
-}
-
-Eigen::Isometry3d loadPose(int index) {
-    char name[64];
-    std::snprintf(name, sizeof(name), "seq-01/frame-%06d.pose.txt", index);
-    std::ifstream in(k3dMatch / name);
-    Eigen::Matrix4d m;
-    for (int r = 0; r < 4; ++r) {
-        for (int c = 0; c < 4; ++c) in >> m(r, c);
-    }
-    Eigen::Isometry3d T;
-    T.matrix() = m;
-    return T;
-}
+RgbdFrame loadFrame(int index) { return lodestone::test::threeDMatchFrame(index); }
+Eigen::Isometry3d loadPose(int index) { return lodestone::test::threeDMatchPose(index); }
 
 // A simulated frame: the box world's posters wall seen from `x` metres along +x.
 RgbdFrame simulatedFrame(const lodestone::sim::World& world, const lodestone::sim::CameraSpec& cam,
