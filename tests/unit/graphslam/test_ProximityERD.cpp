@@ -50,12 +50,13 @@ struct LingeringRun {
     std::vector<Eigen::Isometry3d> truth;
 };
 
-/** An odometry step of `step` with position sigma 1 cm and heading sigma 1 deg. */
-graphslam::Constraint odometryStep(const Eigen::Isometry3d& step) {
+/** An odometry step of `step` with position sigma `sxy` [m] and heading sigma 100 sxy [rad] (1 cm
+ * and 1 deg by default). */
+graphslam::Constraint odometryStep(const Eigen::Isometry3d& step, double sxy = 0.01) {
     graphslam::Constraint c;
     c.mean = graphslam::poseOf3D(step);
     c.cov_inv.setZero();
-    const double sxy = 0.01, sz = 0.001, syaw = 1.0 * M_PI / 180, stilt = 0.1 * M_PI / 180;
+    const double sz = 0.001, syaw = sxy * 100 * M_PI / 180, stilt = 0.1 * M_PI / 180;
     const double var[6] = {sxy * sxy, sxy * sxy, sz * sz, syaw * syaw, stilt * stilt, stilt * stilt};
     for (int k = 0; k < 6; ++k) c.cov_inv(k, k) = 1 / var[k];
     return c;
@@ -171,7 +172,8 @@ struct Corner {
     std::vector<graphslam::NodeRecord> records;
     std::vector<test::ScriptedNRD::Step> steps;
 
-    Corner() {
+    /** `odometrySigma`: the steps' position sigma [m] (heading: 100 times it, in degrees). */
+    explicit Corner(double odometrySigma = 0.01) {
         const sim::World world(test::boxScenario("posters"), 3);
         const vision::OrbExtractor orb;
         for (std::size_t i = 0; i < truth.size(); ++i) {
@@ -186,7 +188,10 @@ struct Corner {
             r.features = std::make_shared<vision::FrameFeatures>(orb.extract(frame));
             r.depth = std::make_shared<vision::DepthCloud>(vision::sampleDepthCloud(frame, {}));
             records.push_back(r);
-            if (i > 0) steps.push_back({odometryStep(truth[i - 1].inverse() * truth[i]), 0});
+            if (i > 0) {
+                steps.push_back(
+                    {odometryStep(truth[i - 1].inverse() * truth[i], odometrySigma), 0});
+            }
         }
     }
 
@@ -250,6 +255,17 @@ TEST(ProximityERD, FeaturesAndDepthThatDisagreeMakeNoLink) {
     const auto alone = corner.link("depth = false\n");
     EXPECT_TRUE(alone.accepted);
     EXPECT_GT(corner.errorOf(alone.relative).first, 0.03);
+}
+
+TEST(ProximityERD, OnlyInformativeLinksWhereTheOdometryIsLessSureThanTheLink) {
+    // The same pair under odometry of 1 cm and 1 deg a step (two steps apart: less sure than the
+    // link's floors of 1 cm and 0.3 deg) and of 1 mm and 0.1 deg (surer).
+    const std::string informative = "depth = true\nonly_informative = true\n";
+    EXPECT_TRUE(Corner(0.01).link(informative).accepted);
+    const auto r = Corner(0.001).link(informative);
+    EXPECT_TRUE(r.depthJoined);
+    EXPECT_FALSE(r.accepted);
+    EXPECT_TRUE(Corner(0.001).link("depth = true\n").accepted);
 }
 
 TEST(ProximityERD, ConfigurationIsStrict) {

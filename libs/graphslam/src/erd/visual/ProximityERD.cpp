@@ -35,6 +35,7 @@ void ProximityERD::configure(const mrpt::config::CConfigFileBase& ini) {
     p.matcher.read(s);
     p.ransac.read(s);
     p.depth = s.getBool("depth", p.depth);
+    p.onlyInformative = s.getBool("only_informative", p.onlyInformative);
     p.gateChi2 = s.getDouble("gate_chi2", p.gateChi2);
     p.minSigmaXY = s.getDouble("min_sigma_xy", p.minSigmaXY);
     p.minSigmaYaw = s.getDouble("min_sigma_yaw_deg", p.minSigmaYaw * 180 / M_PI) * M_PI / 180;
@@ -150,12 +151,17 @@ void ProximityERD::tryPair(TNodeID from, TNodeID to) {
     const Eigen::Isometry3d graph = poseOf(from).inverse() * poseOf(to);
     const Eigen::Isometry3d diff = graph.inverse() * al.referenceToQuery;
     const double dyaw = std::atan2(diff.linear()(1, 0), diff.linear()(0, 0));
-    const double s2xy = chain_xy_[to] - chain_xy_[from] +
-                        0.5 * (al.covariance(3, 3) + al.covariance(4, 4)) +
-                        params_.minSigmaXY * params_.minSigmaXY;
-    const double s2yaw =
-        chain_yaw_[to] - chain_yaw_[from] + al.covariance(2, 2) + params_.minSigmaYaw * params_.minSigmaYaw;
-    r.gate2 = diff.translation().head<2>().squaredNorm() / s2xy + dyaw * dyaw / s2yaw;
+    const double chainXY = chain_xy_[to] - chain_xy_[from], chainYaw = chain_yaw_[to] - chain_yaw_[from];
+    const double linkXY = 0.5 * (al.covariance(3, 3) + al.covariance(4, 4)) +
+                          params_.minSigmaXY * params_.minSigmaXY;
+    const double linkYaw = al.covariance(2, 2) + params_.minSigmaYaw * params_.minSigmaYaw;
+    if (params_.onlyInformative && linkXY >= chainXY && linkYaw >= chainYaw) {
+        ++stats_.uninformative;
+        records_.push_back(r);
+        return;
+    }
+    r.gate2 = diff.translation().head<2>().squaredNorm() / (chainXY + linkXY) +
+              dyaw * dyaw / (chainYaw + linkYaw);
     if (!(r.gate2 <= params_.gateChi2)) {
         ++stats_.refusedByGate;
         records_.push_back(r);
@@ -178,12 +184,14 @@ JsonObject ProximityERD::describe() const {
         .set("max_candidates", params_.maxCandidates)
         .set("min_inliers", params_.ransac.minInliers)
         .set("depth", params_.depth)
+        .set("only_informative", params_.onlyInformative)
         .set("gate_chi2", params_.gateChi2);
     JsonObject stats;
     stats.set("keyframes", stats_.keyframes)
         .set("candidates", stats_.candidates)
         .set("aligned", stats_.aligned)
         .set("depth_failed", stats_.depthFailed)
+        .set("uninformative", stats_.uninformative)
         .set("refused_by_gate", stats_.refusedByGate)
         .set("accepted", stats_.accepted)
         .set("depth_joined", stats_.depthJoined)

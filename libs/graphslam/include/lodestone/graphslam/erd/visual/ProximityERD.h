@@ -41,6 +41,11 @@ class ProximityERD : public EdgeDecider {
          * features disagree beyond their covariances (one of them is wrong). false: features
          * alone. */
         bool depth{true};
+        /** A link is made only where it says more than the odometry's chain between its two
+         * nodes already does - its position or its heading variance (floored) below the
+         * chain's. Where the odometry is better over that stretch (wheels, VO and depth over a
+         * metre: a millimetre), a link can only add its own error. false: every link. */
+        bool onlyInformative{false};
         vision::PointToPlaneIcp::Params icp;
         double gateChi2{14.16};         ///< 3 dof, 99.73 %
         double minSigmaXY{0.01};        ///< [m] floor on a closure's claimed precision
@@ -58,8 +63,8 @@ class ProximityERD : public EdgeDecider {
     struct Stats {
         /** (depthFailed: aligned by the features, not linked for the depth - it did not align
          * or disagreed) */
-        std::size_t keyframes{0}, candidates{0}, aligned{0}, depthFailed{0}, refusedByGate{0},
-            accepted{0};
+        std::size_t keyframes{0}, candidates{0}, aligned{0}, depthFailed{0}, uninformative{0},
+            refusedByGate{0}, accepted{0};
         /** Alignments the depth was solved with, and of them those whose depth and features
          * disagreed beyond their covariances (the covariance then widened to cover both). */
         std::size_t depthJoined{0}, depthDisagreed{0};
