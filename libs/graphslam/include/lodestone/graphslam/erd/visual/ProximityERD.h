@@ -7,7 +7,6 @@
 
 #include <map>
 #include <memory>
-
 #include <vector>
 
 namespace lodestone::graphslam {
@@ -21,11 +20,12 @@ namespace lodestone::graphslam {
  * `max_candidates` a keyframe, the furthest back first (they hold the most drift). Each pair's
  * features are matched and aligned as visual odometry's are (vision::alignKeyframePair), then
  * with `depth` solved again with the two keyframes' depth clouds as VO's joined step
- * (vision::joinKeyframeDepth; the node decider keeps them in the records), and an alignment becomes a node-to-node loop closure when it agrees with the graph's relative
- * pose within the odometry's uncertainty between the two nodes plus its own (chi-square, 2 dof
- * position and 1 dof yaw, `gate_quantile`): a keyframe seconds after another cannot be far
- * from where the odometry put it, so a look-alike is refused here before the optimizer's own
- * test. INI section [ProximityERD]. */
+ * (vision::joinKeyframeDepth; the node decider keeps them in the records), and an alignment
+ * becomes a node-to-node loop closure when it agrees with the graph's relative pose within the
+ * odometry's uncertainty between the two nodes plus its own (chi-square of the position and
+ * the heading, `gate_chi2`): a keyframe seconds after another cannot be far from where the
+ * odometry put it, so a look-alike is refused here before the optimizer's own test. INI
+ * section [ProximityERD]. */
 class ProximityERD : public EdgeDecider {
   public:
     struct Params {
@@ -47,7 +47,7 @@ class ProximityERD : public EdgeDecider {
          * metre: a millimetre), a link can only add its own error. false: every link. */
         bool onlyInformative{false};
         vision::PointToPlaneIcp::Params icp;
-        double gateChi2{14.16};         ///< 3 dof, 99.73 %
+        double gateChi2{14.16};         ///< (x, y, yaw) 3 dof, 99.73 %
         double minSigmaXY{0.01};        ///< [m] floor on a closure's claimed precision
         double minSigmaYaw{0.3 * M_PI / 180};  ///< [rad]
         Params();
