@@ -4,8 +4,13 @@
 
 #include <lodestone/graphslam/EdgeDecider.h>
 #include <lodestone/graphslam/NodeDecider.h>
+#include <lodestone/graphslam/SlamEngine.h>
+#include <lodestone/graphslam/erd/CompositeERD.h>
+#include <lodestone/graphslam/gso/CeresGSO.h>
+#include <mrpt/obs/CObservationComment.h>
 
 #include <algorithm>
+#include <memory>
 #include <vector>
 
 namespace lodestone::test {
@@ -99,5 +104,22 @@ class KeptClosureRecorder : public graphslam::EdgeDecider {
     }
     std::vector<graphslam::LoopClosure> kept;
 };
+
+/** An engine run through the scripted nodes (`steps`, `records`) with `closers` as the
+ * composite's children and Ceres, to its end. */
+inline std::unique_ptr<graphslam::SlamEngine> runScripted(
+    std::vector<ScriptedNRD::Step> steps, std::vector<graphslam::NodeRecord> records,
+    std::vector<std::unique_ptr<graphslam::EdgeDecider>> closers) {
+    auto composite = std::make_unique<graphslam::CompositeERD>();
+    for (auto& c : closers) composite->addChild(std::move(c));
+    auto engine = std::make_unique<graphslam::SlamEngine>(
+        std::make_unique<ScriptedNRD>(std::move(steps), std::move(records)), std::move(composite),
+        std::make_unique<graphslam::CeresGSO>());
+    const auto tick = mrpt::obs::CObservationComment::Create();
+    while (engine->process(tick)) {
+    }
+    engine->finish();
+    return engine;
+}
 
 }  // namespace lodestone::test

@@ -84,21 +84,15 @@ LingeringRun linger(bool withProximity,
         step.linear() = step.linear() * Eigen::AngleAxisd(drift, Eigen::Vector3d::UnitZ()).toRotationMatrix();
         steps.push_back({odometryStep(step), 0});
     }
-    auto composite = std::make_unique<graphslam::CompositeERD>();
+    std::vector<std::unique_ptr<graphslam::EdgeDecider>> closers;
     if (withProximity) {
         auto erd = std::make_unique<graphslam::ProximityERD>();
         // (the feature world has no depth: features alone)
         erd->configure(mrpt::config::CConfigFileMemory("[ProximityERD]\ndepth = false\n"));
         run.erd = erd.get();
-        composite->addChild(std::move(erd));
+        closers.push_back(std::move(erd));
     }
-    run.engine = std::make_unique<graphslam::SlamEngine>(
-        std::make_unique<test::ScriptedNRD>(steps, records), std::move(composite),
-        std::make_unique<graphslam::CeresGSO>());
-    const auto tick = mrpt::obs::CObservationComment::Create();
-    while (run.engine->process(tick)) {
-    }
-    run.engine->finish();
+    run.engine = test::runScripted(steps, records, std::move(closers));
     return run;
 }
 
@@ -200,13 +194,9 @@ struct Corner {
         auto erd = std::make_unique<graphslam::ProximityERD>();
         erd->configure(mrpt::config::CConfigFileMemory("[ProximityERD]\n" + ini));
         const auto* erdPtr = erd.get();
-        auto composite = std::make_unique<graphslam::CompositeERD>();
-        composite->addChild(std::move(erd));
-        graphslam::SlamEngine engine(std::make_unique<test::ScriptedNRD>(steps, records),
-                                     std::move(composite), std::make_unique<graphslam::CeresGSO>());
-        const auto tick = mrpt::obs::CObservationComment::Create();
-        while (engine.process(tick)) {
-        }
+        std::vector<std::unique_ptr<graphslam::EdgeDecider>> closers;
+        closers.push_back(std::move(erd));
+        const auto engine = test::runScripted(steps, records, std::move(closers));
         EXPECT_EQ(erdPtr->records().size(), 1u);
         return erdPtr->records().empty() ? graphslam::ProximityERD::Record{}
                                          : erdPtr->records().front();

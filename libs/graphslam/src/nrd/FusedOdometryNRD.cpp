@@ -273,10 +273,7 @@ NodeRecord FusedOdometryNRD::recordFor(double timestamp, bool keyframe) {
     for (const auto& frame : recent_frames_) {
         if (std::abs(mrpt::Clock::toDouble(frame->timestamp) - timestamp) > 1e-6) continue;
         r.T_robot_camera = odometry::opticalFrameOnRobot(frame->sensorPose);
-        if (keep_depth_) {
-            r.depth = std::make_shared<vision::DepthCloud>(vision::sampleDepthCloud(
-                odometry::frameFromObservation(*frame), params_.odometry.visual.depthSampling));
-        }
+        if (keep_depth_) r.depth = makeKeyframeDepth(*frame, params_.odometry.visual.depthSampling);
         if (params_.mapPixelStep > 0) {
             r.cloud = std::make_shared<KeyframeCloud>(
                 makeKeyframeCloud(*frame, params_.mapPixelStep, params_.mapMaxDepth));

@@ -41,4 +41,10 @@ KeyframeCloud makeKeyframeCloud(const mrpt::obs::CObservation3DRangeScan& obs, i
     return cloud;
 }
 
+std::shared_ptr<const vision::DepthCloud> makeKeyframeDepth(
+    const mrpt::obs::CObservation3DRangeScan& obs, const vision::DepthSampling& sampling) {
+    return std::make_shared<vision::DepthCloud>(
+        vision::sampleDepthCloud(odometry::frameFromObservation(obs), sampling));
+}
+
 }  // namespace lodestone::graphslam

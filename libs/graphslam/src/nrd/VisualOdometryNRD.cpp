@@ -459,10 +459,7 @@ void VisualOdometryNRD::registerAt(const mrpt::obs::CObservation3DRangeScan& sca
         if (keyframe) {
             rec.features = features;
             rec.T_robot_camera = odometry::opticalFrameOnRobot(scan.sensorPose);
-            if (keep_depth_) {
-                rec.depth = std::make_shared<vision::DepthCloud>(vision::sampleDepthCloud(
-                    odometry::frameFromObservation(scan), params_.visual.depthSampling));
-            }
+            if (keep_depth_) rec.depth = makeKeyframeDepth(scan, params_.visual.depthSampling);
             if (params_.mapPixelStep > 0) {
                 rec.cloud = std::make_shared<KeyframeCloud>(
                     makeKeyframeCloud(scan, params_.mapPixelStep, params_.mapMaxDepth));

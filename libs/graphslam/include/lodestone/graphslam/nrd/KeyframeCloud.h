@@ -1,8 +1,10 @@
 #pragma once
 
+#include <lodestone/vision/depth/DepthCloud.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace lodestone::graphslam {
@@ -22,5 +24,10 @@ struct KeyframeCloud {
  * observation's sensorPose. A frame without depth gives an empty cloud. */
 KeyframeCloud makeKeyframeCloud(const mrpt::obs::CObservation3DRangeScan& obs, int pixelStep,
                                 double maxDepth);
+
+/** A keyframe's depth as VO's depth alignment samples it (`sampling`), in its optical frame:
+ * what NodeRecord::depth holds where a loop closer asks for it. */
+std::shared_ptr<const vision::DepthCloud> makeKeyframeDepth(
+    const mrpt::obs::CObservation3DRangeScan& obs, const vision::DepthSampling& sampling);
 
 }  // namespace lodestone::graphslam
