@@ -10,6 +10,7 @@
 #include <mrpt/obs/CObservationComment.h>
 
 #include <algorithm>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -106,10 +107,12 @@ class KeptClosureRecorder : public graphslam::EdgeDecider {
 };
 
 /** An engine run through the scripted nodes (`steps`, `records`) with `closers` as the
- * composite's children and Ceres, to its end. */
+ * composite's children and Ceres, to its end; `afterEach` (when given) sees the engine after
+ * every step. */
 inline std::unique_ptr<graphslam::SlamEngine> runScripted(
     std::vector<ScriptedNRD::Step> steps, std::vector<graphslam::NodeRecord> records,
-    std::vector<std::unique_ptr<graphslam::EdgeDecider>> closers) {
+    std::vector<std::unique_ptr<graphslam::EdgeDecider>> closers,
+    const std::function<void(const graphslam::SlamEngine&)>& afterEach = {}) {
     auto composite = std::make_unique<graphslam::CompositeERD>();
     for (auto& c : closers) composite->addChild(std::move(c));
     auto engine = std::make_unique<graphslam::SlamEngine>(
@@ -117,6 +120,7 @@ inline std::unique_ptr<graphslam::SlamEngine> runScripted(
         std::make_unique<graphslam::CeresGSO>());
     const auto tick = mrpt::obs::CObservationComment::Create();
     while (engine->process(tick)) {
+        if (afterEach) afterEach(*engine);
     }
     engine->finish();
     return engine;

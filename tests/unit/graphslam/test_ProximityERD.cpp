@@ -65,7 +65,9 @@ graphslam::Constraint odometryStep(const Eigen::Isometry3d& step, double sxy = 0
 /** Every node a keyframe seeing `world` (its features through `featuresOf`, by default the
  * truth's view); odometry the truth's steps with a heading that drifts 0.5 deg a step. */
 LingeringRun linger(bool withProximity,
-           const std::function<std::shared_ptr<vision::FrameFeatures>(std::size_t)>& featuresOf = {}) {
+           const std::function<std::shared_ptr<vision::FrameFeatures>(std::size_t)>& featuresOf = {},
+           const std::function<void(const graphslam::SlamEngine&)>& afterEach = {},
+           const std::string& proximityKeys = "") {
     static const auto world = test::FeatureWorld::room(3000, 21);
     LingeringRun run;
     run.truth = lingeringPath();
@@ -88,11 +90,11 @@ LingeringRun linger(bool withProximity,
     if (withProximity) {
         auto erd = std::make_unique<graphslam::ProximityERD>();
         // (the feature world has no depth: features alone)
-        erd->configure(mrpt::config::CConfigFileMemory("[ProximityERD]\ndepth = false\n"));
+        erd->configure(mrpt::config::CConfigFileMemory("[ProximityERD]\ndepth = false\n" + proximityKeys));
         run.erd = erd.get();
         closers.push_back(std::move(erd));
     }
-    run.engine = test::runScripted(steps, records, std::move(closers));
+    run.engine = test::runScripted(steps, records, std::move(closers), afterEach);
     return run;
 }
 
@@ -134,6 +136,48 @@ TEST(ProximityERD, TheLinksTakeOutTheOdometrysHeadingDrift) {
     const double linked = worstYawError(linger(true));
     EXPECT_GT(alone, 60 * M_PI / 180);
     EXPECT_LT(linked, 3 * M_PI / 180) << "odometry alone: " << alone * 180 / M_PI << " deg";
+}
+
+TEST(ProximityERD, ALinkIsSolvedAroundItsKeyframesAlone) {
+    // Step by step: where a step's new links were solved locally (no full solve), every node
+    // more than the optimizer's window (40 node IDs) before the link's earlier keyframe is
+    // where it was before the step.
+    const graphslam::TNodeID window = graphslam::CeresGSO::Params().localWindow;
+    const graphslam::ProximityERD* erd = nullptr;
+    std::size_t acceptedBefore = 0, localSteps = 0, farNodesChecked = 0;
+    graphslam::Graph before;
+    const auto afterEach = [&](const graphslam::SlamEngine& engine) {
+        const auto& records = erd->records();
+        const bool linked = erd->stats().accepted > acceptedBefore;
+        if (linked && !engine.optimizer().justFullyOptimizedGraph()) {
+            ++localSteps;
+            // This step's links: the accepted records past the count before it.
+            graphslam::TNodeID earliest = engine.graph().nodes.rbegin()->first;
+            std::size_t seen = 0;
+            for (const auto& r : records) {
+                if (!r.accepted) continue;
+                if (++seen > acceptedBefore) earliest = std::min(earliest, r.from);
+            }
+            for (const auto& [id, pose] : before.nodes) {
+                if (id + window >= earliest) continue;
+                ++farNodesChecked;
+                EXPECT_EQ(pose, engine.graph().nodes.at(id)) << "node " << id << ", link from " << earliest;
+            }
+        }
+        acceptedBefore = erd->stats().accepted;
+        before = engine.graph();
+    };
+    // (links within 1.5 m of travel, so that most of the graph lies outside the window; the
+    // run's closer is made inside linger(): reached through the engine)
+    linger(true, {}, [&](const graphslam::SlamEngine& engine) {
+        if (!erd) {
+            const auto& composite = dynamic_cast<const graphslam::CompositeERD&>(engine.edgeDecider());
+            erd = dynamic_cast<const graphslam::ProximityERD*>(composite.children().at(0).get());
+        }
+        afterEach(engine);
+    }, "max_travel = 1.5\n");
+    EXPECT_GT(localSteps, 10u);
+    EXPECT_GT(farNodesChecked, 500u);
 }
 
 TEST(ProximityERD, ALookAlikeTheOdometryRulesOutIsRefused) {

@@ -53,6 +53,7 @@ class SlamEngine {
     const relocalization::Relocalizer& relocalizer() const { return relocalizer_; }
     NodeDecider& nodeDecider() { return *nrd_; }
     EdgeDecider& edgeDecider() { return *erd_; }
+    const EdgeDecider& edgeDecider() const { return *erd_; }
     GraphOptimizer& optimizer() { return *gso_; }
     const GraphOptimizer& optimizer() const { return *gso_; }
     /** The run's true trajectory for the deciders' diagnostics (SlamComponent). */
