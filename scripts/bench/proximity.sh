@@ -4,14 +4,21 @@
 # [CompositeERD] children (nothing else changed), judged against the simulator's truth.
 #   - robot: lodestone-slam --sim SCENARIO with slam.ini (the wheels, VO, depth, magnetic);
 #   - hand:  recorded hand-held with a gyro (lodestone-sim --handheld --gyro), run from disk
-#            with rgbd_only.ini (the camera alone).
+#            with rgbd_only.ini (the camera alone);
+#   - camera: recorded by the robot without its wheels (--camera-only --gyro), from disk with
+#            rgbd_only.ini.
+# IMU="with without" also runs hand and camera without the gyro (use_gyro, use_gravity false).
 # Per run: ATE without / with, the proximity links (candidates, aligned by the features, the
 # depth joined, refused by the odometry's gate, proposed), the optimizer's refusals, the links'
 # error against the truth (median / max, lodestone-eval closures: where a link puts the later
 # node), the share inside their own 99.73 % region, and the real-time factor without / with.
-# Usage: [CARRIERS="robot hand"] scripts/bench/proximity.sh ["SEED..."] [SCENARIO.ini ...]
-#        (default: seeds "1 2 3"; robot: office and paper_loop_qvga, about a minute a run;
-#        hand: linger.ini, about three minutes a seed to record and run)
+# Usage: [CARRIERS="robot hand camera"] [IMU="with without"] [REC_DIR=DIR]
+#        scripts/bench/proximity.sh ["SEED..."] [SCENARIO.ini ...]
+#        (default: seeds "1 2 3", CARRIERS="robot hand", IMU=with; robot: office and
+#        paper_loop_qvga, about a minute a run; hand: linger.ini, about three minutes a seed to
+#        record and run; camera: paper_loop.ini. A 640x480 loop takes 7 GB and about 20 minutes
+#        a seed: REC_DIR=DIR reads DIR/NAME_{hand,camera}SEED.rawlog where it exists, and what
+#        is missing is recorded and removed after its runs)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 "$root/scripts/build.sh" > /dev/null
@@ -76,26 +83,51 @@ for carrier in $carriers; do
                base="$root/config_ini/slam/slam.ini" ;;
         hand) scenarios=("$@"); [[ ${#scenarios[@]} -gt 0 ]] || scenarios=("$root/config_ini/scenarios/linger.ini")
               base="$root/config_ini/slam/rgbd_only.ini" ;;
-        *) echo "unknown carrier $carrier (robot, hand)" >&2; exit 2 ;;
+        camera) scenarios=("$@"); [[ ${#scenarios[@]} -gt 0 ]] || scenarios=("$root/config_ini/scenarios/paper_loop.ini")
+                base="$root/config_ini/slam/rgbd_only.ini" ;;
+        *) echo "unknown carrier $carrier (robot, hand, camera)" >&2; exit 2 ;;
     esac
-    proximity=$(with_proximity "$base")
+    configs=("$base")
+    if [[ $carrier != robot ]]; then
+        configs=()
+        for imu in ${IMU:-with}; do
+            case $imu in
+                with) configs+=("$base") ;;
+                without) variant rgbd_no_imu use_gyro=false use_gravity=false
+                         configs+=("$out/rgbd_no_imu.ini") ;;
+                *) echo "unknown IMU $imu (with, without)" >&2; exit 2 ;;
+            esac
+        done
+    fi
     for ini in "${scenarios[@]}"; do
         name=$(basename "$ini" .ini)
         for seed in $seeds; do
+            recorded=""
             case $carrier in
                 robot)
                     sed "s/^seed *=.*/seed = $seed/" "$ini" > "$out/$name.ini"
                     source=(--sim "$out/$name.ini")
                     gt="$out/with/ground_truth.tum" ;;
-                hand)
-                    "$sim" -c "$ini" -o "$out/$name$seed.rawlog" -s "$seed" --handheld --gyro > /dev/null
-                    source=(--rawlog "$out/$name$seed.rawlog" --ground-truth "$out/$name$seed.gt.tum")
-                    gt="$out/$name$seed.gt.tum" ;;
+                hand | camera)
+                    flags=(--handheld --gyro)
+                    [[ $carrier == camera ]] && flags=(--camera-only --gyro)
+                    rawlog="${REC_DIR:-$out}/${name}_$carrier$seed.rawlog"
+                    if [[ ! -f $rawlog ]]; then
+                        rawlog="$out/${name}_$carrier$seed.rawlog"
+                        "$sim" -c "$ini" -o "$rawlog" -s "$seed" "${flags[@]}" > /dev/null
+                        recorded="${rawlog%.rawlog}"
+                    fi
+                    source=(--rawlog "$rawlog" --ground-truth "${rawlog%.rawlog}.gt.tum")
+                    gt="${rawlog%.rawlog}.gt.tum" ;;
             esac
-            "$slam" "${source[@]}" --config "$base" --out "$out/without" --quiet > /dev/null
-            "$slam" "${source[@]}" --config "$proximity" --out "$out/with" --quiet > /dev/null
-            row "$carrier, $name, $(basename "$base")" "$seed" "$out/without" "$out/with" "$gt"
-            rm -rf "$out/without" "$out/with" "$out/$name$seed"*
+            for config in "${configs[@]}"; do
+                proximity=$(with_proximity "$config")
+                "$slam" "${source[@]}" --config "$config" --out "$out/without" --quiet > /dev/null
+                "$slam" "${source[@]}" --config "$proximity" --out "$out/with" --quiet > /dev/null
+                row "$carrier, $name, $(basename "$config")" "$seed" "$out/without" "$out/with" "$gt"
+                rm -rf "$out/without" "$out/with"
+            done
+            [[ -z $recorded ]] || rm -rf "$recorded"*
         done
     done
 done

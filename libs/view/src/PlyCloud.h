@@ -1,0 +1,14 @@
+#pragma once
+
+#include <lodestone/view/SceneContent.h>
+
+#include <string>
+
+namespace lodestone::view {
+
+/** The points of a PLY as lodestone-slam writes map.ply (binary little-endian; float x y z,
+ * uchar red green blue per vertex), at most `maxPoints` of them, evenly taken. Throws
+ * std::runtime_error naming the file for any other layout or a file cut short. */
+ViewCloud readPlyCloud(const std::string& path, std::size_t maxPoints);
+
+}  // namespace lodestone::view

@@ -1,0 +1,115 @@
+#include <lodestone/plot/Colormap.h>
+#include <lodestone/view/Palette.h>
+#include <lodestone/view/SceneBuilder.h>
+
+#include <mrpt/opengl/CGridPlaneXY.h>
+#include <mrpt/opengl/CPointCloudColoured.h>
+#include <mrpt/opengl/CSetOfLines.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace lodestone::view {
+
+namespace {
+
+mrpt::opengl::CSetOfLines::Ptr lines(const std::string& name, const mrpt::img::TColor& colour, float width) {
+    auto l = mrpt::opengl::CSetOfLines::Create();
+    l->setName(name);
+    l->setColor_u8(colour);
+    l->setLineWidth(width);
+    l->enableAntiAliasing(false);  // (exact colours: a closer is told by its colour)
+    return l;
+}
+
+void join(mrpt::opengl::CSetOfLines& l, const ViewNode& a, const ViewNode& b) {
+    l.appendLine(a.pose.x(), a.pose.y(), a.pose.z(), b.pose.x(), b.pose.y(), b.pose.z());
+}
+
+mrpt::opengl::CPointCloudColoured::Ptr nodes(const SceneContent& c) {
+    auto cloud = mrpt::opengl::CPointCloudColoured::Create();
+    cloud->setName("nodes");
+    cloud->setPointSize(4);
+    const bool byError = !std::isnan(c.maxError);
+    const plot::Colormap errors(0, byError && c.maxError > 0 ? c.maxError : 1);
+    for (const auto& n : c.nodes) {
+        mrpt::img::TColor colour = segmentColour(n.segment);
+        if (byError) {
+            const cv::Vec3b bgr = errors(n.error);
+            colour = mrpt::img::TColor(bgr[2], bgr[1], bgr[0]);
+        }
+        cloud->push_back(static_cast<float>(n.pose.x()), static_cast<float>(n.pose.y()),
+                         static_cast<float>(n.pose.z()), colour.R / 255.f, colour.G / 255.f,
+                         colour.B / 255.f);
+    }
+    return cloud;
+}
+
+mrpt::opengl::CPointCloudColoured::Ptr cloudOf(const ViewCloud& points) {
+    auto cloud = mrpt::opengl::CPointCloudColoured::Create();
+    cloud->setName("cloud");
+    cloud->setPointSize(1);
+    for (std::size_t i = 0; i < points.size(); ++i)
+        cloud->push_back(points.xyz[3 * i], points.xyz[3 * i + 1], points.xyz[3 * i + 2],
+                         points.rgb[3 * i] / 255.f, points.rgb[3 * i + 1] / 255.f,
+                         points.rgb[3 * i + 2] / 255.f);
+    return cloud;
+}
+
+}  // namespace
+
+mrpt::opengl::COpenGLScene::Ptr buildScene(const SceneContent& c, const Layers& layers) {
+    auto scene = mrpt::opengl::COpenGLScene::Create();
+    if (layers.floor && !c.nodes.empty()) {
+        double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300, z = 1e300;
+        for (const auto& n : c.nodes) {
+            x0 = std::min(x0, n.pose.x()), x1 = std::max(x1, n.pose.x());
+            y0 = std::min(y0, n.pose.y()), y1 = std::max(y1, n.pose.y());
+            z = std::min(z, n.pose.z());
+        }
+        auto grid = mrpt::opengl::CGridPlaneXY::Create(std::floor(x0) - 1, std::ceil(x1) + 1,
+                                                       std::floor(y0) - 1, std::ceil(y1) + 1, z, 1);
+        grid->setName("floor");
+        grid->setColor_u8(mrpt::img::TColor(200, 200, 200));
+        scene->insert(grid);
+    }
+    if (layers.cloud && c.cloud.size() > 0) scene->insert(cloudOf(c.cloud));
+    if (layers.truth && !c.truth.empty()) {
+        auto truth = lines("truth", truthColour(), 1);
+        for (std::size_t i = 1; i < c.truth.size(); ++i) truth->appendLine(c.truth[i - 1], c.truth[i]);
+        scene->insert(truth);
+    }
+    auto odometry = lines("odometry", odometryColour(), 1);
+    auto refused = lines("refused", refusedColour(), 2);
+    std::map<std::string, mrpt::opengl::CSetOfLines::Ptr> closures;
+    for (const auto& e : c.edges) {
+        const ViewNode* a = c.node(e.from);
+        const ViewNode* b = c.node(e.to);
+        if (!a || !b) continue;
+        switch (e.kind) {
+            case EdgeKind::Odometry: join(*odometry, *a, *b); break;
+            case EdgeKind::RefusedClosure: join(*refused, *a, *b); break;
+            case EdgeKind::Closure: {
+                auto& l = closures[e.closer];
+                if (!l) l = lines("closures/" + e.closer, closerColour(e.closer), 2);
+                join(*l, *a, *b);
+                break;
+            }
+        }
+    }
+    if (layers.odometry && !odometry->empty()) scene->insert(odometry);
+    if (layers.closures)
+        for (auto& [closer, l] : closures) scene->insert(l);
+    if (layers.refused && !refused->empty()) scene->insert(refused);
+    if (layers.nodes && !c.nodes.empty()) scene->insert(nodes(c));
+    return scene;
+}
+
+std::vector<std::string> layerNames(const mrpt::opengl::COpenGLScene& scene) {
+    std::vector<std::string> names;
+    for (const auto& object : *scene.getViewport()) names.push_back(object->getName());
+    return names;
+}
+
+}  // namespace lodestone::view
