@@ -6,6 +6,7 @@
 
 #include <atomic>
 #include <csignal>
+#include <cstdlib>
 
 namespace lodestone::grab {
 
@@ -50,6 +51,7 @@ int runGrabApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
     TCLAP::ValueArg<double> maxLag("", "max-lag", "live SLAM skips RGB-D frames while this many "
                                    "seconds behind the newest observation (default 0.3)",
                                    false, 0.3, "S", cmd);
+    TCLAP::SwitchArg view("", "view", "live SLAM in MRPT's 3D window (as lodestone-slam --view)", cmd);
     TCLAP::SwitchArg quiet("q", "quiet", "no status line", cmd);
     std::vector<std::string> words(argv, argv + argc);
     const auto outcome = config::parseCommandLine(cmd, words);
@@ -77,14 +79,17 @@ int runGrabApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
         err << "lodestone-grab: --max-lag: must be > 0 s\n";
         return 2;
     }
-    if ((slamOut.isSet() || mapIn.isSet()) && !slam.isSet()) {
-        err << "lodestone-grab: --slam-out and --map-in need --slam\n";
+    if ((slamOut.isSet() || mapIn.isSet() || view.isSet()) && !slam.isSet()) {
+        err << "lodestone-grab: --slam-out, --map-in and --view need --slam\n";
         return 2;
     }
+    if (view.getValue() && !std::getenv("DISPLAY"))
+        err << "lodestone-grab: --view: no display (DISPLAY is not set): SLAM runs without the view\n";
     options.slamConfig = slam.getValue();
     options.slamOut = slamOut.getValue();
     options.slamMapIn = mapIn.getValue();
     options.maxLag = maxLag.getValue();
+    options.slamView = view.getValue();
     options.quiet = quiet.getValue();
     options.terminal = terminal;
     g_stop = false;

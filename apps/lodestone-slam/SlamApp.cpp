@@ -56,6 +56,11 @@ int runSlamApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
         "by another tool): gauss|uT|T|normalized:<field strength in uT>",
         false, "", "UNIT", cmd);
     TCLAP::SwitchArg quiet("q", "quiet", "no progress output", cmd);
+    TCLAP::SwitchArg viewArg("", "view",
+                             "MRPT's 3D window with the run as it goes (graph by segment, closures by "
+                             "closer, the field, the current pose; keys: space pauses, s steps, v "
+                             "follows, q closes); at a terminal it stays open at the end until closed",
+                             cmd);
     const auto outcome = config::parseCommandLine(cmd, std::vector<std::string>(argv, argv + argc));
     if (outcome.kind == config::ParseOutcome::Kind::HelpShown) return 0;
     std::string usage = outcome.error;
@@ -119,6 +124,8 @@ int runSlamApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
     o.decodeThreads = static_cast<std::size_t>(decodeThreads.getValue());
     o.quiet = quiet.getValue();
     o.terminal = terminal;
+    o.view = viewArg.getValue();
+    o.viewKeepOpen = terminal;
     o.magneticUnit = magneticUnit.getValue();
     return runSlam(o, out, err).exitCode;
 }

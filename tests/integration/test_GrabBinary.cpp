@@ -221,6 +221,21 @@ TEST(GrabBinary, LiveSlamMatchesTheOfflineRunOnTheGrabbedRawlog) {
     EXPECT_NEAR(liveAte, offlineAte, 0.01) << "live " << liveAte << " m, offline " << offlineAte << " m";
 }
 
+TEST(GrabBinary, LiveSlamWithTheViewUnderXvfb) {
+    if (runCommand("command -v xvfb-run").exitCode != 0)
+        GTEST_SKIP() << "xvfb-run not installed: no X server to open the view on";
+    lodestone::test::TempDir dir;
+    const auto ini = writeGrabIni(dir, "time_scale = 4\nmax_seconds = 12");
+    const auto r = runCommand("xvfb-run -a timeout 120 " + kGrab + " " + ini + " -q --view --slam " +
+                              LODESTONE_CONFIG_INI_DIR + "/slam/slam.ini");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(r.output.find("no display"), std::string::npos) << r.output;
+    EXPECT_GT(numberIn(r.output, "live SLAM: ([0-9]+) nodes"), 10) << r.output;
+    EXPECT_TRUE(fs::exists(dir.file("run_slam/trajectory.tum")));
+    // Without --slam there is nothing to view.
+    EXPECT_EQ(runCommand(kGrab + " " + ini + " -q --view").exitCode, 2);
+}
+
 TEST(GrabBinary, ABadSlamIniIsRefusedBeforeGrabbing) {
     lodestone::test::TempDir dir;
     std::ofstream(dir.file("slam.ini")) << "[graphslam]\nnode_decider = FusedOdometryNDR\n";

@@ -102,6 +102,7 @@ class LiveSlam {
         so.mapIn = options.slamMapIn;
         so.decodeAhead = 0;  // the observations arrive decoded
         so.quiet = true;
+        so.view = options.slamView;  // (closes with the grab)
         so.onProgress = [&status](std::size_t nodes, std::size_t closures) {
             status.slamNodes = nodes;
             status.slamClosures = closures;

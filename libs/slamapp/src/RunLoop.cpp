@@ -2,6 +2,7 @@
 
 #include <lodestone/config/ProgressBar.h>
 #include <lodestone/obs/CObservationMagnetometer.h>
+#include <lodestone/view/LiveView.h>
 
 #include <algorithm>
 #include <chrono>
@@ -29,6 +30,16 @@ LoopOutcome runLoop(RunInputs& in, const SlamRunOptions& options, std::ostream& 
     config::ProgressBar progress(err, options.terminal, options.quiet);
     const auto wall0 = std::chrono::steady_clock::now();
     double t0 = NAN, lastMap = 0;
+    std::unique_ptr<view::LiveView> live;
+    if (options.view) live = view::LiveView::open(err);
+    const auto status = [&] {
+        view::LiveView::Status s;
+        s.dataSeconds = loop.dataSeconds;
+        const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+        s.realTimeFactor = wall > 0 ? loop.dataSeconds / wall : 0;
+        s.tracking = engine.nodeDecider().trackingState();
+        return s;
+    };
     const auto timedNext = [&] {
         const auto before = std::chrono::steady_clock::now();
         auto obs = in.source->next();
@@ -49,6 +60,7 @@ LoopOutcome runLoop(RunInputs& in, const SlamRunOptions& options, std::ostream& 
                 keep(*m, t, loop);
             }
             engine.process(obs);
+            if (live) live->offer(engine, status());
             if (options.mapEvery > 0 && !options.mapOut.empty() &&
                 t - t0 - lastMap >= options.mapEvery) {
                 lastMap = t - t0;
@@ -93,6 +105,11 @@ LoopOutcome runLoop(RunInputs& in, const SlamRunOptions& options, std::ostream& 
     loop.wallSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
     progress.finish(loop.dataSeconds);
+    if (live) {
+        if (options.viewKeepOpen && live->isOpen())
+            err << "lodestone-slam: the view stays open until it is closed (q); the outputs follow\n";
+        live->finish(engine, status(), options.viewKeepOpen);
+    }
     if (in.simTruth) in.simTruth->close();  // the truth of what was run, even if it stopped early
     return loop;
 }

@@ -2,6 +2,7 @@
 #include <lodestone/view/Palette.h>
 #include <lodestone/view/SceneBuilder.h>
 
+#include <mrpt/opengl/CFrustum.h>
 #include <mrpt/opengl/CGridPlaneXY.h>
 #include <mrpt/opengl/CPointCloudColoured.h>
 #include <mrpt/opengl/CSetOfLines.h>
@@ -44,6 +45,27 @@ mrpt::opengl::CPointCloudColoured::Ptr nodes(const SceneContent& c) {
                          colour.B / 255.f);
     }
     return cloud;
+}
+
+/** Each node's mean |B| as a ribbon of points 5 cm below the path (the plots' viridis over the
+ * run's range); none without readings. */
+mrpt::opengl::CPointCloudColoured::Ptr fieldRibbon(const SceneContent& c) {
+    double lo = INFINITY, hi = -INFINITY;
+    for (const auto& n : c.nodes)
+        if (!std::isnan(n.field)) lo = std::min(lo, n.field), hi = std::max(hi, n.field);
+    if (!(lo <= hi)) return nullptr;
+    const plot::Colormap scale(lo, hi);
+    auto ribbon = mrpt::opengl::CPointCloudColoured::Create();
+    ribbon->setName("field");
+    ribbon->setPointSize(6);
+    for (const auto& n : c.nodes) {
+        if (std::isnan(n.field)) continue;
+        const cv::Vec3b bgr = scale(n.field);
+        ribbon->push_back(static_cast<float>(n.pose.x()), static_cast<float>(n.pose.y()),
+                          static_cast<float>(n.pose.z() - 0.05), bgr[2] / 255.f, bgr[1] / 255.f,
+                          bgr[0] / 255.f);
+    }
+    return ribbon;
 }
 
 mrpt::opengl::CPointCloudColoured::Ptr cloudOf(const ViewCloud& points) {
@@ -102,7 +124,23 @@ mrpt::opengl::COpenGLScene::Ptr buildScene(const SceneContent& c, const Layers& 
     if (layers.closures)
         for (auto& [closer, l] : closures) scene->insert(l);
     if (layers.refused && !refused->empty()) scene->insert(refused);
+    if (layers.field)
+        if (auto ribbon = fieldRibbon(c)) scene->insert(ribbon);
     if (layers.nodes && !c.nodes.empty()) scene->insert(nodes(c));
+    if (layers.current && c.hasCurrent) {
+        // (a camera's view cone along the robot's +x, as MRPT's frustum looks)
+        auto frustum = mrpt::opengl::CFrustum::Create(0.05f, 0.6f, 60.f, 45.f, 1.f, true, false);
+        frustum->setName("current");
+        frustum->setPose(c.current);
+        frustum->setColor_u8(mrpt::img::TColor(255, 255, 255));
+        scene->insert(frustum);
+    }
+    for (std::size_t i = 0; i < c.overlay.size(); ++i) {
+        mrpt::opengl::TFontParams font;
+        font.color = mrpt::img::TColorf(1, 1, 1);
+        font.vfont_scale = 14;
+        scene->getViewport()->addTextMessage(8, -20.0 - 18.0 * double(i), c.overlay[i], i, font);
+    }
     return scene;
 }
 

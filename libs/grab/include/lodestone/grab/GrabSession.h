@@ -16,6 +16,7 @@ struct GrabOptions {
     std::string slamOut;     ///< its outputs (default PREFIX_slam)
     std::string slamMapIn;   ///< live SLAM starts in this saved map (localize; slamapp::SlamRunOptions::mapIn)
     double maxLag{0.3};      ///< [s] behind the newest observation, SLAM skips RGB-D frames
+    bool slamView{false};    ///< live SLAM in MRPT's 3D window (slamapp::SlamRunOptions::view)
     bool quiet{false}, terminal{false};
 };
 

@@ -31,6 +31,9 @@ class NodeDecider : public mrpt::graphslam::deciders::CNodeRegistrationDecider<G
      * asks it for an edge decider that aligns keyframes' depth. The default ignores it (a
      * decider without depth frames). */
     virtual void keepKeyframeDepth(bool /*keep*/) {}
+    /** What the decider's tracking is doing now, in a word or two for a live view
+     * ("tracking", "bridging a gap", "lost", ...); empty where it does not say. */
+    virtual std::string trackingState() const { return {}; }
     /** The ID registered by the last updateState() / finish() call, if it added one. */
     std::optional<TNodeID> justRegistered() const { return just_registered_; }
 

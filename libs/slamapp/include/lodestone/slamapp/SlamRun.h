@@ -49,6 +49,11 @@ struct SlamRunOptions {
     std::size_t decodeThreads{0};
     bool quiet{false};
     bool terminal{false};  ///< draw the progress bar in place
+    /** MRPT's 3D window with the run as it goes (view::LiveView); without a display the run
+     * goes on without it, with a warning. */
+    bool view{false};
+    /** At the end, the window stays until it is closed (a user at a terminal). */
+    bool viewKeepOpen{false};
     /** The unit the rawlog's CObservationMagnetometer numbers are really in, when a tool wrote
      * them in another than the class's microtesla (lodestone-slam --magnetic-unit): every
      * reading is converted as it is read. Empty: microtesla. Either way, where the deciders take

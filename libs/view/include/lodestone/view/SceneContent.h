@@ -22,6 +22,7 @@ struct ViewNode {
     bool keyframe{false};
     double timestamp{0};  ///< [s]
     double error{NAN};    ///< [m] against the ground truth (aligned), where one was given
+    double field{NAN};    ///< [uT] mean |B| of the magnetometer readings it holds (live view)
 };
 
 /** What an edge of the graph stands for. */
@@ -51,6 +52,9 @@ struct SceneContent {
     ViewCloud cloud;
     std::vector<mrpt::math::TPoint3D> truth;  ///< the ground truth's path, aligned to the estimate
     double maxError{NAN};                     ///< [m] over the nodes, NaN without a truth
+    bool hasCurrent{false};                   ///< a run going on: where the robot is now
+    mrpt::poses::CPose3D current;
+    std::vector<std::string> overlay;         ///< status lines drawn over the view
     const ViewNode* node(std::uint64_t id) const;
     int segments() const;  ///< the highest segment + 1
 };
