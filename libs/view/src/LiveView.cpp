@@ -40,6 +40,8 @@ std::vector<std::string> overlayOf(const graphslam::SlamEngine& engine, const Sc
     closures += "   refused " + std::to_string(refused);
     lines.push_back(closures);
     if (!status.tracking.empty()) lines.push_back("tracking: " + status.tracking);
+    if (!c.nodes.empty() && c.nodes.back().segment != c.nodes.front().segment)
+        lines.emplace_back("relocating: the current segment is not joined to the map yet");
     if (engine.stats().relocations > 0)
         lines.push_back("relocations " + std::to_string(engine.stats().relocations));
     if (paused) lines.emplace_back("PAUSED: space resumes, s steps one node");

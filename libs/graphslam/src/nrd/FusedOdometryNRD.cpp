@@ -291,6 +291,13 @@ std::function<void(const mrpt::obs::CObservation::Ptr&)> FusedOdometryNRD::prepa
     };
 }
 
+std::string FusedOdometryNRD::trackingState() const {
+    if (lifted_) return "kidnapped (carried)";
+    std::string state = frames_ == 0 ? "wheels" : "wheels + camera";
+    if (segment_ > 0) state += ", segment " + std::to_string(segment_);
+    return state;
+}
+
 JsonObject FusedOdometryNRD::describe() const {
     JsonObject params;
     params_.describe(params);

@@ -10,8 +10,22 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace lodestone::graphslam {
+
+std::string VisualOdometryNRD::trackingState() const {
+    if (frames_ == 0) return "waiting for the camera";
+    std::string state = "tracking";
+    if (!(frame_time_ <= last_tracked_.t)) {
+        char text[64];
+        std::snprintf(text, sizeof text, "bridging a gap (%.1f s)",
+                      std::isnan(last_tracked_.t) ? 0.0 : frame_time_ - last_tracked_.t);
+        state = text;
+    }
+    if (segment_ > 0) state += ", segment " + std::to_string(segment_);
+    return state;
+}
 
 void VisualOdometryNRD::trackedFrame(const vision::RgbdFrame& frame,
                                      const Eigen::Isometry3d& T_robot_optical) {

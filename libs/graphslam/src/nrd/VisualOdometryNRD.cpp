@@ -211,6 +211,7 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
     if (scan->sensorLabel != params_.cameraLabel) return;
     ++frames_;
     const double t = mrpt::Clock::toDouble(scan->timestamp);
+    frame_time_ = t;
     const auto T_robot_optical = odometry::opticalFrameOnRobot(scan->sensorPose);
     std::optional<vision::RotationPrior> rotation;
     if (params_.useGyro) {

@@ -53,6 +53,8 @@ class FusedOdometryNRD : public NodeDecider {
     /** The last node's pose composed with the motion since it. */
     global_pose_t getCurrentRobotPosEstimation() const override;
     JsonObject describe() const override;
+    /** "kidnapped (carried)" between a lift and its put-down, else the visual odometry's. */
+    std::string trackingState() const override;
     /** The camera's frames prepared ahead: converted, ORB features, depth cloud. */
     std::function<void(const mrpt::obs::CObservation::Ptr&)> preparer(std::size_t inFlight) override;
 

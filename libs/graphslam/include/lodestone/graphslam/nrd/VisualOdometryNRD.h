@@ -172,6 +172,9 @@ class VisualOdometryNRD : public NodeDecider {
     }
     global_pose_t getCurrentRobotPosEstimation() const override;
     JsonObject describe() const override;
+    /** "tracking", "bridging a gap (N frames)" while VO fails, with the segment after a gap
+     * no bridge held. */
+    std::string trackingState() const override;
     /** The camera's frames prepared ahead: converted, ORB features, depth cloud. */
     std::function<void(const mrpt::obs::CObservation::Ptr&)> preparer(std::size_t inFlight) override;
 
@@ -286,6 +289,7 @@ class VisualOdometryNRD : public NodeDecider {
     std::size_t gyro_priors_{0};  // frames given the gyro's rotation
     Anchor reference_;    // VO's reference frame
     double node_time_{NAN};  // the last node's frame's time
+    double frame_time_{NAN};  // the last frame's of this camera
     Anchor last_tracked_;  // the last frame VO tracked (it may become the reference)
     std::shared_ptr<const vision::FrameFeatures> last_tracked_features_;
     std::optional<vision::RgbdFrame> last_tracked_frame_;  // (its images shared, not copied)
