@@ -4,8 +4,9 @@
 # offline on the grabbed rawlog. Prints a markdown table: the live run's lag behind the newest
 # observation (p50 / p99 / max), RGB-D frames skipped, ATE of the live and of the offline run
 # against the driver's ground truth, and the grab's own counts.
-# Usage: scripts/bench/live.sh [SCENARIO CAMERA SECONDS]...
+# Usage: [VIEW=1] scripts/bench/live.sh [SCENARIO CAMERA SECONDS]...
 #   default: office 320x240@15 30   paper_loop 640x480@30 60
+#   VIEW=1: live SLAM with its 3D window (--view) on an Xvfb display (xvfb-run)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 build="$root/build"
@@ -36,7 +37,11 @@ time_scale = 1
 max_seconds = $seconds
 ground_truth = $run/grab.gt.tum
 INI
-    "$grab" "$run/grab.ini" -q --slam "$root/config_ini/slam/slam.ini" > "$run/grab.txt"
+    if [[ ${VIEW:-0} == 1 ]]; then
+        xvfb-run -a -s "-screen 0 1280x1024x24" "$grab" "$run/grab.ini" -q --view --slam "$root/config_ini/slam/slam.ini" > "$run/grab.txt"
+    else
+        "$grab" "$run/grab.ini" -q --slam "$root/config_ini/slam/slam.ini" > "$run/grab.txt"
+    fi
     summary=$(grep "live SLAM" "$run/grab.txt")
     p50=$(echo "$summary" | sed -E 's/.*p50 ([0-9.]+) s.*/\1/')
     p99=$(echo "$summary" | sed -E 's/.*p99 ([0-9.]+) s.*/\1/')
