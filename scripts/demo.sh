@@ -29,10 +29,14 @@ echo "== lodestone-slam on the office scenario, simulated on the fly"
 "$slam" --sim "$root/config_ini/scenarios/office.ini" --config "$root/config_ini/slam/slam.ini" \
     --out "$out/office"
 echo
+echo "== lodestone-view: the office run in 3D, off-screen"
+"$root/build/apps/lodestone-view/lodestone-view" "$out/office" --screenshot "$out/office/view3d.png"
+echo
 echo "demo: results in $out"
 echo "  bundled/, office/  trajectory.tum (every node), graph.graph (MRPT), map.ply (keyframe"
 echo "                     clouds), report.json (counts, timings, ATE), graph.png, trajectory.png,"
 echo "                     field_map.png (|B| on the optimized trajectory), nodes.csv"
+echo "  office/view3d.png  the office run in 3D (lodestone-view DIR opens it in MRPT's window)"
 echo "  report/index.html  the visual report of the bundled rawlog and its SLAM run"
 echo "  office/ground_truth.tum  the simulator's truth"
 echo "  summary.txt        lodestone-inspect summary of the bundled rawlog"

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
@@ -54,6 +55,19 @@ TEST(ViewApp, UsageAndBadInputAreNamed) {
     test::writeRunFolder(dir.path().string(), false);
     EXPECT_EQ(viewCmd({dir.path().string(), "--export", dir.file("a.3Dscene"), "--camera", "1,x"}, out, err), 1);
     EXPECT_NE(err.find("camera '1,x'"), std::string::npos) << err;
+    // Outputs that cannot be written are named.
+    EXPECT_EQ(viewCmd({dir.path().string(), "--export", dir.file("no/such/folder/a.3Dscene")}, out, err), 1);
+    EXPECT_NE(err.find("no/such/folder/a.3Dscene"), std::string::npos) << err;
+    const int shot = viewCmd({dir.path().string(), "--screenshot", dir.file("no/such/folder/a.png")}, out, err);
+    if (err.find("off-screen") == std::string::npos) {
+        EXPECT_EQ(shot, 1);
+        EXPECT_NE(err.find("no/such/folder/a.png"), std::string::npos) << err;
+    }
+    // A map folder whose manifest is damaged: the file is named.
+    test::TempDir map;
+    std::ofstream(map.file("manifest.ini")) << "[map]\nformat_version = banana\n";
+    EXPECT_EQ(viewCmd({map.path().string(), "--export", dir.file("b.3Dscene")}, out, err), 1);
+    EXPECT_NE(err.find("manifest.ini"), std::string::npos) << err;
 }
 
 TEST(ViewApp, TheWindowWithoutADisplaySaysSo) {

@@ -9,6 +9,8 @@
 #include <lodestone/inspect/report/SeriesCollectors.h>
 #include <lodestone/inspect/report/SensorTimeline.h>
 #include <lodestone/inspect/report/SlamOutputs.h>
+#include <lodestone/view/SceneBuilder.h>
+#include <lodestone/view/Snapshot.h>
 #include <lodestone/inspect/report/Thumbnails.h>
 #include <lodestone/io/EntryContents.h>
 #include <lodestone/io/ImagesDirectory.h>
@@ -67,6 +69,19 @@ void slamFigures(const SlamOutputs& slam, const std::optional<eval::FieldMapBuil
     writePng(dir, "slam_graph.png", graphChart(slam), page.slamFigures,
              "The pose graph from above with every loop closure proposed, coloured by the decider "
              "that proposed it; closures not in the final graph are thin with a cross.");
+    try {
+        view::RunReadOptions options;
+        options.groundTruth = slam.groundTruthPath;
+        const view::SceneContent content = view::readRunFolder(slam.dir, options);
+        const mrpt::img::CImage image =
+            view::renderScene(*view::buildScene(content), view::framing(content), 1280, 960);
+        writePng(dir, "slam_view3d.png", image.asCvMatRef(), page.slamFigures,
+                 "The run in 3D, as lodestone-view draws it: the keyframe clouds on the optimized "
+                 "poses, the nodes coloured by their error against the ground truth (or by segment "
+                 "without one), loop closures in their closer's colour, the truth's path in grey.");
+    } catch (const std::exception& e) {
+        page.slamNotes.push_back(std::string("not shown: the 3D view (") + e.what() + ")");
+    }
     if (fieldMap && fieldMap->placed() > 0) {
         writePng(dir, "slam_field_map.png", fieldMap->render("|B| on the optimized trajectory"),
                  page.slamFigures,
