@@ -23,5 +23,6 @@ find_package(ZLIB REQUIRED)
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(LIBDEFLATE REQUIRED IMPORTED_TARGET libdeflate)
 find_package(Ceres REQUIRED)
+find_package(Open3D REQUIRED)  # the dense model (libs/dense): libopen3d-dev
 find_package(nlohmann_json REQUIRED)
 find_package(Threads REQUIRED)

@@ -13,6 +13,7 @@ packages=(
     libdeflate-dev                 # colour PNG frames inflated in half zlib's time (libs/io)
     libjpeg62-turbo-dev            # libjpeg's error handler made to throw (libs/io/hooks)
     libceres-dev                   # pose-graph optimization (sparse, robust losses)
+    libopen3d-dev                  # the dense model: TSDF fusion and marching cubes (libs/dense)
     nlohmann-json3-dev             # lodestone-eval relocation reads report.json
     libgtest-dev libgmock-dev
     libbenchmark-dev               # micro-benchmarks (bench/bench_matching)
