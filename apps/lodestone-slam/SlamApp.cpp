@@ -61,6 +61,10 @@ int runSlamApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
                              "closer, the field, the current pose; keys: space pauses, s steps, v "
                              "follows, q closes); at a terminal it stays open at the end until closed",
                              cmd);
+    TCLAP::SwitchArg meshArg("", "mesh",
+                             "the dense model: every keyframe's frame fused at its optimized pose "
+                             "(TSDF, [dense] keys of the INI) and meshed into mesh.ply",
+                             cmd);
     const auto outcome = config::parseCommandLine(cmd, std::vector<std::string>(argv, argv + argc));
     if (outcome.kind == config::ParseOutcome::Kind::HelpShown) return 0;
     std::string usage = outcome.error;
@@ -125,6 +129,7 @@ int runSlamApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
     o.quiet = quiet.getValue();
     o.terminal = terminal;
     o.view = viewArg.getValue();
+    o.mesh = meshArg.getValue();
     o.viewKeepOpen = terminal;
     o.magneticUnit = magneticUnit.getValue();
     return runSlam(o, out, err).exitCode;

@@ -25,6 +25,8 @@ const std::vector<RunFileSpec>& runFiles() {
          "the map's nodes as they were when the first kidnap began"},
         {RunFile::FieldMap, "field_map.png", "PNG",
          "|B| of every magnetometer reading on the optimized trajectory"},
+        {RunFile::Mesh, "mesh.ply", "binary PLY",
+         "the dense model: keyframes fused along the optimized poses, meshed (--mesh)"},
     };
     return table;
 }

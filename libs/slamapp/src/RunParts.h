@@ -93,6 +93,11 @@ std::vector<std::uint32_t> loadMap(const SlamRunOptions& options, const std::str
 graphslam::JsonObject saveMap(const RunInputs& in, const SlamRunOptions& options,
                               std::ostream& err, SlamRunResult& result);
 
+/** --mesh: every keyframe's frame read again from the source and fused at its node's
+ * optimized pose into mesh.ply (RunMesh.cpp); what was fused, for report.json. No mesh (a live
+ * run, no keyframe, no usable depth) is said on `err` and in the object, not an error. */
+graphslam::JsonObject writeMesh(const RunInputs& in, const SlamRunOptions& options, std::ostream& err);
+
 /** The text of the SLAM INI (what a saved map keeps). */
 std::string configText(const SlamRunOptions& options);
 

@@ -4,6 +4,7 @@
 #include <lodestone/graphslam/DeciderRegistry.h>
 #include <lodestone/io/KidnapEvents.h>
 #include <lodestone/io/RawlogPaths.h>
+#include <lodestone/dense/DenseParams.h>
 #include <lodestone/io/RawlogSource.h>
 #include <lodestone/obs/CObservationMagnetometer.h>
 #include <lodestone/obs/MagneticUnit.h>
@@ -172,7 +173,8 @@ void openRawlog(const SlamRunOptions& options, RunInputs& in) {
 
 std::set<std::string> allowedSections() {
     std::set<std::string> s{"graphslam",       "relocalization",  "kidnap_detection",
-                            "wheel_odometry",  "visual_odometry", "odometry_fusion"};
+                            "wheel_odometry",  "visual_odometry", "odometry_fusion",
+                            "dense"};
     const auto& reg = graphslam::DeciderRegistry::instance();
     for (const auto& names : {reg.nodeDeciders(), reg.edgeDeciders(), reg.optimizers()}) {
         s.insert(names.begin(), names.end());
@@ -188,6 +190,7 @@ RunInputs openInputs(const SlamRunOptions& options) {
     // The INI as written, first: its mistakes are named before a scenario's, and its own
     // [wheel_odometry] keys are checked even where a scenario's replace them below.
     in.engine = graphslam::SlamEngine::fromConfig(ini);
+    if (options.mesh || ini.sectionExists("dense")) (void)dense::DenseParams::read(ini);  // (named now, not after the run)
     if (options.live) {
         in.source = std::make_unique<SharedSource>(options.live);
     } else if (!options.scenario.empty()) {

@@ -19,6 +19,7 @@ enum class RunFile {
     Events,
     MapAtFirstKidnap,
     FieldMap,
+    Mesh,
 };
 
 /** One row of the table of a run's files: its name in the folder, its format and what it holds. */

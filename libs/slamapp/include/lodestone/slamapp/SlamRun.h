@@ -54,6 +54,9 @@ struct SlamRunOptions {
     bool view{false};
     /** At the end, the window stays until it is closed (a user at a terminal). */
     bool viewKeepOpen{false};
+    /** The dense model: after the last optimization every keyframe's frame is read again and
+     * fused at its optimized pose into mesh.ply ([dense] keys of the INI). */
+    bool mesh{false};
     /** The unit the rawlog's CObservationMagnetometer numbers are really in, when a tool wrote
      * them in another than the class's microtesla (lodestone-slam --magnetic-unit): every
      * reading is converted as it is read. Empty: microtesla. Either way, where the deciders take

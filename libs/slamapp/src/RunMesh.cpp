@@ -1,0 +1,103 @@
+// --mesh: the dense model. After the last optimization, the source is read once more (the
+// rawlog again, or the scenario simulated again with its seed) and every keyframe's RGB-D frame
+// is fused at its node's optimized pose (dense::TsdfFusion), then meshed into mesh.ply. Frames
+// are not held through the run: a second pass costs reading, not memory.
+#include "RunParts.h"
+
+#include <lodestone/dense/TsdfFusion.h>
+#include <lodestone/graphslam/Se3Pose.h>
+#include <lodestone/io/RawlogSource.h>
+#include <lodestone/odometry/RgbdObservationFrame.h>
+#include <lodestone/outputs/RunFiles.h>
+#include <lodestone/sim/Scenario.h>
+#include <lodestone/sim/SimulatorSource.h>
+
+#include <mrpt/config/CConfigFile.h>
+#include <mrpt/obs/CObservation3DRangeScan.h>
+
+#include <chrono>
+#include <cmath>
+#include <map>
+
+namespace lodestone::slamapp::detail {
+
+namespace {
+
+/** The keyframes to fuse, by their frame's time: node ID (those of the map's group only: a
+ * kidnapped segment never joined has no pose in the map's frame). */
+std::map<double, graphslam::TNodeID> keyframesByTime(const graphslam::SlamEngine& engine, int every) {
+    std::map<double, graphslam::TNodeID> out;
+    int k = 0;
+    const auto& records = engine.nodes().records();
+    for (graphslam::TNodeID id = engine.mapNodes(); id < records.size(); ++id) {
+        if (!records[id].keyframe || !engine.graph().nodes.count(id)) continue;
+        if (engine.relocalizer().groupOf(id) != 0) continue;
+        if (k++ % every == 0) out[records[id].timestamp] = id;
+    }
+    return out;
+}
+
+}  // namespace
+
+graphslam::JsonObject writeMesh(const RunInputs& in, const SlamRunOptions& options, std::ostream& err) {
+    const auto t0 = std::chrono::steady_clock::now();
+    graphslam::JsonObject report;
+    const auto skip = [&](const std::string& why) {
+        err << "lodestone-slam: --mesh: no mesh.ply: " << why << "\n";
+        return report.set("written", false).set("why", why);
+    };
+    const auto& engine = *in.engine;
+    const dense::DenseParams params = dense::DenseParams::read(mrpt::config::CConfigFile(options.config));
+    const auto keyframes = keyframesByTime(engine, params.everyKeyframe);
+    if (keyframes.empty()) return skip("the run has no keyframe on the map (no RGB-D frames tracked)");
+    std::unique_ptr<io::DataSource> source;
+    if (options.live) return skip("a live run: run lodestone-slam --rawlog on the grabbed rawlog with --mesh");
+    if (!options.scenario.empty()) {
+        const auto scenario = sim::Scenario::load(options.scenario);
+        source = std::make_unique<sim::SimulatorSource>(scenario, scenario.seed);
+    } else {
+        source = std::make_unique<io::RawlogSource>(options.rawlog);
+    }
+    dense::TsdfFusion fusion(params);
+    std::size_t matched = 0, depthless = 0, pixels = 0;
+    const double last = keyframes.rbegin()->first;
+    while (auto obs = source->next()) {
+        const double t = mrpt::Clock::toDouble(obs->timestamp);
+        if (t > last + 1e-3) break;
+        const auto* scan = dynamic_cast<const mrpt::obs::CObservation3DRangeScan*>(obs.get());
+        if (!scan) continue;
+        const auto it = keyframes.lower_bound(t - 1e-4);
+        if (it == keyframes.end() || std::abs(it->first - t) > 1e-4) continue;
+        ++matched;
+        const vision::RgbdFrame frame = odometry::frameFromObservation(*scan);
+        cv::Mat colour;
+        if (scan->hasIntensityImage && !scan->intensityImage.isEmpty()) {
+            const cv::Mat img = scan->intensityImage.asCvMat<cv::Mat>(mrpt::img::SHALLOW_COPY);
+            if (img.type() == CV_8UC3 && img.size() == frame.depth.size()) colour = img;
+        }
+        if (frame.depth.empty()) {
+            ++depthless;
+            continue;
+        }
+        const Eigen::Isometry3d robot = graphslam::isometryOf(engine.graph().nodes.at(it->second));
+        const std::size_t fused =
+            fusion.integrate(frame.depth, colour, frame.intrinsics,
+                             robot * odometry::opticalFrameOnRobot(scan->sensorPose));
+        pixels += fused;
+        depthless += fused == 0;
+    }
+    const double fuseSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    report.set("keyframes", keyframes.size()).set("frames_found", matched).set("frames_fused", fusion.framesFused())
+        .set("frames_without_depth", depthless).set("pixels_fused", pixels)
+        .set("voxel_size_m", params.voxelSize).set("truncation_m", params.truncation)
+        .set("fused_depth_limit_m", params.fusedDepthLimit());
+    if (fusion.framesFused() == 0) return skip("no keyframe's frame had usable depth");
+    const dense::Mesh mesh = fusion.extractMesh();
+    if (mesh.empty()) return skip("the fused frames made no surface");
+    dense::writeMeshPly(outputs::pathIn(options.outDir, outputs::RunFile::Mesh), mesh);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return report.set("written", true).set("vertices", mesh.vertices.size()).set("triangles", mesh.triangles.size())
+        .set("fuse_seconds", fuseSeconds).set("seconds", seconds);
+}
+
+}  // namespace lodestone::slamapp::detail
