@@ -36,8 +36,8 @@ void showWindow(const mrpt::opengl::COpenGLScene::Ptr& scene, const ViewCamera& 
     window.setCameraAzimuthDeg(static_cast<float>(camera.azimuthDeg));
     window.setCameraElevationDeg(static_cast<float>(camera.elevationDeg));
     window.repaint();
-    out << "keys: n nodes, o odometry, l closures, r refused, c cloud, t truth, f floor; q quits\n";
-    static const std::map<int, std::string> layers{{'n', "nodes"},   {'o', "odometry"}, {'l', "closures"},
+    out << "keys: n nodes, o odometry, l closures, r refused, c cloud, m mesh, t truth, f floor; q quits\n";
+    static const std::map<int, std::string> layers{{'n', "nodes"},   {'o', "odometry"}, {'l', "closures"}, {'m', "mesh"},
                                                    {'r', "refused"}, {'c', "cloud"},    {'t', "truth"},
                                                    {'f', "floor"}};
     while (window.isOpen()) {

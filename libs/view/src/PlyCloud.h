@@ -11,4 +11,10 @@ namespace lodestone::view {
  * std::runtime_error naming the file for any other layout or a file cut short. */
 ViewCloud readPlyCloud(const std::string& path, std::size_t maxPoints);
 
+/** A mesh as lodestone-slam --mesh writes mesh.ply (those vertices, then faces of a uchar
+ * count 3 and int indices), at most `maxTriangles` triangles, evenly taken. Throws
+ * std::runtime_error naming the file for another layout, a file cut short or an index out of
+ * range. */
+ViewMesh readPlyMesh(const std::string& path, std::size_t maxTriangles);
+
 }  // namespace lodestone::view

@@ -6,6 +6,7 @@
 #include <mrpt/opengl/CGridPlaneXY.h>
 #include <mrpt/opengl/CPointCloudColoured.h>
 #include <mrpt/opengl/CSetOfLines.h>
+#include <mrpt/opengl/CSetOfTriangles.h>
 
 #include <algorithm>
 #include <cmath>
@@ -79,6 +80,29 @@ mrpt::opengl::CPointCloudColoured::Ptr cloudOf(const ViewCloud& points) {
     return cloud;
 }
 
+mrpt::opengl::CSetOfTriangles::Ptr meshOf(const ViewMesh& mesh) {
+    auto triangles = mrpt::opengl::CSetOfTriangles::Create();
+    triangles->setName("mesh");
+    std::vector<mrpt::opengl::TTriangle> all;
+    all.reserve(mesh.size());
+    for (std::size_t t = 0; t < mesh.size(); ++t) {
+        mrpt::opengl::TTriangle tri;
+        for (int k = 0; k < 3; ++k) {
+            const std::size_t v = static_cast<std::size_t>(mesh.triangles[3 * t + k]);
+            auto& p = tri.vertices[k].xyzrgba;
+            p.pt = {mesh.xyz[3 * v], mesh.xyz[3 * v + 1], mesh.xyz[3 * v + 2]};
+            p.r = mesh.rgb[3 * v];
+            p.g = mesh.rgb[3 * v + 1];
+            p.b = mesh.rgb[3 * v + 2];
+            p.a = 255;
+        }
+        tri.computeNormals();
+        all.push_back(tri);
+    }
+    triangles->insertTriangles(all.begin(), all.end());
+    return triangles;
+}
+
 }  // namespace
 
 mrpt::opengl::COpenGLScene::Ptr buildScene(const SceneContent& c, const Layers& layers) {
@@ -96,7 +120,11 @@ mrpt::opengl::COpenGLScene::Ptr buildScene(const SceneContent& c, const Layers& 
         grid->setColor_u8(mrpt::img::TColor(200, 200, 200));
         scene->insert(grid);
     }
-    if (layers.cloud && c.cloud.size() > 0) scene->insert(cloudOf(c.cloud));
+    if (layers.mesh && c.mesh.size() > 0) {
+        scene->insert(meshOf(c.mesh));
+    } else if (layers.cloud && c.cloud.size() > 0) {
+        scene->insert(cloudOf(c.cloud));
+    }
     if (layers.truth && !c.truth.empty()) {
         auto truth = lines("truth", truthColour(), 1);
         for (std::size_t i = 1; i < c.truth.size(); ++i) truth->appendLine(c.truth[i - 1], c.truth[i]);

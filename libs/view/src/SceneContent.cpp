@@ -113,6 +113,9 @@ SceneContent readRunFolder(const std::string& dir, const RunReadOptions& options
     const std::string plyPath = outputs::pathIn(dir, RunFile::Map);
     if (options.maxPoints > 0 && std::filesystem::exists(plyPath))
         c.cloud = readPlyCloud(plyPath, options.maxPoints);
+    const std::string meshPath = outputs::pathIn(dir, RunFile::Mesh);
+    if (options.maxTriangles > 0 && std::filesystem::exists(meshPath))
+        c.mesh = readPlyMesh(meshPath, options.maxTriangles);
     std::string truth = options.groundTruth;
     if (truth.empty() && std::filesystem::exists(outputs::pathIn(dir, RunFile::GroundTruth)))
         truth = outputs::pathIn(dir, RunFile::GroundTruth);

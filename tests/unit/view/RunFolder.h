@@ -7,6 +7,7 @@
 #include <lodestone/outputs/ClosureTable.h>
 #include <lodestone/outputs/NodeTable.h>
 
+#include <array>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -53,6 +54,22 @@ inline void writeRunFolder(const std::string& dir, bool withTruth, std::size_t p
         const unsigned char rgb[3] = {10, 20, static_cast<unsigned char>(i % 256)};
         ply.write(reinterpret_cast<const char*>(xyz), sizeof xyz);
         ply.write(reinterpret_cast<const char*>(rgb), sizeof rgb);
+    }
+    if (withTruth) {
+        // (and a dense model: two triangles of a 1 m square on the floor)
+        std::ofstream mesh(dir + "/mesh.ply", std::ios::binary);
+        mesh << "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                "property float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\n"
+                "element face 2\nproperty list uchar int vertex_indices\nend_header\n";
+        for (const auto& v : {std::array<float, 3>{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}) {
+            const unsigned char rgb[3] = {200, 100, 50};
+            mesh.write(reinterpret_cast<const char*>(v.data()), 12);
+            mesh.write(reinterpret_cast<const char*>(rgb), 3);
+        }
+        for (const auto& f : {std::array<std::int32_t, 3>{0, 1, 2}, {0, 2, 3}}) {
+            mesh.put(3);
+            mesh.write(reinterpret_cast<const char*>(f.data()), 12);
+        }
     }
     if (withTruth) {
         io::TumTrajectoryWriter truth(dir + "/ground_truth.tum");

@@ -59,6 +59,29 @@ TEST(SceneContent, EachNodesErrorAgainstTheTruth) {
     EXPECT_FALSE(c.truth.empty());
 }
 
+TEST(SceneContent, TheDenseModelIsReadAndDrawnInsteadOfTheCloud) {
+    test::TempDir dir;
+    test::writeRunFolder(dir.path().string(), true);  // (with mesh.ply)
+    const view::SceneContent c = view::readRunFolder(dir.path().string());
+    ASSERT_EQ(c.mesh.size(), 2u);
+    EXPECT_EQ(c.mesh.xyz.size(), 12u);
+    EXPECT_EQ(c.mesh.triangles[5], 3);
+    EXPECT_EQ(c.mesh.rgb[0], 200);
+    const auto names = view::layerNames(*view::buildScene(c));
+    EXPECT_NE(std::find(names.begin(), names.end(), "mesh"), names.end());
+    EXPECT_EQ(std::find(names.begin(), names.end(), "cloud"), names.end());
+    // A face naming a vertex that is not there: named.
+    std::string bytes = test::readTextFile(dir.file("mesh.ply"));
+    bytes[bytes.size() - 4] = 9;  // the last index: 3 -> 9
+    std::ofstream(dir.file("mesh.ply"), std::ios::binary) << bytes;
+    try {
+        view::readRunFolder(dir.path().string());
+        FAIL() << "a face out of range was read";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("mesh.ply: face 1 names vertex 9"), std::string::npos) << e.what();
+    }
+}
+
 TEST(SceneContent, AMissingOrDamagedFileIsNamed) {
     test::TempDir dir;
     const std::string d = dir.path().string();
@@ -114,12 +137,15 @@ TEST(SceneBuilder, EachLayerIsANamedObject) {
     test::writeRunFolder(dir.path().string(), true);
     const auto scene = view::buildScene(view::readRunFolder(dir.path().string()));
     const auto names = view::layerNames(*scene);
-    for (const char* name : {"floor", "cloud", "truth", "odometry", "closures/MagneticWindowERD",
+    for (const char* name : {"floor", "mesh", "truth", "odometry", "closures/MagneticWindowERD",
                              "closures/OrbSubmapERD", "refused", "nodes"})
         EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
+    // Without the mesh, the cloud in its place; without the truth, no truth.
     view::Layers some;
-    some.cloud = some.truth = false;
+    some.mesh = some.truth = false;
     const auto fewer = view::layerNames(*view::buildScene(view::readRunFolder(dir.path().string()), some));
-    EXPECT_EQ(std::find(fewer.begin(), fewer.end(), "cloud"), fewer.end());
-    EXPECT_EQ(fewer.size() + 2, names.size());
+    EXPECT_NE(std::find(fewer.begin(), fewer.end(), "cloud"), fewer.end());
+    EXPECT_EQ(std::find(fewer.begin(), fewer.end(), "mesh"), fewer.end());
+    EXPECT_EQ(std::find(fewer.begin(), fewer.end(), "truth"), fewer.end());
+    EXPECT_EQ(fewer.size() + 1, names.size());
 }

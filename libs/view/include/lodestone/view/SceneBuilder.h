@@ -10,10 +10,11 @@ namespace lodestone::view {
 
 /** Which layers a scene holds. Each layer is one named object of the scene ("nodes",
  * "odometry", "closures/<closer>", "refused", "cloud", "truth", "floor", "field",
- * "current"), so a window can toggle it by name. */
+ * "current", "mesh"), so a window can toggle it by name. The mesh, where there is one, is
+ * drawn instead of the cloud. */
 struct Layers {
     bool nodes{true}, odometry{true}, closures{true}, refused{true}, cloud{true}, truth{true},
-        floor{true}, field{true}, current{true};
+        floor{true}, field{true}, current{true}, mesh{true};
 };
 
 /** The scene of `content`: nodes coloured by segment (by their error against the truth where

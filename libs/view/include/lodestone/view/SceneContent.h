@@ -45,11 +45,20 @@ struct ViewCloud {
     std::size_t size() const { return xyz.size() / 3; }
 };
 
+/** A coloured triangle mesh (the dense model, mesh.ply). */
+struct ViewMesh {
+    std::vector<float> xyz;                ///< vertices: x0 y0 z0 x1 ...
+    std::vector<std::uint8_t> rgb;         ///< their colours
+    std::vector<std::int32_t> triangles;   ///< three vertex indices each
+    std::size_t size() const { return triangles.size() / 3; }
+};
+
 /** Everything a view of a run or a map draws: nodes, edges by kind, the cloud, the truth. */
 struct SceneContent {
     std::vector<ViewNode> nodes;  ///< by ID
     std::vector<ViewEdge> edges;
     ViewCloud cloud;
+    ViewMesh mesh;  ///< drawn instead of the cloud where there is one
     std::vector<mrpt::math::TPoint3D> truth;  ///< the ground truth's path, aligned to the estimate
     double maxError{NAN};                     ///< [m] over the nodes, NaN without a truth
     bool hasCurrent{false};                   ///< a run going on: where the robot is now
@@ -63,13 +72,14 @@ struct SceneContent {
 struct RunReadOptions {
     std::string groundTruth;      ///< a TUM file; "" = the folder's ground_truth.tum if there
     std::size_t maxPoints{200000};  ///< of map.ply, evenly decimated; 0 = no cloud
+    std::size_t maxTriangles{2000000};  ///< of mesh.ply, evenly taken; 0 = no mesh
 };
 
 /** A lodestone-slam output folder: graph.graph (poses, edges), nodes.csv (segments,
- * keyframes), closures.csv (each closure's closer, kept or refused), map.ply and a ground
- * truth when there is one (each node's error after the TUM benchmark's rigid alignment).
- * Throws std::runtime_error naming the file that is missing or damaged; map.ply and the truth
- * are optional. */
+ * keyframes), closures.csv (each closure's closer, kept or refused), map.ply, mesh.ply (the
+ * dense model, --mesh) and a ground truth when there is one (each node's error after the TUM
+ * benchmark's rigid alignment). Throws std::runtime_error naming the file that is missing or
+ * damaged; map.ply, mesh.ply and the truth are optional. */
 SceneContent readRunFolder(const std::string& dir, const RunReadOptions& options = {});
 
 /** A saved map (lodestone-slam --map-out): its graph, segments and keyframes; its edges are
