@@ -1,4 +1,5 @@
 #include <lodestone/graphslam/SlamEngine.h>
+#include <lodestone/graphslam/nrd/KeyframeCloud.h>
 #include <lodestone/view/EngineSnapshot.h>
 
 #include <cmath>
@@ -15,9 +16,33 @@ double meanField(const graphslam::NodeRecord& r) {
     return sum / double(r.magnetic.size());
 }
 
+/** The keyframes' clouds on their nodes' poses now, every n-th point so that at most
+ * `maxPoints` are drawn. */
+void addKeyframeClouds(const graphslam::SlamEngine& engine, std::size_t maxPoints, ViewCloud& out) {
+    const auto& records = engine.nodes().records();
+    std::size_t total = 0;
+    for (const auto& r : records)
+        if (r.cloud) total += r.cloud->points.size();
+    if (total == 0 || maxPoints == 0) return;
+    const std::size_t stride = (total + maxPoints - 1) / maxPoints;
+    std::size_t k = 0;
+    for (std::size_t id = 0; id < records.size(); ++id) {
+        const auto& cloud = records[id].cloud;
+        const auto node = engine.graph().nodes.find(id);
+        if (!cloud || node == engine.graph().nodes.end()) continue;
+        for (const auto& p : cloud->points) {
+            if (k++ % stride != 0) continue;
+            double x = 0, y = 0, z = 0;
+            node->second.composePoint(p.x, p.y, p.z, x, y, z);
+            out.xyz.insert(out.xyz.end(), {static_cast<float>(x), static_cast<float>(y), static_cast<float>(z)});
+            out.rgb.insert(out.rgb.end(), {p.r, p.g, p.b});
+        }
+    }
+}
+
 }  // namespace
 
-SceneContent snapshotOf(const graphslam::SlamEngine& engine) {
+SceneContent snapshotOf(const graphslam::SlamEngine& engine, std::size_t maxPoints) {
     SceneContent c;
     const auto& graph = engine.graph();
     const auto& store = engine.nodes();
@@ -49,6 +74,7 @@ SceneContent snapshotOf(const graphslam::SlamEngine& engine) {
         c.hasCurrent = true;
         c.current = engine.currentPose();
     }
+    addKeyframeClouds(engine, maxPoints, c.cloud);
     return c;
 }
 
