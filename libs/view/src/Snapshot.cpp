@@ -30,8 +30,8 @@ ViewCamera framing(const SceneContent& content) {
         camera.pointingAt[k] = 0.5 * (lo[k] + hi[k]);
         radius = std::max(radius, 0.5 * (hi[k] - lo[k]));
     }
-    // The box's half-diagonal in the view with a margin (at least a metre across).
-    camera.distance = std::max(1.0, 1.3 * std::sqrt(2.0) * radius) /
+    // The box's longest half-side in view with a margin (at least a metre across).
+    camera.distance = std::max(1.0, 1.2 * radius) /
                       std::tan(0.5 * kFieldOfViewDeg * M_PI / 180);
     return camera;
 }
