@@ -60,9 +60,14 @@ SceneContent snapshotOf(const graphslam::SlamEngine& engine, std::size_t maxPoin
         }
         c.nodes.push_back(n);
     }
-    std::set<std::pair<std::uint64_t, std::uint64_t>> closures;
+    // The closures that joined two map groups (relocation merges) are drawn as such.
+    std::set<std::pair<std::uint64_t, std::uint64_t>> closures, merges;
+    for (const auto& p : engine.proposals())
+        if (p.hypothesis) merges.insert({p.closure.from, p.closure.to});
     for (const auto& lc : engine.optimizer().loopClosures()) {
-        c.edges.push_back({lc.from, lc.to, lc.rejected ? EdgeKind::RefusedClosure : EdgeKind::Closure, lc.source});
+        const bool merge = merges.count({lc.from, lc.to}) > 0;
+        c.edges.push_back({lc.from, lc.to, lc.rejected ? EdgeKind::RefusedClosure : EdgeKind::Closure,
+                           merge && !lc.rejected ? std::string(kRelocationCloser) : lc.source});
         if (!lc.rejected) closures.insert({lc.from, lc.to});
     }
     for (const auto& [ends, edge] : graph.edges) {

@@ -24,6 +24,7 @@ mrpt::img::TColor closerColour(const std::string& closer) {
         {"OrbSubmapERD", {0, 170, 0}},          {"ProximityERD", {0, 190, 190}},
         {"MagneticWindowERD", {200, 0, 200}},   {"MagneticGpERD", {240, 140, 0}},
         {"MagneticCrossingERD", {120, 70, 230}}, {"closure", {0, 170, 0}},
+        {"relocation", {255, 215, 0}},
     };
     const auto it = known.find(closer);
     if (it != known.end()) return it->second;

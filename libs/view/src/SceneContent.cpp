@@ -105,7 +105,8 @@ SceneContent readRunFolder(const std::string& dir, const RunReadOptions& options
         for (const auto& r : outputs::readClosureTable(closuresPath)) {
             const auto from = static_cast<std::uint64_t>(r.fromNode), to = static_cast<std::uint64_t>(r.toNode);
             if (!c.node(from) || !c.node(to)) continue;  // (a node the run dropped)
-            c.edges.push_back({from, to, r.kept ? EdgeKind::Closure : EdgeKind::RefusedClosure, r.source});
+            c.edges.push_back({from, to, r.kept ? EdgeKind::Closure : EdgeKind::RefusedClosure,
+                               r.kept && r.hypothesis ? std::string(kRelocationCloser) : r.source});
             if (r.kept) kept.insert({from, to});
         }
     }

@@ -42,6 +42,8 @@ inline void writeRunFolder(const std::string& dir, bool withTruth, std::size_t p
     closure(2, 12, "OrbSubmapERD", true);
     closure(5, 15, "MagneticWindowERD", true);
     closure(7, 19, "OrbSubmapERD", false);
+    closure(9, 11, "MagneticWindowERD", true);
+    closures.back().hypothesis = true;  // (the one that joined segment 1 to the map)
     graph.saveToTextFile(dir + "/graph.graph");
     outputs::writeNodeTable(dir + "/nodes.csv", rows);
     outputs::writeClosureTable(dir + "/closures.csv", closures);

@@ -55,6 +55,11 @@ TEST(EngineSnapshot, AKidnappedSegmentIsItsOwnColourUntilItJoinsTheMap) {
     EXPECT_EQ(after.segments(), 1);  // every node in the map's group now
     EXPECT_TRUE(after.hasCurrent);
     EXPECT_GT(after.edges.size(), after.nodes.size());  // odometry and the closures
+    // The closures that joined the segment to the map are the relocation's, in its colour.
+    std::size_t merges = 0;
+    for (const auto& e : after.edges) merges += e.closer == view::kRelocationCloser;
+    EXPECT_GT(merges, 0u);
+    EXPECT_LT(merges, after.edges.size() - after.nodes.size());
 
     // And so in the picture: nodes alone, from above.
     view::Layers nodesOnly;

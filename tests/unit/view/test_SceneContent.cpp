@@ -40,6 +40,7 @@ TEST(SceneContent, ARunsFolderGivesNodesBySegmentEdgesByKindAndTheCloud) {
     EXPECT_EQ(countKind(c, view::EdgeKind::Closure, "OrbSubmapERD"), 1u);
     EXPECT_EQ(countKind(c, view::EdgeKind::Closure, "MagneticWindowERD"), 1u);
     EXPECT_EQ(countKind(c, view::EdgeKind::RefusedClosure), 1u);
+    EXPECT_EQ(countKind(c, view::EdgeKind::Closure, view::kRelocationCloser), 1u);
     EXPECT_EQ(c.cloud.size(), 100u);  // 1000 points, every 10th
     EXPECT_FLOAT_EQ(c.cloud.xyz[3], 0.04f);
     EXPECT_EQ(c.cloud.rgb[5], 10);

@@ -32,10 +32,14 @@ enum class EdgeKind {
     RefusedClosure,  ///< a loop closer's, refused by the optimizer (not in the graph)
 };
 
+/** The closer name given to the closures that joined a kidnapped segment to the map (a
+ * relocation's merge), whichever closer proposed them. */
+constexpr const char* kRelocationCloser = "relocation";
+
 struct ViewEdge {
     std::uint64_t from{0}, to{0};
     EdgeKind kind{EdgeKind::Odometry};
-    std::string closer;  ///< the loop closer's class name (closures only)
+    std::string closer;  ///< the loop closer's class name, or kRelocationCloser (closures only)
 };
 
 /** Coloured points (the keyframe clouds on the optimized poses), decimated. */
