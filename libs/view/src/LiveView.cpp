@@ -6,6 +6,7 @@
 
 #include <mrpt/gui/CDisplayWindow3D.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -54,6 +55,22 @@ struct LiveView::Window {
     mrpt::gui::CDisplayWindow3D::Ptr window;
     Layers layers;
     bool follow{true};
+    /** When each refused closure was first drawn [wall s]: shown for a while, then left out
+     * (the window would fill with them otherwise; the report lists them all). */
+    std::map<std::pair<std::uint64_t, std::uint64_t>, double> refusedSince;
+    static constexpr double kRefusedSeconds = 5;
+
+    void forgetOldRefusals(SceneContent& c) {
+        const double now = wallSeconds();
+        auto& edges = c.edges;
+        edges.erase(std::remove_if(edges.begin(), edges.end(),
+                                   [&](const ViewEdge& e) {
+                                       if (e.kind != EdgeKind::RefusedClosure) return false;
+                                       const auto it = refusedSince.emplace(std::make_pair(e.from, e.to), now).first;
+                                       return now - it->second > kRefusedSeconds;
+                                   }),
+                    edges.end());
+    }
 };
 
 std::unique_ptr<LiveView> LiveView::open(std::ostream& warn, double period) {
@@ -195,6 +212,7 @@ void LiveView::drawLoop() {
         }
         if (next) {
             shown = std::move(*next);
+            w.forgetOldRefusals(shown);
             redraw = true;
         }
         if (!redraw) continue;

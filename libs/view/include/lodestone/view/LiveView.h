@@ -18,7 +18,8 @@ namespace lodestone::view {
 /** The run as it goes in MRPT's 3D window (lodestone-slam --view, lodestone-grab --slam
  * --view). The run's thread offers the engine after each observation; at most every
  * `period` seconds of wall time a snapshot is copied (EngineSnapshot) and handed to the view's
- * own thread, which builds the scene and draws it - the run never waits for drawing. Keys:
+ * own thread, which builds the scene and draws it - the run never waits for drawing. A
+ * refused closure is drawn for 5 s of wall time after it first shows, then left out. Keys:
  * space pauses the run (offline: the engine waits in offer()), s steps one node while paused,
  * v follows the robot or frees the camera, n o l r c t f b k toggle nodes, odometry,
  * closures, refused, cloud, truth, floor, the field ribbon and the current pose; q closes
