@@ -60,7 +60,7 @@ LoopOutcome runLoop(RunInputs& in, const SlamRunOptions& options, std::ostream& 
                 keep(*m, t, loop);
             }
             engine.process(obs);
-            if (live) live->offer(engine, status());
+            if (live && live->wantsOffer()) live->offer(engine, status());
             if (options.mapEvery > 0 && !options.mapOut.empty() &&
                 t - t0 - lastMap >= options.mapEvery) {
                 lastMap = t - t0;

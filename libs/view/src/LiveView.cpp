@@ -126,6 +126,11 @@ void LiveView::publish(const graphslam::SlamEngine& engine, const Status& status
     changed_.notify_all();
 }
 
+bool LiveView::wantsOffer() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return !closed_ && (paused_ || step_ || wallSeconds() - lastOffer_ >= period_);
+}
+
 void LiveView::offer(const graphslam::SlamEngine& engine, const Status& status) {
     std::unique_lock<std::mutex> lock(mutex_);
     if (closed_) return;

@@ -38,6 +38,9 @@ class LiveView {
     LiveView(const LiveView&) = delete;
     LiveView& operator=(const LiveView&) = delete;
 
+    /** Whether offer() has anything to do now (a snapshot due, or paused or stepping): lets the
+     * run skip building a Status for the observations in between. */
+    bool wantsOffer() const;
     /** From the run's thread, after an observation: a snapshot when one is due (or the graph
      * gained a node while stepping); waits here while paused. Cheap when none is due. */
     void offer(const graphslam::SlamEngine& engine, const Status& status);
