@@ -4,10 +4,12 @@
 // how much of what the camera saw the mesh holds: the world's surface points seen within 3 m
 // from the true camera pose every 0.5 s of the run (rendered noise-free by the simulator's
 // renderer, every 4th pixel each way), the share with a mesh vertex within 2 cm. The robot's
-// camera only (its mount on the true robot pose).
+// camera (its mount on the true robot pose) or, with --handheld, the camera's own true pose.
+// And how much of that seen surface the mesh shows twice (a wall doubled by a trajectory that
+// disagrees with itself where it passes again): two layers of vertices along its normal.
 // Prints one markdown row: vertices, the median / 95th percentile / mean distance [m], the
-// share within 1 cm and 2 cm, the trajectory's ATE and the completeness.
-//   bench_mesh_accuracy SCENARIO.ini RUN_DIR [GROUND_TRUTH.tum]
+// share within 1 cm and 2 cm, the trajectory's ATE, the completeness and the doubled share.
+//   bench_mesh_accuracy SCENARIO.ini RUN_DIR [GROUND_TRUTH.tum] [--handheld]
 #include <lodestone/eval/TrajectoryError.h>
 #include <lodestone/io/TumTrajectory.h>
 #include <lodestone/outputs/NodeTable.h>
@@ -67,6 +69,23 @@ double distanceToWorld(const sim::World& world, const Eigen::Vector3d& p) {
     return best;
 }
 
+/** The normal of the world's surface nearest to p (floor, ceiling or a wall's face). */
+Eigen::Vector3d normalAt(const sim::World& world, const Eigen::Vector3d& p) {
+    double best = std::abs(p.z());
+    Eigen::Vector3d n = Eigen::Vector3d::UnitZ();
+    if (std::abs(p.z() - world.ceilingHeight()) < best) best = std::abs(p.z() - world.ceilingHeight());
+    for (const auto& w : world.floorPlan().walls()) {
+        const Eigen::Vector2d ab = w.b - w.a;
+        const double s = std::clamp((p.head<2>() - w.a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+        const double planar = (p.head<2>() - (w.a + s * ab)).norm();
+        if (planar < best && p.z() <= w.height) {
+            best = planar;
+            n = Eigen::Vector3d(-ab.y(), ab.x(), 0).normalized();
+        }
+    }
+    return n;
+}
+
 /** nanoflann's view of the mesh's vertices. */
 struct Vertices {
     const std::vector<Eigen::Vector3d>* v;
@@ -79,10 +98,34 @@ struct Vertices {
 };
 using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Vertices>, Vertices, 3>;
 
-/** The share of the world's surface the camera saw within 3 m (from its true pose every 0.5 s
- * of the run) that has a mesh vertex within 2 cm. */
-double completeness(const sim::Scenario& scenario, const sim::World& world, const std::string& run,
-                    const std::vector<io::TumPose>& truth, const std::vector<Eigen::Vector3d>& mesh) {
+/** What the mesh makes of the world's surface the camera saw within 3 m (from its true pose
+ * every 0.5 s of the run). */
+struct Coverage {
+    double held{0};     ///< the share with a mesh vertex within 2 cm
+    double doubled{0};  ///< the share the mesh shows twice: vertices within 1.5 cm of the point's
+                        ///< normal line and 8 cm of the point, in two layers more than 2 cm apart
+};
+
+/** Two layers along the normal: the vertices near p's normal line, sorted by their offset along
+ * it, part at a gap over 2 cm with at least two vertices on each side. */
+bool twoLayers(const Tree& tree, const std::vector<Eigen::Vector3d>& mesh, const Eigen::Vector3d& p,
+               const Eigen::Vector3d& n) {
+    std::vector<std::pair<unsigned int, double>> hits;
+    tree.radiusSearch(p.data(), 0.08 * 0.08, hits, nanoflann::SearchParams(32, 0, false));
+    std::vector<double> along;
+    for (const auto& h : hits) {
+        const Eigen::Vector3d d = mesh[h.first] - p;
+        const double o = d.dot(n);
+        if ((d - o * n).norm() <= 0.015) along.push_back(o);
+    }
+    std::sort(along.begin(), along.end());
+    for (std::size_t i = 2; i + 1 < along.size(); ++i)
+        if (along[i] - along[i - 1] > 0.02) return true;
+    return false;
+}
+
+Coverage coverage(const sim::Scenario& scenario, const sim::World& world, const std::string& run,
+                  const std::vector<io::TumPose>& truth, const std::vector<Eigen::Vector3d>& mesh, bool handheld) {
     Vertices vertices{&mesh};
     Tree tree(3, vertices, nanoflann::KDTreeSingleIndexAdaptorParams(10));
     tree.buildIndex();
@@ -91,11 +134,13 @@ double completeness(const sim::Scenario& scenario, const sim::World& world, cons
     const sim::RgbdRenderer renderer(world, camera, 1);
     sim::Random rng(1);
     const auto& m = camera.pose;
-    const Eigen::Isometry3d mount =
-        Eigen::Translation3d(m.x, m.y, m.z) * Eigen::AngleAxisd(m.yaw, Eigen::Vector3d::UnitZ());
-    std::size_t seen = 0, held = 0;
+    // (a hand-held camera's truth is the camera's own pose)
+    const Eigen::Isometry3d mount = handheld ? Eigen::Isometry3d::Identity()
+                                             : Eigen::Isometry3d(Eigen::Translation3d(m.x, m.y, m.z) *
+                                                                 Eigen::AngleAxisd(m.yaw, Eigen::Vector3d::UnitZ()));
+    std::size_t seen = 0, held = 0, doubled = 0, layered = 0;
     const auto nodes = outputs::readNodeTable(run + "/nodes.csv");
-    if (nodes.empty()) return 0;
+    if (nodes.empty()) return {};
     double next = nodes.front().timestamp;
     for (const auto& truthPose : truth) {
         if (truthPose.timestamp < next || truthPose.timestamp > nodes.back().timestamp) continue;
@@ -124,26 +169,37 @@ double completeness(const sim::Scenario& scenario, const sim::World& world, cons
                 tree.findNeighbors(result, p.data(), nanoflann::SearchParams());
                 ++seen;
                 held += d2 <= 0.02 * 0.02;
+                // (every 4th sample each way again for the layers: a radius search a point)
+                if ((u / 4) % 4 == 0 && (v / 4) % 4 == 0) {
+                    ++layered;
+                    doubled += twoLayers(tree, mesh, p, normalAt(world, p));
+                }
             }
         }
     }
-    std::fprintf(stderr, "completeness: %zu of %zu seen points held\n", held, seen);
-    return seen ? double(held) / double(seen) : 0.0;
+    std::fprintf(stderr, "completeness: %zu of %zu seen points held; %zu of %zu doubled\n", held, seen, doubled,
+                 layered);
+    if (seen == 0) return {};
+    return {double(held) / double(seen), layered ? double(doubled) / double(layered) : 0.0};
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc < 3) {
-        std::cerr << "usage: bench_mesh_accuracy SCENARIO.ini RUN_DIR [GROUND_TRUTH.tum]\n";
+    std::vector<std::string> args(argv + 1, argv + argc);
+    const auto flag = std::find(args.begin(), args.end(), "--handheld");
+    const bool handheld = flag != args.end();
+    if (handheld) args.erase(flag);
+    if (args.size() < 2) {
+        std::cerr << "usage: bench_mesh_accuracy SCENARIO.ini RUN_DIR [GROUND_TRUTH.tum] [--handheld]\n";
         return 2;
     }
     try {
-        const sim::Scenario scenario = sim::Scenario::load(argv[1]);
+        const sim::Scenario scenario = sim::Scenario::load(args[0]);
         const sim::World world(scenario, scenario.seed);
-        const std::string run = argv[2];
+        const std::string run = args[1];
         const auto estimate = io::readTumTrajectory(run + "/trajectory.tum");
-        const auto truth = io::readTumTrajectory(argc > 3 ? argv[3] : run + "/ground_truth.tum");
+        const auto truth = io::readTumTrajectory(args.size() > 2 ? args[2] : run + "/ground_truth.tum");
         const auto ate = eval::absoluteTrajectoryError(estimate, truth);
         std::vector<double> d;
         std::vector<Eigen::Vector3d> inWorld;
@@ -156,10 +212,10 @@ int main(int argc, char** argv) {
         double sum = 0;
         std::size_t within1 = 0, within2 = 0;
         for (const double x : d) sum += x, within1 += x <= 0.01, within2 += x <= 0.02;
-        const double complete = completeness(scenario, world, run, truth, inWorld);
-        std::printf("| %zu | %.4f | %.4f | %.4f | %.3f | %.3f | %.4f | %.3f |\n", d.size(), d[d.size() / 2],
+        const Coverage cover = coverage(scenario, world, run, truth, inWorld, handheld);
+        std::printf("| %zu | %.4f | %.4f | %.4f | %.3f | %.3f | %.4f | %.3f | %.4f |\n", d.size(), d[d.size() / 2],
                     d[d.size() * 95 / 100], sum / double(d.size()), double(within1) / double(d.size()),
-                    double(within2) / double(d.size()), ate.rmse, complete);
+                    double(within2) / double(d.size()), ate.rmse, cover.held, cover.doubled);
     } catch (const std::exception& e) {
         std::cerr << "bench_mesh_accuracy: " << e.what() << "\n";
         return 1;

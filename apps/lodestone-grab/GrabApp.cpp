@@ -52,6 +52,10 @@ int runGrabApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
                                    "seconds behind the newest observation (default 0.3)",
                                    false, 0.3, "S", cmd);
     TCLAP::SwitchArg view("", "view", "live SLAM in MRPT's 3D window (as lodestone-slam --view)", cmd);
+    TCLAP::SwitchArg mesh("", "mesh",
+                          "live SLAM fuses its keyframes into a dense model as it goes, re-fused where the graph "
+                          "moves them: mesh.ply in the SLAM outputs ([dense] keys of the INI)",
+                          cmd);
     TCLAP::SwitchArg quiet("q", "quiet", "no status line", cmd);
     std::vector<std::string> words(argv, argv + argc);
     const auto outcome = config::parseCommandLine(cmd, words);
@@ -79,8 +83,8 @@ int runGrabApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
         err << "lodestone-grab: --max-lag: must be > 0 s\n";
         return 2;
     }
-    if ((slamOut.isSet() || mapIn.isSet() || view.isSet()) && !slam.isSet()) {
-        err << "lodestone-grab: --slam-out, --map-in and --view need --slam\n";
+    if ((slamOut.isSet() || mapIn.isSet() || view.isSet() || mesh.isSet()) && !slam.isSet()) {
+        err << "lodestone-grab: --slam-out, --map-in, --view and --mesh need --slam\n";
         return 2;
     }
     if (view.getValue() && !std::getenv("DISPLAY"))
@@ -90,6 +94,7 @@ int runGrabApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
     options.slamMapIn = mapIn.getValue();
     options.maxLag = maxLag.getValue();
     options.slamView = view.getValue();
+    options.slamMesh = mesh.getValue();
     options.quiet = quiet.getValue();
     options.terminal = terminal;
     g_stop = false;

@@ -63,7 +63,8 @@ int runSlamApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
                              cmd);
     TCLAP::SwitchArg meshArg("", "mesh",
                              "the dense model: every keyframe's frame fused at its optimized pose "
-                             "(TSDF, [dense] keys of the INI) and meshed into mesh.ply",
+                             "(TSDF, [dense] keys of the INI) and meshed into mesh.ply - after the run, "
+                             "or as it goes with [dense] fusion = while_running (and live)",
                              cmd);
     const auto outcome = config::parseCommandLine(cmd, std::vector<std::string>(argv, argv + argc));
     if (outcome.kind == config::ParseOutcome::Kind::HelpShown) return 0;

@@ -236,6 +236,22 @@ TEST(GrabBinary, LiveSlamWithTheViewUnderXvfb) {
     EXPECT_EQ(runCommand(kGrab + " " + ini + " -q --view").exitCode, 2);
 }
 
+TEST(GrabBinary, LiveSlamFusesItsDenseModelAsItGoes) {
+    // A live run cannot read its frames again after it: --mesh fuses keyframes as they are made.
+    lodestone::test::TempDir dir;
+    const auto ini = writeGrabIni(dir, "time_scale = 4\nmax_seconds = 12");
+    const auto r = runCommand("timeout 120 " + kGrab + " " + ini + " -q --mesh --slam " +
+                              LODESTONE_CONFIG_INI_DIR + "/slam/slam.ini");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    ASSERT_TRUE(fs::exists(dir.file("run_slam/mesh.ply"))) << r.output;
+    const std::string report = lodestone::test::readTextFile(dir.file("run_slam/report.json"));
+    EXPECT_NE(report.find("\"fusion\": \"while_running\""), std::string::npos) << report;
+    EXPECT_GT(numberIn(report, "\"frames_fused\": ([0-9]+)"), 5) << report;
+    EXPECT_FALSE(fs::exists(dir.file("run_slam/mesh.ply.frames")));
+    // Without --slam there is nothing to fuse.
+    EXPECT_EQ(runCommand(kGrab + " " + ini + " -q --mesh").exitCode, 2);
+}
+
 TEST(GrabBinary, ABadSlamIniIsRefusedBeforeGrabbing) {
     lodestone::test::TempDir dir;
     std::ofstream(dir.file("slam.ini")) << "[graphslam]\nnode_decider = FusedOdometryNDR\n";

@@ -1,9 +1,17 @@
-// lodestone-slam --mesh as a user runs it: the bundled rawlog's run gets mesh.ply; a run with
-// no usable depth writes none and says why; [dense] typos stop the run before any work.
+// lodestone-slam --mesh as a user runs it: the bundled rawlog's run gets mesh.ply, after the run
+// or fused as it goes; a run with no usable depth writes none and says why; [dense] typos stop
+// the run before any work.
 #include <gtest/gtest.h>
 
+#include <Eigen/Core>
+
+#include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <tuple>
+#include <vector>
 
 #include "StockTools.h"
 #include "TestPaths.h"
@@ -50,4 +58,65 @@ TEST(MeshOut, ATypoInTheDenseSectionStopsTheRunBeforeAnyWork) {
     EXPECT_EQ(r.exitCode, 1) << r.output;
     EXPECT_NE(r.output.find("voxel_sise"), std::string::npos) << r.output;
     EXPECT_FALSE(fs::exists(dir.file("out/trajectory.tum")));
+}
+
+namespace {
+
+/** The vertices of a mesh.ply (binary: float x y z, uchar r g b). */
+std::vector<Eigen::Vector3f> plyVertices(const std::string& path) {
+    const std::string bytes = lodestone::test::readTextFile(path);
+    const auto count = std::stoul(bytes.substr(bytes.find("element vertex ") + 15));
+    const std::size_t body = bytes.find("end_header\n") + 11;
+    std::vector<Eigen::Vector3f> out(count);
+    for (std::size_t i = 0; i < count; ++i) std::memcpy(out[i].data(), bytes.data() + body + 15 * i, 12);
+    return out;
+}
+
+/** The share of `b`'s vertices with one of `a`'s within `radius` (< 1 cm). */
+double shareNear(const std::vector<Eigen::Vector3f>& a, const std::vector<Eigen::Vector3f>& b, float radius) {
+    const auto cell = [](const Eigen::Vector3f& p) {
+        return std::make_tuple(int(std::floor(p.x() * 100)), int(std::floor(p.y() * 100)), int(std::floor(p.z() * 100)));
+    };
+    std::map<std::tuple<int, int, int>, std::vector<Eigen::Vector3f>> grid;
+    for (const auto& p : a) grid[cell(p)].push_back(p);
+    std::size_t near = 0;
+    for (const auto& p : b) {
+        const auto [x, y, z] = cell(p);
+        bool found = false;
+        for (int dx = -1; dx <= 1 && !found; ++dx)
+            for (int dy = -1; dy <= 1 && !found; ++dy)
+                for (int dz = -1; dz <= 1 && !found; ++dz) {
+                    const auto it = grid.find({x + dx, y + dy, z + dz});
+                    if (it == grid.end()) continue;
+                    for (const auto& q : it->second) found |= (q - p).norm() <= radius;
+                }
+        near += found;
+    }
+    return b.empty() ? 0.0 : double(near) / double(b.size());
+}
+
+}  // namespace
+
+TEST(MeshOut, FusedWhileTheRunGoesTheModelIsTheOneFusedAfterIt) {
+    // Keyframes fused as they are made and re-fused where the graph moved them more than half a
+    // voxel at the farthest fused depth: the same model as the pass after the run, but for those
+    // small moves.
+    lodestone::test::TempDir dir;
+    std::ofstream(dir.file("slam.ini")) << lodestone::test::readTextFile(kConfigDir + "/slam/slam.ini")
+                                        << "\n[dense]\nfusion = while_running\n";
+    const auto running = lodestone::test::runCommand(kSlam + " --rawlog " + kOfficeRawlog + " --config " +
+                                                     dir.file("slam.ini") + " --quiet --mesh --out " + dir.file("running"));
+    ASSERT_EQ(running.exitCode, 0) << running.output;
+    const auto after = lodestone::test::runCommand(kSlam + " --rawlog " + kOfficeRawlog + " --config " + kConfigDir +
+                                                   "/slam/slam.ini --quiet --mesh --out " + dir.file("after"));
+    ASSERT_EQ(after.exitCode, 0) << after.output;
+    const std::string report = lodestone::test::readTextFile(dir.file("running/report.json"));
+    EXPECT_NE(report.find("\"fusion\": \"while_running\""), std::string::npos) << report;
+    EXPECT_NE(report.find("\"written\": true"), std::string::npos) << report;
+    EXPECT_FALSE(fs::exists(dir.file("running/mesh.ply.frames")));  // the frame store is gone
+    const auto a = plyVertices(dir.file("running/mesh.ply")), b = plyVertices(dir.file("after/mesh.ply"));
+    ASSERT_GT(b.size(), 100000u);
+    EXPECT_NEAR(double(a.size()), double(b.size()), 0.05 * double(b.size()));
+    EXPECT_GT(shareNear(b, a, 0.005f), 0.95);
+    EXPECT_GT(shareNear(a, b, 0.005f), 0.95);
 }

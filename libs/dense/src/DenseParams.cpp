@@ -23,6 +23,14 @@ DenseParams DenseParams::read(const mrpt::config::CConfigFileBase& ini) {
     p.depthNoise = s.getDouble("depth_noise", p.depthNoise);
     p.noiseFloor = s.getDouble("noise_floor", p.noiseFloor);
     p.everyKeyframe = s.getInt("every_keyframe", p.everyKeyframe);
+    const std::string volume = s.getString("volume", "blocks");
+    if (volume == "open3d") p.volume = Volume::Open3d;
+    else if (volume != "blocks") s.fail("volume", "must be blocks or open3d, not '" + volume + "'");
+    const std::string fusion = s.getString("fusion", "after_run");
+    if (fusion == "while_running") p.fusion = Fusion::WhileRunning;
+    else if (fusion != "after_run") s.fail("fusion", "must be after_run or while_running, not '" + fusion + "'");
+    if (p.fusion == Fusion::WhileRunning && p.volume == Volume::Open3d)
+        s.fail("fusion", "while_running takes frames out again: volume = blocks");
     if (!(p.voxelSize >= 0.002 && p.voxelSize <= 0.5)) s.fail("voxel_size", "must be in [0.002, 0.5] m");
     if (!(p.truncation >= 2 * p.voxelSize)) s.fail("truncation", "must be at least two voxels");
     if (!(p.minDepth >= 0 && p.maxDepth > p.minDepth)) s.fail("max_depth", "must be > min_depth >= 0");

@@ -1,4 +1,4 @@
-#include <lodestone/dense/TsdfFusion.h>
+#include <lodestone/dense/Mesh.h>
 
 #include <cstdio>
 #include <filesystem>

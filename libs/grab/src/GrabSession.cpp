@@ -103,6 +103,7 @@ class LiveSlam {
         so.decodeAhead = 0;  // the observations arrive decoded
         so.quiet = true;
         so.view = options.slamView;  // (closes with the grab)
+        so.mesh = options.slamMesh;
         so.onProgress = [&status](std::size_t nodes, std::size_t closures) {
             status.slamNodes = nodes;
             status.slamClosures = closures;

@@ -1,8 +1,11 @@
 #include "RunParts.h"
+#include "RunningMesh.h"
 
 #include <lodestone/config/ProgressBar.h>
 #include <lodestone/obs/CObservationMagnetometer.h>
 #include <lodestone/view/LiveView.h>
+
+#include <mrpt/config/CConfigFile.h>
 
 #include <algorithm>
 #include <chrono>
@@ -32,6 +35,12 @@ LoopOutcome runLoop(RunInputs& in, const SlamRunOptions& options, std::ostream& 
     double t0 = NAN, lastMap = 0;
     std::unique_ptr<view::LiveView> live;
     if (options.view) live = view::LiveView::open(err);
+    std::unique_ptr<RunningMesh> mesh;
+    if (options.mesh) {
+        const auto params = dense::DenseParams::read(mrpt::config::CConfigFile(options.config));
+        if (options.live || params.fusion == dense::DenseParams::Fusion::WhileRunning)
+            mesh = std::make_unique<RunningMesh>(params, options.outDir, engine.mapNodes());
+    }
     const auto status = [&] {
         view::LiveView::Status s;
         s.dataSeconds = loop.dataSeconds;
@@ -60,6 +69,7 @@ LoopOutcome runLoop(RunInputs& in, const SlamRunOptions& options, std::ostream& 
                 keep(*m, t, loop);
             }
             engine.process(obs);
+            if (mesh) mesh->observe(obs, engine);
             if (live && live->wantsOffer()) live->offer(engine, status());
             if (options.mapEvery > 0 && !options.mapOut.empty() &&
                 t - t0 - lastMap >= options.mapEvery) {
@@ -104,6 +114,8 @@ LoopOutcome runLoop(RunInputs& in, const SlamRunOptions& options, std::ostream& 
     }
     loop.wallSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+    // (after the run's own time: like the pass after the run, the model's end is its own cost)
+    if (mesh) loop.runningMesh = mesh->finish(engine, loop.mesh, loop.runningMeshWhy);
     progress.finish(loop.dataSeconds);
     if (live) {
         if (options.viewKeepOpen && live->isOpen())

@@ -1,7 +1,9 @@
-// --mesh: the dense model. After the last optimization, the source is read once more (the
-// rawlog again, or the scenario simulated again with its seed) and every keyframe's RGB-D frame
-// is fused at its node's optimized pose (dense::TsdfFusion), then meshed into mesh.ply. Frames
-// are not held through the run: a second pass costs reading, not memory.
+// --mesh: the dense model into mesh.ply. Fused while the run went (RunningMesh: a live run, or
+// [dense] fusion = while_running), it is only written here. Otherwise, after the last
+// optimization the source is read once more (the rawlog again, or the scenario simulated again
+// with its seed) and every keyframe's RGB-D frame is fused at its node's optimized pose
+// (dense::TsdfFusion), then meshed. Frames are not held through the run: a second pass costs
+// reading, not memory.
 #include "RunParts.h"
 
 #include <lodestone/dense/TsdfFusion.h>
@@ -23,6 +25,10 @@ namespace lodestone::slamapp::detail {
 
 namespace {
 
+double since(std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
 /** The keyframes to fuse, by their frame's time: node ID (those of the map's group only: a
  * kidnapped segment never joined has no pose in the map's frame). */
 std::map<double, graphslam::TNodeID> keyframesByTime(const graphslam::SlamEngine& engine, int every) {
@@ -39,19 +45,27 @@ std::map<double, graphslam::TNodeID> keyframesByTime(const graphslam::SlamEngine
 
 }  // namespace
 
-graphslam::JsonObject writeMesh(const RunInputs& in, const SlamRunOptions& options, std::ostream& err) {
+graphslam::JsonObject writeMesh(const RunInputs& in, const LoopOutcome& loop, const SlamRunOptions& options,
+                                std::ostream& err) {
     const auto t0 = std::chrono::steady_clock::now();
     graphslam::JsonObject report;
     const auto skip = [&](const std::string& why) {
         err << "lodestone-slam: --mesh: no mesh.ply: " << why << "\n";
         return report.set("written", false).set("why", why);
     };
+    if (loop.runningMesh) {
+        report = *loop.runningMesh;
+        if (loop.mesh.empty()) return skip(loop.runningMeshWhy);
+        const auto t1 = std::chrono::steady_clock::now();
+        dense::writeMeshPly(outputs::pathIn(options.outDir, outputs::RunFile::Mesh), loop.mesh);
+        return report.set("written", true).set("vertices", loop.mesh.vertices.size()).set("triangles", loop.mesh.triangles.size())
+            .set("write_seconds", since(t1));
+    }
     const auto& engine = *in.engine;
     const dense::DenseParams params = dense::DenseParams::read(mrpt::config::CConfigFile(options.config));
     const auto keyframes = keyframesByTime(engine, params.everyKeyframe);
     if (keyframes.empty()) return skip("the run has no keyframe on the map (no RGB-D frames tracked)");
     std::unique_ptr<io::DataSource> source;
-    if (options.live) return skip("a live run: run lodestone-slam --rawlog on the grabbed rawlog with --mesh");
     if (!options.scenario.empty()) {
         const auto scenario = sim::Scenario::load(options.scenario);
         source = std::make_unique<sim::SimulatorSource>(scenario, scenario.seed);
@@ -61,9 +75,6 @@ graphslam::JsonObject writeMesh(const RunInputs& in, const SlamRunOptions& optio
     dense::TsdfFusion fusion(params);
     std::size_t matched = 0, depthless = 0, pixels = 0;
     double integrateSeconds = 0;
-    const auto since = [](std::chrono::steady_clock::time_point t) {
-        return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-    };
     const double last = keyframes.rbegin()->first;
     while (auto obs = source->next()) {
         const double t = mrpt::Clock::toDouble(obs->timestamp);
@@ -95,6 +106,8 @@ graphslam::JsonObject writeMesh(const RunInputs& in, const SlamRunOptions& optio
     const double passSeconds = since(t0);
     report.set("keyframes", keyframes.size()).set("frames_found", matched).set("frames_fused", fusion.framesFused())
         .set("frames_without_depth", depthless).set("pixels_fused", pixels)
+        .set("fusion", "after_run")
+        .set("volume", params.volume == dense::DenseParams::Volume::Open3d ? "open3d" : "blocks")
         .set("voxel_size_m", params.voxelSize).set("truncation_m", params.truncation)
         .set("fused_depth_limit_m", params.fusedDepthLimit());
     if (fusion.framesFused() == 0) return skip("no keyframe's frame had usable depth");
@@ -105,6 +118,7 @@ graphslam::JsonObject writeMesh(const RunInputs& in, const SlamRunOptions& optio
     const auto t3 = std::chrono::steady_clock::now();
     dense::writeMeshPly(outputs::pathIn(options.outDir, outputs::RunFile::Mesh), mesh);
     // (the pass: reading the source again and fusing; then meshing and writing)
+    if (fusion.memoryBytes() > 0) report.set("volume_mb", double(fusion.memoryBytes()) / (1 << 20));
     return report.set("written", true).set("vertices", mesh.vertices.size()).set("triangles", mesh.triangles.size())
         .set("pass_seconds", passSeconds).set("integrate_seconds", integrateSeconds)
         .set("extract_seconds", extractSeconds).set("write_seconds", since(t3)).set("seconds", since(t0));

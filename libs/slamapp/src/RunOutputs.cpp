@@ -235,7 +235,7 @@ void writeOutputs(const RunInputs& in, const LoopOutcome& loop, const SlamRunOpt
                 << " in time; no ATE\n";
         }
     }
-    if (options.mesh) report.set("mesh", writeMesh(in, options, err));
+    if (options.mesh) report.set("mesh", writeMesh(in, loop, options, err));
     if (!options.mapOut.empty()) {
         report.set("map_out", saveMap(in, options, err, result)
                                   .set("saved_while_running", loop.mapsSaved));

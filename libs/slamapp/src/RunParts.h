@@ -3,6 +3,7 @@
 // work (RunSources.cpp), the loop over their observations (RunLoop.cpp), and the outputs
 // (RunOutputs.cpp, RunReport.cpp). Private to slamapp.
 
+#include <lodestone/dense/Mesh.h>
 #include <lodestone/graphslam/ReportJson.h>
 #include <lodestone/graphslam/SlamEngine.h>
 #include <lodestone/io/DataSource.h>
@@ -15,6 +16,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <ostream>
 #include <set>
 #include <stdexcept>
@@ -66,6 +68,10 @@ struct LoopOutcome {
     std::vector<KeptReading> magnetic;  // 48 bytes a reading: 35 MB for an hour of two at 100 Hz
     std::vector<std::string> magneticLabels;
     std::size_t mapsSaved{0};  ///< while the run went on (--map-every)
+    /** --mesh fused while the run went (RunningMesh): the mesh and what was fused. */
+    std::optional<graphslam::JsonObject> runningMesh;
+    dense::Mesh mesh;
+    std::string runningMeshWhy;  ///< why `mesh` is empty
 };
 
 /** Feeds every observation to the engine until the source ends, --max-seconds or a fault in
@@ -93,10 +99,12 @@ std::vector<std::uint32_t> loadMap(const SlamRunOptions& options, const std::str
 graphslam::JsonObject saveMap(const RunInputs& in, const SlamRunOptions& options,
                               std::ostream& err, SlamRunResult& result);
 
-/** --mesh: every keyframe's frame read again from the source and fused at its node's
- * optimized pose into mesh.ply (RunMesh.cpp); what was fused, for report.json. No mesh (a live
- * run, no keyframe, no usable depth) is said on `err` and in the object, not an error. */
-graphslam::JsonObject writeMesh(const RunInputs& in, const SlamRunOptions& options, std::ostream& err);
+/** --mesh into mesh.ply (RunMesh.cpp): the mesh fused while the run went, or every keyframe's
+ * frame read again from the source and fused at its node's optimized pose; what was fused, for
+ * report.json. No mesh (no keyframe, no usable depth) is said on `err` and in the object, not
+ * an error. */
+graphslam::JsonObject writeMesh(const RunInputs& in, const LoopOutcome& loop, const SlamRunOptions& options,
+                                std::ostream& err);
 
 /** The text of the SLAM INI (what a saved map keeps). */
 std::string configText(const SlamRunOptions& options);

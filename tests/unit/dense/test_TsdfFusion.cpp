@@ -37,7 +37,7 @@ Fused fuseRoom(const dense::DenseParams& params) {
     static const sim::World world(test::boxScenario(), 1);
     dense::TsdfFusion fusion(params);
     int k = 0;
-    for (const Eigen::Vector3d at : {Eigen::Vector3d(0, -1.5, 1.2), Eigen::Vector3d(0, 1.5, 1.2),
+    for (const Eigen::Vector3d& at : {Eigen::Vector3d(0, -1.5, 1.2), Eigen::Vector3d(0, 1.5, 1.2),
                                      Eigen::Vector3d(4, 1.5, 1.2), Eigen::Vector3d(4, -1.5, 1.2)}) {
         for (int turn = 0; turn < 8; ++turn, ++k) {
             const Eigen::Isometry3d camera = test::cameraPose(at, turn * M_PI / 4, 0.3);
@@ -53,22 +53,44 @@ Fused fuseRoom(const dense::DenseParams& params) {
 }  // namespace
 
 TEST(TsdfFusion, ARoomFusedFromItsTruePosesMeshesOntoItsWalls) {
+    // Both volumes: ours and Open3D's.
+    for (const auto volume : {dense::DenseParams::Volume::Blocks, dense::DenseParams::Volume::Open3d}) {
+        SCOPED_TRACE(volume == dense::DenseParams::Volume::Blocks ? "blocks" : "open3d");
+        dense::DenseParams p;
+        p.voxelSize = 0.02;
+        p.truncation = 0.08;
+        p.maxDepth = 3;
+        p.volume = volume;
+        const Fused f = fuseRoom(p);
+        EXPECT_EQ(f.frames, 32u);
+        ASSERT_GT(f.mesh.vertices.size(), 10000u);
+        ASSERT_GT(f.mesh.triangles.size(), 10000u);
+        std::vector<double> d;
+        for (const auto& v : f.mesh.vertices) d.push_back(distanceToRoom(v));
+        std::sort(d.begin(), d.end());
+        const double median = d[d.size() / 2], p95 = d[d.size() * 95 / 100];
+        EXPECT_LT(median, p.voxelSize / 2) << "p95 " << p95;
+        EXPECT_LT(p95, p.voxelSize) << "median " << median;
+        for (const auto& t : f.mesh.triangles)
+            for (int k = 0; k < 3; ++k) ASSERT_LT(static_cast<std::size_t>(t[k]), f.mesh.vertices.size());
+    }
+}
+
+TEST(TsdfFusion, OnlyOurVolumeTakesAFrameOut) {
     dense::DenseParams p;
-    p.voxelSize = 0.02;
-    p.truncation = 0.08;
-    p.maxDepth = 3;
-    const Fused f = fuseRoom(p);
-    EXPECT_EQ(f.frames, 32u);
-    ASSERT_GT(f.mesh.vertices.size(), 10000u);
-    ASSERT_GT(f.mesh.triangles.size(), 10000u);
-    std::vector<double> d;
-    for (const auto& v : f.mesh.vertices) d.push_back(distanceToRoom(v));
-    std::sort(d.begin(), d.end());
-    const double median = d[d.size() / 2], p95 = d[d.size() * 95 / 100];
-    EXPECT_LT(median, p.voxelSize / 2) << "p95 " << p95;
-    EXPECT_LT(p95, p.voxelSize) << "median " << median;
-    for (const auto& t : f.mesh.triangles)
-        for (int k = 0; k < 3; ++k) ASSERT_LT(static_cast<std::size_t>(t[k]), f.mesh.vertices.size());
+    const vision::CameraIntrinsics K;
+    const cv::Mat depth(K.height, K.width, CV_32F, cv::Scalar(2.0));
+    dense::TsdfFusion ours(p);
+    ours.integrate(depth, {}, K, Eigen::Isometry3d::Identity());
+    EXPECT_EQ(ours.framesFused(), 1u);
+    EXPECT_GT(ours.memoryBytes(), 0u);
+    ours.deintegrate(depth, {}, K, Eigen::Isometry3d::Identity());
+    EXPECT_EQ(ours.framesFused(), 0u);
+    EXPECT_TRUE(ours.extractMesh().empty());
+    p.volume = dense::DenseParams::Volume::Open3d;
+    dense::TsdfFusion theirs(p);
+    theirs.integrate(depth, {}, K, Eigen::Isometry3d::Identity());
+    EXPECT_THROW(theirs.deintegrate(depth, {}, K, Eigen::Isometry3d::Identity()), std::logic_error);
 }
 
 TEST(TsdfFusion, AFrameWithNoUsableDepthChangesNothing) {
@@ -141,8 +163,11 @@ TEST(DenseParams, KeysAreCheckedWithTheirUnits) {
     // The noise model's limit: 0.002 + 1.425e-3 z^2 = 0.03 -> z = 4.43 m.
     EXPECT_NEAR(p.fusedDepthLimit(), std::sqrt(0.028 / 1.425e-3), 1e-9);
     EXPECT_EQ(read("").voxelSize, 0.01);
+    EXPECT_EQ(read("").volume, dense::DenseParams::Volume::Blocks);
+    EXPECT_EQ(read("[dense]\nvolume = open3d\n").volume, dense::DenseParams::Volume::Open3d);
     for (const char* bad : {"[dense]\nvoxel_sise = 0.01\n", "[dense]\nvoxel_size = 0\n",
                             "[dense]\ntruncation = 0.01\n", "[dense]\nmax_depth = 0.1\n",
-                            "[dense]\nnoise_floor = 0.05\n", "[dense]\nevery_keyframe = 0\n"})
+                            "[dense]\nnoise_floor = 0.05\n", "[dense]\nevery_keyframe = 0\n",
+                            "[dense]\nvolume = openvdb\n"})
         EXPECT_THROW(read(bad), config::ConfigError) << bad;
 }

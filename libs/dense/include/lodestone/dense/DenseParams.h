@@ -2,6 +2,8 @@
 
 #include <mrpt/config/CConfigFileBase.h>
 
+#include <string>
+
 namespace lodestone::dense {
 
 /** The dense model's keys (INI section [dense]), each with its unit. */
@@ -16,6 +18,13 @@ struct DenseParams {
     double depthNoise{1.425e-3};  ///< [1/m]
     double noiseFloor{0.002};     ///< [m]
     int everyKeyframe{1};         ///< fuse every n-th keyframe's frame
+    /** The volume: ours (8^3-voxel blocks, 8 bytes a voxel, can take a frame out) or Open3D's
+     * ScalableTSDFVolume (kept to measure against). */
+    enum class Volume { Blocks, Open3d } volume{Volume::Blocks};
+    /** When an offline run fuses: after its last optimization, reading its frames again
+     * (after_run), or as it makes keyframes, re-fusing those the graph moves (while_running,
+     * as a live run always does). */
+    enum class Fusion { AfterRun, WhileRunning } fusion{Fusion::AfterRun};
 
     /** The farthest depth fused: max_depth, or nearer where the noise model says so. */
     double fusedDepthLimit() const;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <lodestone/dense/DenseParams.h>
+#include <lodestone/dense/Mesh.h>
 #include <lodestone/vision/RgbdFrame.h>
 
 #include <Eigen/Geometry>
@@ -14,22 +15,14 @@
 
 namespace lodestone::dense {
 
-/** A coloured triangle mesh. */
-struct Mesh {
-    std::vector<Eigen::Vector3f> vertices;
-    std::vector<std::array<std::uint8_t, 3>> colours;  ///< RGB per vertex
-    std::vector<Eigen::Vector3i> triangles;
-    bool empty() const { return triangles.empty(); }
-};
-
-/** Writes `mesh` as a binary little-endian PLY (float x y z, uchar red green blue per vertex;
- * uchar-counted int vertex indices per face), first to PATH.partial, then renamed. Throws
- * std::runtime_error naming the file when it cannot be written. */
-void writeMeshPly(const std::string& path, const Mesh& mesh);
+namespace detail {
+class FusionVolume;
+}
 
 /** Volumetric fusion of RGB-D frames into a truncated signed distance field with colour,
- * voxel-hashed so that memory follows the surfaces seen, not the bounding box (Open3D's
- * ScalableTSDFVolume; Curless & Levoy's weighted average), and meshed by marching cubes. */
+ * voxel-hashed so that memory follows the surfaces seen, not the bounding box (Curless & Levoy's
+ * weighted average), and meshed by marching cubes. The volume is ours (`VoxelBlockVolume`,
+ * which can take a frame out again) or Open3D's `ScalableTSDFVolume` ([dense] volume). */
 class TsdfFusion {
   public:
     explicit TsdfFusion(const DenseParams& params);
@@ -47,17 +40,29 @@ class TsdfFusion {
                           const vision::CameraIntrinsics& intrinsics,
                           const Eigen::Isometry3d& T_world_optical);
 
+    /** Takes out a frame fused before, given the same images and the pose it was fused at
+     * (BundleFusion's de-integration): then fusing it at a moved pose gives the model fusing
+     * it there first would have. Throws std::logic_error for Open3D's volume, which cannot. */
+    std::size_t deintegrate(const cv::Mat& depth, const cv::Mat& colourBgr,
+                            const vision::CameraIntrinsics& intrinsics,
+                            const Eigen::Isometry3d& T_world_optical);
+
     /** Marching cubes over the field so far. */
     Mesh extractMesh() const;
 
-    std::size_t framesFused() const { return frames_; }
+    /** Frames fused and not taken out. */
+    std::size_t framesFused() const { return static_cast<std::size_t>(frames_); }
+    /** The volume's own memory [bytes]; 0 for Open3D's, which does not say. */
+    std::size_t memoryBytes() const;
     const DenseParams& params() const { return params_; }
 
   private:
-    struct Volume;
+    std::size_t fuse(const cv::Mat& depth, const cv::Mat& colourBgr, const vision::CameraIntrinsics& intrinsics,
+                     const Eigen::Isometry3d& T_world_optical, int sign);
+
     DenseParams params_;
-    std::unique_ptr<Volume> volume_;
-    std::size_t frames_{0};
+    std::unique_ptr<detail::FusionVolume> volume_;
+    long frames_{0};
 };
 
 }  // namespace lodestone::dense

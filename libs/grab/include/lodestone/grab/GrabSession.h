@@ -17,6 +17,7 @@ struct GrabOptions {
     std::string slamMapIn;   ///< live SLAM starts in this saved map (localize; slamapp::SlamRunOptions::mapIn)
     double maxLag{0.3};      ///< [s] behind the newest observation, SLAM skips RGB-D frames
     bool slamView{false};    ///< live SLAM in MRPT's 3D window (slamapp::SlamRunOptions::view)
+    bool slamMesh{false};    ///< live SLAM fuses a dense model as it goes (slamapp::SlamRunOptions::mesh)
     bool quiet{false}, terminal{false};
 };
 
