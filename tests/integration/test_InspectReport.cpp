@@ -94,7 +94,7 @@ TEST(InspectReport, TheBundledSampleWithItsSlamRunOpensInChromium) {
     lodestone::test::TempDir dir;
     const std::string gt = std::regex_replace(kOffice, std::regex("rawlog.gz$"), "gt.tum");
     auto r = runCommand(kSlam + " --rawlog " + kOffice + " --config " + LODESTONE_CONFIG_INI_DIR +
-                        "/slam/slam.ini --quiet --out " + dir.file("slam"));
+                        "/slam/slam.ini --quiet --mesh --out " + dir.file("slam"));
     ASSERT_EQ(r.exitCode, 0) << r.output;
     r = runCommand(kInspect + " report " + kOffice + " --out " + dir.file("report") + " --slam " +
                    dir.file("slam") + " --ground-truth " + gt + " -q");
@@ -119,6 +119,8 @@ TEST(InspectReport, TheBundledSampleWithItsSlamRunOpensInChromium) {
     const bool view3d = fs::exists(report / "slam_view3d.png");
     if (!view3d) EXPECT_NE(html.find("not shown: the 3D view"), std::string::npos);
     EXPECT_EQ(images, 4u + 6u + (view3d ? 5u : 4u));
+    // The run has a dense model: the 3D picture is of it.
+    if (view3d) EXPECT_NE(html.find("the dense model (mesh.ply"), std::string::npos);
     for (const char* section : {"Summary", "Sensors", "Camera frames", "SLAM run"}) {
         EXPECT_NE(html.find(std::string("<h2>") + section + "</h2>"), std::string::npos) << section;
     }

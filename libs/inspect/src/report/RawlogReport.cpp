@@ -75,10 +75,14 @@ void slamFigures(const SlamOutputs& slam, const std::optional<eval::FieldMapBuil
         const view::SceneContent content = view::readRunFolder(slam.dir, options);
         const mrpt::img::CImage image =
             view::renderScene(*view::buildScene(content), view::framing(content), 1280, 960);
+        const bool mesh = content.mesh.size() > 0;
+        if (mesh) page.slamFacts.push_back({"dense model (mesh.ply)", std::to_string(content.mesh.size()) + " triangles shown"});
         writePng(dir, "slam_view3d.png", image.asCvMatRef(), page.slamFigures,
-                 "The run in 3D, as lodestone-view draws it: the keyframe clouds on the optimized "
-                 "poses, the nodes coloured by their error against the ground truth (or by segment "
-                 "without one), loop closures in their closer's colour, the truth's path in grey.");
+                 std::string("The run in 3D, as lodestone-view draws it: ") +
+                     (mesh ? "the dense model (mesh.ply: the keyframes fused on their optimized poses)"
+                           : "the keyframe clouds on the optimized poses") +
+                     ", the nodes coloured by their error against the ground truth (or by segment "
+                     "without one), loop closures in their closer's colour, the truth's path in grey.");
     } catch (const std::exception& e) {
         page.slamNotes.push_back(std::string("not shown: the 3D view (") + e.what() + ")");
     }
