@@ -9,10 +9,9 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <map>
-#include <tuple>
 #include <vector>
 
+#include "MeshCompare.h"
 #include "StockTools.h"
 #include "TestPaths.h"
 
@@ -72,29 +71,6 @@ std::vector<Eigen::Vector3f> plyVertices(const std::string& path) {
     return out;
 }
 
-/** The share of `b`'s vertices with one of `a`'s within `radius` (< 1 cm). */
-double shareNear(const std::vector<Eigen::Vector3f>& a, const std::vector<Eigen::Vector3f>& b, float radius) {
-    const auto cell = [](const Eigen::Vector3f& p) {
-        return std::make_tuple(int(std::floor(p.x() * 100)), int(std::floor(p.y() * 100)), int(std::floor(p.z() * 100)));
-    };
-    std::map<std::tuple<int, int, int>, std::vector<Eigen::Vector3f>> grid;
-    for (const auto& p : a) grid[cell(p)].push_back(p);
-    std::size_t near = 0;
-    for (const auto& p : b) {
-        const auto [x, y, z] = cell(p);
-        bool found = false;
-        for (int dx = -1; dx <= 1 && !found; ++dx)
-            for (int dy = -1; dy <= 1 && !found; ++dy)
-                for (int dz = -1; dz <= 1 && !found; ++dz) {
-                    const auto it = grid.find({x + dx, y + dy, z + dz});
-                    if (it == grid.end()) continue;
-                    for (const auto& q : it->second) found |= (q - p).norm() <= radius;
-                }
-        near += found;
-    }
-    return b.empty() ? 0.0 : double(near) / double(b.size());
-}
-
 }  // namespace
 
 TEST(MeshOut, FusedWhileTheRunGoesTheModelIsTheOneFusedAfterIt) {
@@ -117,6 +93,6 @@ TEST(MeshOut, FusedWhileTheRunGoesTheModelIsTheOneFusedAfterIt) {
     const auto a = plyVertices(dir.file("running/mesh.ply")), b = plyVertices(dir.file("after/mesh.ply"));
     ASSERT_GT(b.size(), 100000u);
     EXPECT_NEAR(double(a.size()), double(b.size()), 0.05 * double(b.size()));
-    EXPECT_GT(shareNear(b, a, 0.005f), 0.95);
-    EXPECT_GT(shareNear(a, b, 0.005f), 0.95);
+    EXPECT_GT(lodestone::test::shareWithin(b, a, 0.005f), 0.95);
+    EXPECT_GT(lodestone::test::shareWithin(a, b, 0.005f), 0.95);
 }

@@ -3,6 +3,7 @@
 // pose yet (a kidnapped segment) is fused once it has one; the farthest moved go first.
 #include "../sim/SimTestFrames.h"
 #include "../sim/SimTestWorlds.h"
+#include "MeshCompare.h"
 #include "TestPaths.h"
 
 #include <lodestone/dense/KeyframeFusion.h>
@@ -11,8 +12,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <map>
-#include <tuple>
 
 using namespace lodestone;
 
@@ -45,20 +44,7 @@ dense::DenseParams params() {
 
 /** The share of b's vertices with no vertex of a within 1 mm. */
 double unmatched(const dense::Mesh& a, const dense::Mesh& b) {
-    const auto cell = [](const Eigen::Vector3f& p) {
-        return std::make_tuple(int(std::floor(p.x() / 0.02)), int(std::floor(p.y() / 0.02)), int(std::floor(p.z() / 0.02)));
-    };
-    std::map<std::tuple<int, int, int>, std::vector<Eigen::Vector3f>> byCell;
-    for (const auto& p : a.vertices) byCell[cell(p)].push_back(p);
-    std::size_t far = 0;
-    for (const auto& p : b.vertices) {
-        const auto it = byCell.find(cell(p));
-        bool near = false;
-        if (it != byCell.end())
-            for (const auto& q : it->second) near |= (q - p).norm() < 1e-3;
-        far += !near;
-    }
-    return b.vertices.empty() ? 1.0 : double(far) / double(b.vertices.size());
+    return 1.0 - test::shareWithin(a.vertices, b.vertices, 1e-3f);
 }
 
 Eigen::Isometry3d drifted(const Eigen::Isometry3d& pose, int k) {
