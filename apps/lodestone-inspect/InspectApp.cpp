@@ -11,11 +11,19 @@
 #include <lodestone/io/RawlogReader.h>
 #include <lodestone/maps/MapPicture.h>
 #include <lodestone/maps/MapSummary.h>
+#include <lodestone/dense/TsdfFusion.h>
+#include <lodestone/graphslam/Se3Pose.h>
+#include <lodestone/io/RawlogSource.h>
+#include <lodestone/io/TumTrajectory.h>
+#include <lodestone/outputs/NodeTable.h>
+#include <lodestone/slamapp/KeyframeMeshPass.h>
+#include <mrpt/config/CConfigFile.h>
 #include <opencv2/imgcodecs.hpp>
 #include <lodestone/obs/registerAllClasses.h>
 #include <mrpt/img/CImage.h>
 #include <mrpt/obs/CActionCollection.h>
 
+#include <cmath>
 #include <filesystem>
 #include <functional>
 #include <iostream>
@@ -273,6 +281,54 @@ int mapCmd(const Args& args, std::ostream& out) {
     return kExitOk;
 }
 
+int meshCmd(const Args& args, std::ostream& out) {
+    TCLAP::CmdLine cmd("The dense model of a finished run: its keyframes' frames read from the rawlog "
+                       "and fused at the run's optimized poses (as lodestone-slam --mesh) into "
+                       "RUN_DIR/mesh.ply",
+                       ' ', "");
+    TCLAP::UnlabeledValueArg<std::string> dir("RUN_DIR", "a lodestone-slam output folder (nodes.csv, trajectory.tum)",
+                                              true, "", "RUN_DIR", cmd);
+    TCLAP::ValueArg<std::string> rawlog("r", "rawlog", "the rawlog the run read", true, "", "FILE", cmd);
+    TCLAP::ValueArg<std::string> ini("c", "config", "an INI whose [dense] keys to use (default: their defaults)",
+                                     false, "", "INI", cmd);
+    TCLAP::ValueArg<std::string> meshOut("o", "out", "where to write the mesh (default RUN_DIR/mesh.ply)", false, "",
+                                         "PLY", cmd);
+    TCLAP::SwitchArg allSegments("", "all-segments",
+                                 "fuse every segment's keyframes, not only the first's (for runs whose "
+                                 "kidnapped segments were all joined to the map)",
+                                 cmd);
+    if (!parse(cmd, "mesh", args)) return kExitOk;
+    const std::string run = dir.getValue();
+    const auto nodes = outputs::readNodeTable(run + "/nodes.csv");
+    const auto trajectory = io::readTumTrajectory(run + "/trajectory.tum");
+    std::map<double, Eigen::Isometry3d> byTime;
+    for (const auto& p : trajectory) byTime[p.timestamp] = graphslam::isometryOf(p.pose);
+    const dense::DenseParams params =
+        ini.isSet() ? dense::DenseParams::read(mrpt::config::CConfigFile(ini.getValue())) : dense::DenseParams();
+    std::map<double, Eigen::Isometry3d> keyframes;
+    int k = 0;
+    for (const auto& n : nodes) {
+        if (!n.keyframe || (n.segment != 0 && !allSegments.getValue())) continue;
+        const auto it = byTime.lower_bound(n.timestamp - 1e-6);
+        if (it == byTime.end() || std::abs(it->first - n.timestamp) > 1e-6) continue;  // (a node not in the trajectory)
+        if (k++ % params.everyKeyframe == 0) keyframes[n.timestamp] = it->second;
+    }
+    if (keyframes.empty()) throw BadInput(run + "/nodes.csv: no keyframe with a pose in trajectory.tum");
+    io::RawlogSource source(rawlog.getValue());
+    dense::TsdfFusion fusion(params);
+    const auto pass = slamapp::fuseKeyframes(source, keyframes, fusion);
+    if (pass.framesFound == 0)
+        throw BadInput(rawlog.getValue() + ": none of the run's " + std::to_string(keyframes.size()) +
+                       " keyframe times has an RGB-D frame - is this the run's rawlog?");
+    const dense::Mesh mesh = fusion.extractMesh();
+    if (mesh.empty()) throw BadInput(rawlog.getValue() + ": the keyframes' frames had no usable depth");
+    const std::string path = meshOut.isSet() ? meshOut.getValue() : run + "/mesh.ply";
+    dense::writeMeshPly(path, mesh);
+    out << path << ": " << mesh.vertices.size() << " vertices, " << mesh.triangles.size() << " triangles from "
+        << fusion.framesFused() << " of " << keyframes.size() << " keyframes\n";
+    return kExitOk;
+}
+
 void printUsage(std::ostream& out) {
     out << "lodestone-inspect: look inside MRPT rawlogs (stock and Lodestone's)\n\n"
            "usage: lodestone-inspect <command> [options]   (<command> --help for its options)\n"
@@ -283,6 +339,7 @@ void printUsage(std::ostream& out) {
            "  to-imu FILE OUT [--unit gauss]      magnetometers as CObservationIMU\n"
            "  report FILE --out DIR [--slam SLAM_OUT] [--ground-truth GT.tum] [--map MAP_DIR]   HTML report\n"
            "  map DIR [--plot PNG]                a saved map (lodestone-slam --map-out)\n"
+           "  mesh RUN_DIR --rawlog FILE [--config INI]   a finished run's dense model (mesh.ply)\n"
            "exit codes: 0 ok, 1 bad input, 2 usage\n";
 }
 
@@ -297,7 +354,8 @@ int runInspectApp(int argc, const char* const* argv, std::ostream& out, std::ost
         {"export", exportCmd},
         {"to-imu", toImu},
         {"report", reportCmd},
-        {"map", mapCmd}};
+        {"map", mapCmd},
+        {"mesh", meshCmd}};
     if (argc < 2) {
         printUsage(err);
         return kExitUsage;

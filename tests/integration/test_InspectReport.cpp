@@ -117,10 +117,14 @@ TEST(InspectReport, TheBundledSampleWithItsSlamRunOpensInChromium) {
     // images each, and the SLAM section's five (trajectory, graph, the 3D view, field map, node
     // time) - four where this machine cannot render off-screen, which the page then says.
     const bool view3d = fs::exists(report / "slam_view3d.png");
-    if (!view3d) EXPECT_NE(html.find("not shown: the 3D view"), std::string::npos);
+    if (!view3d) {
+        EXPECT_NE(html.find("not shown: the 3D view"), std::string::npos);
+    }
     EXPECT_EQ(images, 4u + 6u + (view3d ? 5u : 4u));
     // The run has a dense model: the 3D picture is of it.
-    if (view3d) EXPECT_NE(html.find("the dense model (mesh.ply"), std::string::npos);
+    if (view3d) {
+        EXPECT_NE(html.find("the dense model (mesh.ply"), std::string::npos);
+    }
     for (const char* section : {"Summary", "Sensors", "Camera frames", "SLAM run"}) {
         EXPECT_NE(html.find(std::string("<h2>") + section + "</h2>"), std::string::npos) << section;
     }

@@ -96,3 +96,25 @@ TEST(MeshOut, FusedWhileTheRunGoesTheModelIsTheOneFusedAfterIt) {
     EXPECT_GT(lodestone::test::shareWithin(b, a, 0.005f), 0.95);
     EXPECT_GT(lodestone::test::shareWithin(a, b, 0.005f), 0.95);
 }
+
+TEST(MeshOut, AFinishedRunsFolderGetsItsDenseModelFromItsRawlog) {
+    // lodestone-inspect mesh: the run's keyframes (nodes.csv) at its optimized poses
+    // (trajectory.tum) - the model lodestone-slam --mesh makes, up to the TUM file's digits.
+    lodestone::test::TempDir dir;
+    const auto run = lodestone::test::runCommand(kSlam + " --rawlog " + kOfficeRawlog + " --config " + kConfigDir +
+                                                 "/slam/slam.ini --quiet --mesh --out " + dir.file("run"));
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    const std::string inspect = LODESTONE_INSPECT_BINARY;
+    const auto r = lodestone::test::runCommand(inspect + " mesh " + dir.file("run") + " --rawlog " + kOfficeRawlog +
+                                               " --out " + dir.file("again.ply"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("from 24 of 24 keyframes"), std::string::npos) << r.output;
+    const auto a = plyVertices(dir.file("run/mesh.ply")), b = plyVertices(dir.file("again.ply"));
+    EXPECT_GT(lodestone::test::shareWithin(a, b, 0.002f), 0.99);
+    EXPECT_GT(lodestone::test::shareWithin(b, a, 0.002f), 0.99);
+    // Another rawlog than the run's is named.
+    const std::string other = kConfigDir + "/slam/slam.ini";
+    const auto bad = lodestone::test::runCommand(inspect + " mesh " + dir.file("run") + " --rawlog " + other);
+    EXPECT_EQ(bad.exitCode, 1) << bad.output;
+    EXPECT_NE(bad.output.find(other), std::string::npos) << bad.output;
+}

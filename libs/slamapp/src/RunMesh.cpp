@@ -9,13 +9,12 @@
 #include <lodestone/dense/TsdfFusion.h>
 #include <lodestone/graphslam/Se3Pose.h>
 #include <lodestone/io/RawlogSource.h>
-#include <lodestone/odometry/RgbdObservationFrame.h>
 #include <lodestone/outputs/RunFiles.h>
 #include <lodestone/sim/Scenario.h>
 #include <lodestone/sim/SimulatorSource.h>
+#include <lodestone/slamapp/KeyframeMeshPass.h>
 
 #include <mrpt/config/CConfigFile.h>
-#include <mrpt/obs/CObservation3DRangeScan.h>
 
 #include <chrono>
 #include <cmath>
@@ -72,40 +71,14 @@ graphslam::JsonObject writeMesh(const RunInputs& in, const LoopOutcome& loop, co
     } else {
         source = std::make_unique<io::RawlogSource>(options.rawlog);
     }
+    std::map<double, Eigen::Isometry3d> robotPoses;
+    for (const auto& [t, id] : keyframes) robotPoses[t] = graphslam::isometryOf(engine.graph().nodes.at(id));
     dense::TsdfFusion fusion(params);
-    std::size_t matched = 0, depthless = 0, pixels = 0;
-    double integrateSeconds = 0;
-    const double last = keyframes.rbegin()->first;
-    while (auto obs = source->next()) {
-        const double t = mrpt::Clock::toDouble(obs->timestamp);
-        if (t > last + 1e-3) break;
-        const auto* scan = dynamic_cast<const mrpt::obs::CObservation3DRangeScan*>(obs.get());
-        if (!scan) continue;
-        const auto it = keyframes.lower_bound(t - 1e-4);
-        if (it == keyframes.end() || std::abs(it->first - t) > 1e-4) continue;
-        ++matched;
-        const vision::RgbdFrame frame = odometry::frameFromObservation(*scan);
-        cv::Mat colour;
-        if (scan->hasIntensityImage && !scan->intensityImage.isEmpty()) {
-            const cv::Mat img = scan->intensityImage.asCvMat<cv::Mat>(mrpt::img::SHALLOW_COPY);
-            if (img.type() == CV_8UC3 && img.size() == frame.depth.size()) colour = img;
-        }
-        if (frame.depth.empty()) {
-            ++depthless;
-            continue;
-        }
-        const Eigen::Isometry3d robot = graphslam::isometryOf(engine.graph().nodes.at(it->second));
-        const auto t1 = std::chrono::steady_clock::now();
-        const std::size_t fused =
-            fusion.integrate(frame.depth, colour, frame.intrinsics,
-                             robot * odometry::opticalFrameOnRobot(scan->sensorPose));
-        integrateSeconds += since(t1);
-        pixels += fused;
-        depthless += fused == 0;
-    }
+    const KeyframeMeshPass pass = fuseKeyframes(*source, robotPoses, fusion);
     const double passSeconds = since(t0);
-    report.set("keyframes", keyframes.size()).set("frames_found", matched).set("frames_fused", fusion.framesFused())
-        .set("frames_without_depth", depthless).set("pixels_fused", pixels)
+    report.set("keyframes", keyframes.size()).set("frames_found", pass.framesFound)
+        .set("frames_fused", fusion.framesFused()).set("frames_without_depth", pass.withoutDepth)
+        .set("pixels_fused", pass.pixels)
         .set("fusion", "after_run")
         .set("volume", params.volume == dense::DenseParams::Volume::Open3d ? "open3d" : "blocks")
         .set("voxel_size_m", params.voxelSize).set("truncation_m", params.truncation)
@@ -120,7 +93,7 @@ graphslam::JsonObject writeMesh(const RunInputs& in, const LoopOutcome& loop, co
     // (the pass: reading the source again and fusing; then meshing and writing)
     if (fusion.memoryBytes() > 0) report.set("volume_mb", double(fusion.memoryBytes()) / (1 << 20));
     return report.set("written", true).set("vertices", mesh.vertices.size()).set("triangles", mesh.triangles.size())
-        .set("pass_seconds", passSeconds).set("integrate_seconds", integrateSeconds)
+        .set("pass_seconds", passSeconds).set("integrate_seconds", pass.integrateSeconds)
         .set("extract_seconds", extractSeconds).set("write_seconds", since(t3)).set("seconds", since(t0));
 }
 
