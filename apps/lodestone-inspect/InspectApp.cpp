@@ -11,6 +11,7 @@
 #include <lodestone/io/RawlogReader.h>
 #include <lodestone/maps/MapPicture.h>
 #include <lodestone/maps/MapSummary.h>
+#include <lodestone/maps/SavedMap.h>
 #include <lodestone/dense/TsdfFusion.h>
 #include <lodestone/graphslam/Se3Pose.h>
 #include <lodestone/io/RawlogSource.h>
@@ -281,48 +282,74 @@ int mapCmd(const Args& args, std::ostream& out) {
     return kExitOk;
 }
 
-int meshCmd(const Args& args, std::ostream& out) {
-    TCLAP::CmdLine cmd("The dense model of a finished run: its keyframes' frames read from the rawlog "
-                       "and fused at the run's optimized poses (as lodestone-slam --mesh) into "
-                       "RUN_DIR/mesh.ply",
-                       ' ', "");
-    TCLAP::UnlabeledValueArg<std::string> dir("RUN_DIR", "a lodestone-slam output folder (nodes.csv, trajectory.tum)",
-                                              true, "", "RUN_DIR", cmd);
-    TCLAP::ValueArg<std::string> rawlog("r", "rawlog", "the rawlog the run read", true, "", "FILE", cmd);
-    TCLAP::ValueArg<std::string> ini("c", "config", "an INI whose [dense] keys to use (default: their defaults)",
-                                     false, "", "INI", cmd);
-    TCLAP::ValueArg<std::string> meshOut("o", "out", "where to write the mesh (default RUN_DIR/mesh.ply)", false, "",
-                                         "PLY", cmd);
-    TCLAP::SwitchArg allSegments("", "all-segments",
-                                 "fuse every segment's keyframes, not only the first's (for runs whose "
-                                 "kidnapped segments were all joined to the map)",
-                                 cmd);
-    if (!parse(cmd, "mesh", args)) return kExitOk;
-    const std::string run = dir.getValue();
+// The keyframes of a finished run's folder (nodes.csv at trajectory.tum's poses), by time; every
+// `every`-th, the first segment's unless `allSegments`.
+std::map<double, Eigen::Isometry3d> runKeyframes(const std::string& run, bool allSegments, int every) {
     const auto nodes = outputs::readNodeTable(run + "/nodes.csv");
-    const auto trajectory = io::readTumTrajectory(run + "/trajectory.tum");
-    std::map<double, Eigen::Isometry3d> byTime;
-    for (const auto& p : trajectory) byTime[p.timestamp] = graphslam::isometryOf(p.pose);
-    const dense::DenseParams params =
-        ini.isSet() ? dense::DenseParams::read(mrpt::config::CConfigFile(ini.getValue())) : dense::DenseParams();
-    std::map<double, Eigen::Isometry3d> keyframes;
+    std::map<double, Eigen::Isometry3d> byTime, keyframes;
+    for (const auto& p : io::readTumTrajectory(run + "/trajectory.tum")) byTime[p.timestamp] = graphslam::isometryOf(p.pose);
     int k = 0;
     for (const auto& n : nodes) {
-        if (!n.keyframe || (n.segment != 0 && !allSegments.getValue())) continue;
+        if (!n.keyframe || (n.segment != 0 && !allSegments)) continue;
         const auto it = byTime.lower_bound(n.timestamp - 1e-6);
-        if (it == byTime.end() || std::abs(it->first - n.timestamp) > 1e-6) continue;  // (a node not in the trajectory)
-        if (k++ % params.everyKeyframe == 0) keyframes[n.timestamp] = it->second;
+        if (it == byTime.end() || std::abs(it->first - n.timestamp) > 1e-6) continue;  // (not in the trajectory)
+        if (k++ % every == 0) keyframes[n.timestamp] = it->second;
     }
     if (keyframes.empty()) throw BadInput(run + "/nodes.csv: no keyframe with a pose in trajectory.tum");
+    return keyframes;
+}
+
+// The keyframes of one session of a saved map, at the map's poses, by time.
+std::map<double, Eigen::Isometry3d> mapKeyframes(const std::string& dir, std::uint32_t session, int every) {
+    const auto map = maps::readMap(dir);
+    std::map<double, Eigen::Isometry3d> keyframes;
+    int k = 0;
+    for (std::size_t id = 0; id < map.nodes.size(); ++id) {
+        if (!map.nodes[id].keyframe || map.sessions[id] != session || !map.graph.nodes.count(id)) continue;
+        if (k++ % every == 0) keyframes[map.nodes[id].timestamp] = graphslam::isometryOf(map.graph.nodes.at(id));
+    }
+    if (keyframes.empty())
+        throw BadInput(dir + ": no keyframe in session " + std::to_string(session) + " of " +
+                       std::to_string(map.manifest.sessions));
+    return keyframes;
+}
+
+int meshCmd(const Args& args, std::ostream& out) {
+    TCLAP::CmdLine cmd("The dense model of a finished run or a saved map: the keyframes' frames read from "
+                       "the rawlog and fused at their optimized poses (as lodestone-slam --mesh) into "
+                       "DIR/mesh.ply",
+                       ' ', "");
+    TCLAP::UnlabeledValueArg<std::string> dir(
+        "DIR", "a lodestone-slam output folder (nodes.csv, trajectory.tum) or a saved map (--map-out)", true, "",
+        "DIR", cmd);
+    TCLAP::ValueArg<std::string> rawlog("r", "rawlog", "the rawlog the run read (a map: its session's)", true, "",
+                                        "FILE", cmd);
+    TCLAP::ValueArg<std::string> ini("c", "config", "an INI whose [dense] keys to use (default: their defaults)",
+                                     false, "", "INI", cmd);
+    TCLAP::ValueArg<std::string> meshOut("o", "out", "where to write the mesh (default DIR/mesh.ply)", false, "",
+                                         "PLY", cmd);
+    TCLAP::SwitchArg allSegments("", "all-segments",
+                                 "a run: fuse every segment's keyframes, not only the first's (for runs whose "
+                                 "kidnapped segments were all joined to the map)",
+                                 cmd);
+    TCLAP::ValueArg<unsigned> session("", "session", "a map: the session the rawlog recorded (0: the first)", false,
+                                      0, "N", cmd);
+    if (!parse(cmd, "mesh", args)) return kExitOk;
+    const std::string where = dir.getValue();
+    const dense::DenseParams params =
+        ini.isSet() ? dense::DenseParams::read(mrpt::config::CConfigFile(ini.getValue())) : dense::DenseParams();
+    const auto keyframes = std::filesystem::exists(where + "/nodes.csv")
+                               ? runKeyframes(where, allSegments.getValue(), params.everyKeyframe)
+                               : mapKeyframes(where, session.getValue(), params.everyKeyframe);
     io::RawlogSource source(rawlog.getValue());
     dense::TsdfFusion fusion(params);
     const auto pass = slamapp::fuseKeyframes(source, keyframes, fusion);
     if (pass.framesFound == 0)
-        throw BadInput(rawlog.getValue() + ": none of the run's " + std::to_string(keyframes.size()) +
+        throw BadInput(rawlog.getValue() + ": none of the " + std::to_string(keyframes.size()) +
                        " keyframe times has an RGB-D frame - is this the run's rawlog?");
     const dense::Mesh mesh = fusion.extractMesh();
     if (mesh.empty()) throw BadInput(rawlog.getValue() + ": the keyframes' frames had no usable depth");
-    const std::string path = meshOut.isSet() ? meshOut.getValue() : run + "/mesh.ply";
+    const std::string path = meshOut.isSet() ? meshOut.getValue() : where + "/mesh.ply";
     dense::writeMeshPly(path, mesh);
     out << path << ": " << mesh.vertices.size() << " vertices, " << mesh.triangles.size() << " triangles from "
         << fusion.framesFused() << " of " << keyframes.size() << " keyframes\n";
@@ -339,7 +366,7 @@ void printUsage(std::ostream& out) {
            "  to-imu FILE OUT [--unit gauss]      magnetometers as CObservationIMU\n"
            "  report FILE --out DIR [--slam SLAM_OUT] [--ground-truth GT.tum] [--map MAP_DIR]   HTML report\n"
            "  map DIR [--plot PNG]                a saved map (lodestone-slam --map-out)\n"
-           "  mesh RUN_DIR --rawlog FILE [--config INI]   a finished run's dense model (mesh.ply)\n"
+           "  mesh DIR --rawlog FILE [--config INI]   a finished run's or a saved map's dense model (mesh.ply)\n"
            "exit codes: 0 ok, 1 bad input, 2 usage\n";
 }
 

@@ -118,3 +118,25 @@ TEST(MeshOut, AFinishedRunsFolderGetsItsDenseModelFromItsRawlog) {
     EXPECT_EQ(bad.exitCode, 1) << bad.output;
     EXPECT_NE(bad.output.find(other), std::string::npos) << bad.output;
 }
+
+TEST(MeshOut, ASavedMapGetsItsDenseModelFromItsSessionsRawlog) {
+    lodestone::test::TempDir dir;
+    const auto run = lodestone::test::runCommand(kSlam + " --rawlog " + kOfficeRawlog + " --config " + kConfigDir +
+                                                 "/slam/slam.ini --quiet --mesh --out " + dir.file("run") +
+                                                 " --map-out " + dir.file("map"));
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    const std::string inspect = LODESTONE_INSPECT_BINARY;
+    const auto r = lodestone::test::runCommand(inspect + " mesh " + dir.file("map") + " --rawlog " + kOfficeRawlog);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    ASSERT_TRUE(fs::exists(dir.file("map/mesh.ply"))) << r.output;
+    // The map's poses are the run's: the same model.
+    EXPECT_GT(lodestone::test::shareWithin(plyVertices(dir.file("run/mesh.ply")), plyVertices(dir.file("map/mesh.ply")),
+                                           0.002f),
+              0.99);
+    // The map still reads, with its model beside it; a session it does not have is named.
+    EXPECT_EQ(lodestone::test::runCommand(inspect + " map " + dir.file("map")).exitCode, 0);
+    const auto bad =
+        lodestone::test::runCommand(inspect + " mesh " + dir.file("map") + " --rawlog " + kOfficeRawlog + " --session 3");
+    EXPECT_EQ(bad.exitCode, 1) << bad.output;
+    EXPECT_NE(bad.output.find("no keyframe in session 3 of 1"), std::string::npos) << bad.output;
+}
