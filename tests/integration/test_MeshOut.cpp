@@ -140,3 +140,17 @@ TEST(MeshOut, ASavedMapGetsItsDenseModelFromItsSessionsRawlog) {
     EXPECT_EQ(bad.exitCode, 1) << bad.output;
     EXPECT_NE(bad.output.find("no keyframe in session 3 of 1"), std::string::npos) << bad.output;
 }
+
+TEST(MeshOut, AFrameStoreThatCannotBeWrittenCostsTheMeshNotTheRun) {
+    lodestone::test::TempDir dir;
+    std::ofstream(dir.file("slam.ini")) << lodestone::test::readTextFile(kConfigDir + "/slam/slam.ini")
+                                        << "\n[dense]\nfusion = while_running\n";
+    fs::create_directories(dir.file("out/mesh.ply.frames"));  // (a folder where the store's file goes)
+    const auto r = lodestone::test::runCommand(kSlam + " --rawlog " + kOfficeRawlog + " --config " + dir.file("slam.ini") +
+                                               " --quiet --mesh --out " + dir.file("out"));
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(fs::exists(dir.file("out/trajectory.tum")));
+    EXPECT_FALSE(fs::exists(dir.file("out/mesh.ply")));
+    EXPECT_NE(r.output.find("mesh.ply.frames: the dense model's frame store cannot be written"), std::string::npos)
+        << r.output;
+}

@@ -38,8 +38,14 @@ LoopOutcome runLoop(RunInputs& in, const SlamRunOptions& options, std::ostream& 
     std::unique_ptr<RunningMesh> mesh;
     if (options.mesh) {
         const auto params = dense::DenseParams::read(mrpt::config::CConfigFile(options.config));
-        if (options.live || params.fusion == dense::DenseParams::Fusion::WhileRunning)
-            mesh = std::make_unique<RunningMesh>(params, options.outDir, engine.mapNodes());
+        try {
+            if (options.live || params.fusion == dense::DenseParams::Fusion::WhileRunning)
+                mesh = std::make_unique<RunningMesh>(params, options.outDir, engine.mapNodes());
+        } catch (const std::exception& e) {
+            // (no frame store: the run goes on without its dense model, and says why)
+            loop.runningMesh = graphslam::JsonObject();
+            loop.runningMeshWhy = e.what();
+        }
     }
     const auto status = [&] {
         view::LiveView::Status s;
