@@ -11,11 +11,11 @@
 #        carrier flags, e.g. CONFIG=rgbd_only.ini FLAGS="--handheld --gyro" for the hand-held loop;
 #        VOLUME the [dense] volume: ours, the default, or Open3D's; FUSION=while_running fuses
 #        keyframes as the run makes them instead of after it; REC_DIR keeps the recordings there
-#        and reuses them)
+#        and reuses them; the real 3DMatch frames follow where ../shared/data has them, unless NO_REAL=1)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 "$root/scripts/build.sh" > /dev/null
-cmake --build "$root/build" --target bench_mesh_accuracy > /dev/null
+cmake --build "$root/build" --target bench_mesh_accuracy bench_mesh_real > /dev/null
 slam="$root/build/apps/lodestone-slam/lodestone-slam"
 sim="$root/build/apps/lodestone-sim/lodestone-sim"
 accuracy="$root/build/bench/bench_mesh_accuracy"
@@ -61,3 +61,12 @@ print(f"| {name} | {carrier} | {r['frames_fused']} of {r['keyframes']} | {vertic
 PY
     rm -rf "$out/without" "$out/with"
 done
+data="$root/../shared/data/rgbd/3dmatch"
+if [[ -d $data && -z ${NO_REAL:-} ]]; then
+    echo
+    echo "### Real Kinect frames (3DMatch seq-01, read in place, at the dataset's poses)"
+    echo
+    echo "| volume | frames | vertices | fusing a frame [ms] | meshing [s] | volume [MB] | resident memory added [MB] | a left-out frame's depth to the others' mesh: median / p95 [m] | within 1 cm |"
+    echo "|---|---|---|---|---|---|---|---|---|"
+    for volume in blocks open3d; do "$root/build/bench/bench_mesh_real" "$data" "$volume"; done
+fi
