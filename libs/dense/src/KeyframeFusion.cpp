@@ -53,6 +53,7 @@ void KeyframeFusion::add(std::uint64_t id, const cv::Mat& depth, const cv::Mat& 
         throw std::invalid_argument("dense fusion: depth must be CV_32FC1 metres of the intrinsics' size");
     if (!colourBgr.empty() && (colourBgr.type() != CV_8UC3 || colourBgr.size() != depth.size()))
         throw std::invalid_argument("dense fusion: colour must be CV_8UC3 of the depth's size");
+    if (kept_.count(id)) throw std::invalid_argument("dense fusion: keyframe " + std::to_string(id) + " added twice");
     std::unique_lock<std::mutex> lock(mutex_);
     idle_.wait(lock, [&] { return fresh_.size() < kMaxFresh; });
     fresh_[id] = {depth.clone(), colourBgr.empty() ? cv::Mat() : colourBgr.clone()};

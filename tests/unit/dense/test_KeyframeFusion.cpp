@@ -92,6 +92,7 @@ TEST(KeyframeFusion, AKeyframeWithoutAPoseIsFusedOnceItHasOne) {
     EXPECT_TRUE(running.extractMesh().empty());
     const auto none = [](std::uint64_t) { return std::optional<Eigen::Isometry3d>(); };
     EXPECT_EQ(running.refuseMoved(none), 0u);
+    EXPECT_THROW(running.add(7, vs[1].frame.depth, {}, vs[1].frame.intrinsics, vs[1].pose), std::invalid_argument);
     const auto merged = [&](std::uint64_t) { return std::optional<Eigen::Isometry3d>(vs[1].pose); };
     EXPECT_EQ(running.refuseMoved(merged), 1u);
     EXPECT_FALSE(running.extractMesh().empty());

@@ -41,7 +41,7 @@ class KeyframeFusion {
     /** A new keyframe `id`: its frame kept and fused at `T_world_optical` (the optical frame
      * in the world), or only kept where it has no pose in the model's frame yet (a kidnapped
      * segment before its merge: nullopt), to be fused once it has. Throws
-     * std::invalid_argument for images of the wrong type or size. */
+     * std::invalid_argument for images of the wrong type or size, or an `id` added before. */
     void add(std::uint64_t id, const cv::Mat& depth, const cv::Mat& colourBgr,
              const vision::CameraIntrinsics& intrinsics, const std::optional<Eigen::Isometry3d>& T_world_optical);
 
