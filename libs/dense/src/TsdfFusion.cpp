@@ -15,7 +15,7 @@ namespace {
 class BlockVolume : public FusionVolume {
   public:
     explicit BlockVolume(const DenseParams& p)
-        : volume_({p.voxelSize, p.truncation, p.minDepth, p.fusedDepthLimit(), p.depthNoise, p.noiseFloor}) {}
+        : volume_({p.voxelSize, p.truncation, p.minDepth, p.depthNoise, p.noiseFloor}) {}
     void integrate(const cv::Mat& depth, const cv::Mat& colourBgr, const vision::CameraIntrinsics& K,
                    const Eigen::Isometry3d& T_world_optical, int sign) override {
         volume_.integrate(depth, colourBgr, K, T_world_optical, sign);

@@ -34,12 +34,12 @@ class VoxelBlockVolume {
      * as 1/sigma^2, never below 1. */
     static constexpr int kFullWeight = 16;
 
-    /** The depth's noise model weighing each pixel: sigma = noiseFloor + depthNoise z^2 [m]. */
+    /** The grid, and the depth's noise model weighing each pixel: sigma = noiseFloor +
+     * depthNoise z^2 [m]. (Which pixels are fused is the caller's: TsdfFusion's range.) */
     struct Settings {
-        double voxelSize{0.01};
-        double truncation{0.04};
-        double nearest{0.3};   ///< [m] nearer pixels are not fused
-        double farthest{3.5};  ///< [m] farther pixels are not fused
+        double voxelSize{0.01};   ///< [m]
+        double truncation{0.04};  ///< [m]
+        double nearest{0.3};      ///< [m] the depth at which a pixel weighs kFullWeight
         double depthNoise{1.425e-3};
         double noiseFloor{0.002};
     };
