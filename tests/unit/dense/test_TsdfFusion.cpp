@@ -165,9 +165,12 @@ TEST(DenseParams, KeysAreCheckedWithTheirUnits) {
     EXPECT_EQ(read("").voxelSize, 0.01);
     EXPECT_EQ(read("").volume, dense::DenseParams::Volume::Blocks);
     EXPECT_EQ(read("[dense]\nvolume = open3d\n").volume, dense::DenseParams::Volume::Open3d);
+    EXPECT_EQ(read("").fusion, dense::DenseParams::Fusion::AfterRun);
+    EXPECT_EQ(read("[dense]\nfusion = while_running\n").fusion, dense::DenseParams::Fusion::WhileRunning);
     for (const char* bad : {"[dense]\nvoxel_sise = 0.01\n", "[dense]\nvoxel_size = 0\n",
                             "[dense]\ntruncation = 0.01\n", "[dense]\nmax_depth = 0.1\n",
                             "[dense]\nnoise_floor = 0.05\n", "[dense]\nevery_keyframe = 0\n",
-                            "[dense]\nvolume = openvdb\n"})
+                            "[dense]\nvolume = openvdb\n", "[dense]\nfusion = sometimes\n",
+                            "[dense]\nvolume = open3d\nfusion = while_running\n"})
         EXPECT_THROW(read(bad), config::ConfigError) << bad;
 }
