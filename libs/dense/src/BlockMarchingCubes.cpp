@@ -1,7 +1,8 @@
 // Marching cubes over a VoxelBlockVolume, block by block: first every block's vertices (one on
 // each grid edge it owns - the +x, +y, +z edges of its voxels - where the distance changes sign
 // between two observed voxels), then every cube's triangles, looking a vertex up in the block
-// that owns its edge. Blocks are independent in both passes: two threads, the same mesh.
+// that owns its edge. Blocks are independent in both passes: two threads, each block's part
+// written by one and joined in block order, so the mesh does not depend on the split.
 // The case tables are Open3D's (Lorensen & Cline's), from the dependency's installed header.
 #include <lodestone/dense/VoxelBlockVolume.h>
 

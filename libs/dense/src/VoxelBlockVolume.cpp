@@ -117,8 +117,8 @@ std::size_t VoxelBlockVolume::integrate(const cv::Mat& depth, const cv::Mat& col
             }
         }
     }
-    // Each touched block's voxels against the frame; blocks are independent, so two threads
-    // give the same field as one.
+    // Each touched block's voxels against the frame; blocks are independent, so the field does
+    // not depend on how the two threads split them.
     const cv::Mat weights = pixelWeights(depth, settings_);
     const Eigen::Isometry3d T_optical_world = T_world_optical.inverse();
     const auto work = [&](std::size_t from, std::size_t to) {
