@@ -10,6 +10,7 @@
 // Prints one markdown row: vertices, the median / 95th percentile / mean distance [m], the
 // share within 1 cm and 2 cm, the trajectory's ATE, the completeness and the doubled share.
 //   bench_mesh_accuracy SCENARIO.ini RUN_DIR [GROUND_TRUTH.tum] [--handheld]
+#include <lodestone/dense/Mesh.h>
 #include <lodestone/eval/TrajectoryError.h>
 #include <lodestone/io/TumTrajectory.h>
 #include <lodestone/outputs/NodeTable.h>
@@ -33,28 +34,6 @@
 using namespace lodestone;
 
 namespace {
-
-/** The vertices of a binary PLY whose vertices are float x y z and uchar r g b. */
-std::vector<Eigen::Vector3d> readVertices(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw std::runtime_error(path + ": cannot open");
-    std::string line;
-    std::size_t count = 0;
-    while (std::getline(in, line) && line != "end_header") {
-        std::istringstream w(line);
-        std::string a, b;
-        w >> a >> b;
-        if (a == "element" && b == "vertex") w >> count;
-    }
-    std::vector<Eigen::Vector3d> out;
-    char v[15];
-    for (std::size_t i = 0; i < count && in.read(v, sizeof v); ++i) {
-        float p[3];
-        std::memcpy(p, v, sizeof p);
-        out.emplace_back(p[0], p[1], p[2]);
-    }
-    return out;
-}
 
 /** Distance from p to the nearest surface of the world [m]. */
 double distanceToWorld(const sim::World& world, const Eigen::Vector3d& p) {
@@ -203,8 +182,8 @@ int main(int argc, char** argv) {
         const auto ate = eval::absoluteTrajectoryError(estimate, truth);
         std::vector<double> d;
         std::vector<Eigen::Vector3d> inWorld;
-        for (const auto& v : readVertices(run + "/mesh.ply")) {
-            inWorld.push_back(ate.alignment * v);
+        for (const auto& v : dense::readMeshPly(run + "/mesh.ply").vertices) {
+            inWorld.push_back(ate.alignment * v.cast<double>());
             d.push_back(distanceToWorld(world, inWorld.back()));
         }
         if (d.empty()) throw std::runtime_error(run + "/mesh.ply: no vertices");

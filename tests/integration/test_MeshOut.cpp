@@ -3,6 +3,8 @@
 // the run before any work.
 #include <gtest/gtest.h>
 
+#include <lodestone/dense/Mesh.h>
+
 #include <Eigen/Core>
 
 #include <cmath>
@@ -61,14 +63,8 @@ TEST(MeshOut, ATypoInTheDenseSectionStopsTheRunBeforeAnyWork) {
 
 namespace {
 
-/** The vertices of a mesh.ply (binary: float x y z, uchar r g b). */
 std::vector<Eigen::Vector3f> plyVertices(const std::string& path) {
-    const std::string bytes = lodestone::test::readTextFile(path);
-    const auto count = std::stoul(bytes.substr(bytes.find("element vertex ") + 15));
-    const std::size_t body = bytes.find("end_header\n") + 11;
-    std::vector<Eigen::Vector3f> out(count);
-    for (std::size_t i = 0; i < count; ++i) std::memcpy(out[i].data(), bytes.data() + body + 15 * i, 12);
-    return out;
+    return lodestone::dense::readMeshPly(path).vertices;
 }
 
 }  // namespace

@@ -152,6 +152,17 @@ TEST(TsdfFusion, TheMeshFileHoldsTheMesh) {
     const std::size_t body = bytes.find("end_header\n") + 11;
     EXPECT_EQ(bytes.size() - body, 3 * (12 + 3) + (1 + 12));
     EXPECT_THROW(dense::writeMeshPly(dir.file("no/such/folder/mesh.ply"), m), std::runtime_error);
+    // Read back: the same mesh; cut short or another layout, named.
+    const dense::Mesh back = dense::readMeshPly(dir.file("mesh.ply"));
+    ASSERT_EQ(back.vertices.size(), 3u);
+    EXPECT_EQ(back.vertices[1], m.vertices[1]);
+    EXPECT_EQ(back.colours[2], m.colours[2]);
+    ASSERT_EQ(back.triangles.size(), 1u);
+    EXPECT_EQ(back.triangles[0], m.triangles[0]);
+    std::ofstream(dir.file("cut.ply"), std::ios::binary) << bytes.substr(0, bytes.size() - 5);
+    EXPECT_THROW(dense::readMeshPly(dir.file("cut.ply")), std::runtime_error);
+    std::ofstream(dir.file("cloud.ply")) << "ply\nformat ascii 1.0\nend_header\n";
+    EXPECT_THROW(dense::readMeshPly(dir.file("cloud.ply")), std::runtime_error);
 }
 
 TEST(DenseParams, KeysAreCheckedWithTheirUnits) {

@@ -22,4 +22,9 @@ struct Mesh {
  * std::runtime_error naming the file when it cannot be written. */
 void writeMeshPly(const std::string& path, const Mesh& mesh);
 
+/** Reads a PLY writeMeshPly wrote (binary little-endian, float x y z and uchar r g b per vertex,
+ * triangles). Throws std::runtime_error naming the file for one it cannot open, another layout,
+ * a file cut short or a face naming a vertex it does not have. */
+Mesh readMeshPly(const std::string& path);
+
 }  // namespace lodestone::dense
