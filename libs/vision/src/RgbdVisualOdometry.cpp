@@ -1,4 +1,3 @@
-#include <lodestone/config/IniSection.h>
 #include <lodestone/vision/JoinRotation.h>
 #include <lodestone/vision/RgbdVisualOdometry.h>
 
@@ -13,136 +12,6 @@ double msSince(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 }  // namespace
-
-const char* toString(VoState s) {
-    switch (s) {
-        case VoState::Initializing:
-            return "INITIALIZING";
-        case VoState::Tracking:
-            return "TRACKING";
-        case VoState::Lost:
-            return "LOST";
-    }
-    return "?";
-}
-
-const char* toString(VoFailure f) {
-    switch (f) {
-        case VoFailure::None:
-            return "none";
-        case VoFailure::NoReference:
-            return "no reference frame";
-        case VoFailure::FewFeatures:
-            return "too few features with depth";
-        case VoFailure::FewMatches:
-            return "too few matches";
-        case VoFailure::NoConsensus:
-            return "too few RANSAC inliers";
-        case VoFailure::Implausible:
-            return "implausible motion";
-        case VoFailure::FasterThanCarrier:
-            return "faster than the carrier";
-    }
-    return "?";
-}
-
-void RgbdVisualOdometry::Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
-                                                    const std::string& section) {
-    // One INI section for the whole odometry: each part reads its own keys from it, and then
-    // every key of the section must have belonged to someone.
-    config::IniSection s(source, section, config::sourceName(source));
-    orb.read(s);
-    matcher.read(s);
-    ransac.read(s);
-    lostAfter = s.getInt("lost_after", lostAfter);
-    maxTranslation = s.getDouble("max_translation", maxTranslation);
-    maxRotation = s.getDouble("max_rotation_deg", maxRotation * 180 / M_PI) * M_PI / 180;
-    maxSpeed = s.getDouble("max_speed", maxSpeed);
-    stepError = s.getDouble("step_error", stepError);
-    maxTurnRate = s.getDouble("max_turn_rate_deg", maxTurnRate * 180 / M_PI) * M_PI / 180;
-    stepErrorAngle = s.getDouble("step_error_deg", stepErrorAngle * 180 / M_PI) * M_PI / 180;
-    if (!(maxSpeed >= 0)) s.fail("max_speed", "must be >= 0 (0: off)");
-    if (!(maxTurnRate >= 0)) s.fail("max_turn_rate_deg", "must be >= 0 (0: off)");
-    if (!(stepError >= 0)) s.fail("step_error", "must be >= 0");
-    if (!(stepErrorAngle >= 0)) s.fail("step_error_deg", "must be >= 0");
-    seed = static_cast<std::uint64_t>(s.getInt("seed", static_cast<int>(seed)));
-    keyframeDistance = s.getDouble("keyframe_distance", keyframeDistance);
-    keyframeAngle = s.getDouble("keyframe_angle_deg", keyframeAngle * 180 / M_PI) * M_PI / 180;
-    const std::string by = s.getString("keyframe_by", "measured");
-    if (by == "measured") {
-        keyframeBy = KeyframeBy::Measured;
-    } else if (by == "predicted") {
-        keyframeBy = KeyframeBy::Predicted;
-    } else {
-        s.fail("keyframe_by", "must be measured or predicted");
-    }
-    guidedMatching = s.getBool("guided_matching", guidedMatching);
-    guidedGateChi2 = s.getDouble("guided_gate_chi2", guidedGateChi2);
-    guidedKeypointSigma = s.getDouble("guided_keypoint_sigma", guidedKeypointSigma);
-    depthAlignment = s.getBool("depth_alignment", depthAlignment);
-    depthWithFeatures = s.getBool("depth_with_features", depthWithFeatures);
-    depthStart = s.getBool("depth_start", depthStart);
-    depthModelKeyframes = s.getInt("depth_model_keyframes", depthModelKeyframes);
-    depthSampling.columns = s.getInt("depth_grid_columns", depthSampling.columns);
-    depthSampling.pointsFromCellMean =
-        s.getBool("depth_points_from_cell_mean", depthSampling.pointsFromCellMean);
-    depthSampling.depthNoise = ransac.depthNoise;
-    depthIcp.minObserved = s.getInt("depth_min_observed", depthIcp.minObserved);
-    gyroDepthMinObserved = s.getInt("gyro_depth_min_observed", gyroDepthMinObserved);
-    const std::string join = s.getString("gyro_with_features", "off");
-    if (join == "off") {
-        gyroWithFeatures = GyroJoin::Off;
-    } else if (join == "tilt") {
-        gyroWithFeatures = GyroJoin::Tilt;
-    } else if (join == "all") {
-        gyroWithFeatures = GyroJoin::All;
-    } else {
-        s.fail("gyro_with_features", "must be off, tilt or all");
-    }
-    if (gyroDepthMinObserved < 0 || gyroDepthMinObserved > 6) {
-        s.fail("gyro_depth_min_observed", "must be 0..6 (0: off; directions of a rigid motion)");
-    }
-    if (depthModelKeyframes < 1) s.fail("depth_model_keyframes", "must be >= 1");
-    if (depthSampling.columns < 8) s.fail("depth_grid_columns", "must be >= 8");
-    if (depthIcp.minObserved < 1 || depthIcp.minObserved > 6) {
-        s.fail("depth_min_observed", "must be 1..6 (directions of a rigid motion)");
-    }
-    if (lostAfter < 1) s.fail("lost_after", "must be >= 1");
-    if (!(guidedGateChi2 > 0)) s.fail("guided_gate_chi2", "must be > 0");
-    if (!(guidedKeypointSigma > 0)) s.fail("guided_keypoint_sigma", "must be > 0");
-    s.finish();
-}
-
-void RgbdVisualOdometry::Params::dumpToTextStream(std::ostream& out) const {
-    orb.dumpToTextStream(out);
-    matcher.dumpToTextStream(out);
-    ransac.dumpToTextStream(out);
-    out << "lost_after         = " << lostAfter << "  [frames]\n"
-        << "max_translation    = " << maxTranslation << "  [m from the reference]\n"
-        << "max_rotation_deg   = " << maxRotation * 180 / M_PI << "  [deg from the reference]\n"
-        << "max_speed          = " << maxSpeed << "  [m/s since the last tracked frame; 0: off]\n"
-        << "step_error         = " << stepError << "  [m]\n"
-        << "max_turn_rate_deg  = " << maxTurnRate * 180 / M_PI << "  [deg/s; 0: off]\n"
-        << "step_error_deg     = " << stepErrorAngle * 180 / M_PI << "  [deg]\n"
-        << "seed               = " << seed << "\n"
-        << "keyframe_distance  = " << keyframeDistance << "  [m]\n"
-        << "keyframe_angle_deg = " << keyframeAngle * 180 / M_PI << "  [deg]\n"
-        << "keyframe_by        = " << (keyframeBy == KeyframeBy::Predicted ? "predicted" : "measured") << "\n"
-        << "guided_matching    = " << (guidedMatching ? "true" : "false") << "\n"
-        << "guided_gate_chi2   = " << guidedGateChi2 << "  (2 dof)\n"
-        << "guided_keypoint_sigma = " << guidedKeypointSigma << "  [px]\n"
-        << "depth_alignment    = " << (depthAlignment ? "true" : "false") << "\n"
-        << "depth_with_features = " << (depthWithFeatures ? "true" : "false") << "\n"
-        << "depth_start        = " << (depthStart ? "true" : "false") << "\n"
-        << "depth_model_keyframes = " << depthModelKeyframes << "\n"
-        << "depth_grid_columns = " << depthSampling.columns << "\n"
-        << "depth_points_from_cell_mean = " << (depthSampling.pointsFromCellMean ? "true" : "false") << "\n"
-        << "depth_min_observed = " << depthIcp.minObserved << "  [of 6 directions]\n"
-        << "gyro_depth_min_observed = " << gyroDepthMinObserved << "  [of 6; 0: off]\n"
-        << "gyro_with_features = "
-        << (gyroWithFeatures == GyroJoin::All ? "all" : gyroWithFeatures == GyroJoin::Tilt ? "tilt" : "off")
-        << "\n";
-}
 
 RgbdVisualOdometry::RgbdVisualOdometry() : RgbdVisualOdometry(Params()) {}
 
@@ -378,7 +247,7 @@ VoResult RgbdVisualOdometry::processFrame(PreparedFrame& prepared, const MotionP
     // start, or an alignment (most frames whose features align need none unless solved with
     // them). Their cost counts where they are used.
     bool cloudCounted = false;
-    const auto cloud = [&]() -> DepthCloud& {
+    const DepthCloudSource cloud = [&]() -> DepthCloud& {
         if (!prepared.cloud) {
             const auto td = std::chrono::steady_clock::now();
             prepared.cloud = sampleDepthCloud(frame, params_.depthSampling);
@@ -388,48 +257,88 @@ VoResult RgbdVisualOdometry::processFrame(PreparedFrame& prepared, const MotionP
         cloudCounted = true;
         return *prepared.cloud;
     };
-
     const auto fail = [&](VoFailure why) {
         r.failure = why;
         if (state_ != VoState::Lost && ++failures_ >= params_.lostAfter) state_ = VoState::Lost;
         r.state = state_;
         return r;
     };
-    // T_ref_new: the new reference's pose in the old one (identity when starting afresh).
-    const auto becomeReference = [&](const Eigen::Isometry3d& T_ref_new, bool pinned) {
-        reference_ = std::move(current);
-        reference_time_ = frame.timestamp;
-        if (params_.depthAlignment) {
-            depth_model_.addReference(std::move(cloud()), T_ref_new.inverse(), pinned);
-        }
-    };
 
     if (state_ == VoState::Lost || !reference_) {
-        // (Re-)initialize on a frame good enough to track from.
-        // A frame with too few features may still start depth alignment (depth_start): a plain
-        // corridor's walls and floor pin its heading and its place across, the wheels the rest
-        // (the next frame decides whether the depth pins enough, depth_min_observed).
-        const bool depthToStartFrom = params_.depthAlignment && params_.depthStart &&
-                                      cloud().size() >= params_.depthIcp.minCorrespondences;
-        if (current.size() < static_cast<std::size_t>(params_.ransac.minInliers) &&
-            !depthToStartFrom) {
-            // Nothing to start from either: that too counts towards LOST.
-            return fail(VoFailure::FewFeatures);
-        }
-        depth_model_.clear();
-        becomeReference(Eigen::Isometry3d::Identity(), true);
-        last_in_ref_.setIdentity();
-        last_time_ = frame.timestamp;
-        last_step_dt_ = 0;
-        velocity_.setZero();
-        failures_ = 0;
-        state_ = VoState::Initializing;
+        // Nothing to start from either: that too counts towards LOST.
+        if (!startFrom(current, frame.timestamp, cloud)) return fail(VoFailure::FewFeatures);
         r.state = state_;
         r.failure = VoFailure::NoReference;
         return r;
     }
     r.referenceTimestamp = reference_time_;
-    const std::uint64_t seed = params_.seed + frame_count_;
+    const Alignment aligned = matchFeatures(current, frame, prior, params_.seed + frame_count_, r);
+    r.matches = aligned.matches;
+    r.inliers = aligned.inliers;
+    RigidEstimate est = aligned.estimate;
+    const VoFailure implausible =
+        aligned.success ? plausibility(est, frame.timestamp) : VoFailure::None;
+    if (!aligned.success || implausible != VoFailure::None) {
+        r.failure = aligned.success ? implausible : aligned.failure;
+        if (!params_.depthAlignment) return fail(r.failure);
+        // The features failed; the depth may still hold walls, a floor, a door frame.
+        if (!alignByDepthAlone(cloud(), frame.timestamp, prior, rotation, est, r))
+            return fail(r.failure);
+    } else if (params_.depthAlignment && params_.depthWithFeatures) {
+        joinDepth(cloud(), frame.timestamp, est, r);
+    }
+    r.T_ref_cur_camera = est.transform;
+    r.covariance_camera = est.covariance;
+    joinGyro(rotation, frame.timestamp, est, r);
+    const bool keyframe = isKeyframe(est.transform, prior, rotation);
+    r.success = true;
+    r.T_ref_cur = est.transform;
+    r.covariance = est.covariance;
+    failures_ = 0;
+    state_ = VoState::Tracking;
+    r.state = state_;
+    trackedAt(est.transform, frame.timestamp, keyframe, !r.depthAligned,
+              rotation ? rotation->velocitySeconds : 1.0);
+    if (keyframe) {
+        becomeReference(current, frame.timestamp, est.transform,
+                        !r.depthAligned || r.depthObserved == 6, cloud);
+    }
+    return r;
+}
+
+void RgbdVisualOdometry::becomeReference(FrameFeatures& features, double timestamp,
+                                         const Eigen::Isometry3d& T_ref_new, bool pinned,
+                                         const DepthCloudSource& cloud) {
+    reference_ = std::move(features);
+    reference_time_ = timestamp;
+    if (params_.depthAlignment) depth_model_.addReference(std::move(cloud()), T_ref_new.inverse(), pinned);
+}
+
+bool RgbdVisualOdometry::startFrom(FrameFeatures& features, double timestamp,
+                                   const DepthCloudSource& cloud) {
+    // (Re-)initialize on a frame good enough to track from.
+    // A frame with too few features may still start depth alignment (depth_start): a plain
+    // corridor's walls and floor pin its heading and its place across, the wheels the rest
+    // (the next frame decides whether the depth pins enough, depth_min_observed).
+    const bool depthToStartFrom = params_.depthAlignment && params_.depthStart &&
+                                  cloud().size() >= params_.depthIcp.minCorrespondences;
+    if (features.size() < static_cast<std::size_t>(params_.ransac.minInliers) && !depthToStartFrom)
+        return false;
+    depth_model_.clear();
+    becomeReference(features, timestamp, Eigen::Isometry3d::Identity(), true, cloud);
+    last_in_ref_.setIdentity();
+    last_time_ = timestamp;
+    last_step_dt_ = 0;
+    velocity_.setZero();
+    failures_ = 0;
+    state_ = VoState::Initializing;
+    return true;
+}
+
+RgbdVisualOdometry::Alignment RgbdVisualOdometry::matchFeatures(const FrameFeatures& current,
+                                                                const RgbdFrame& frame,
+                                                                const MotionPrior* prior,
+                                                                std::uint64_t seed, VoResult& r) {
     std::optional<Alignment> aligned;
     if (prior && params_.guidedMatching && current.size() > 0) {
         // Guided first; a prior the frame contradicts (slip, a lift) leaves too few matches or
@@ -453,66 +362,55 @@ VoResult RgbdVisualOdometry::processFrame(PreparedFrame& prepared, const MotionP
     if (!aligned) aligned = align(*reference_, current, seed);
     r.timing.matching += aligned->timing.matching;
     r.timing.ransac += aligned->timing.ransac;
-    r.matches = aligned->matches;
-    r.inliers = aligned->inliers;
-    RigidEstimate est = aligned->estimate;
-    const VoFailure implausible =
-        aligned->success ? plausibility(est, frame.timestamp) : VoFailure::None;
-    if (!aligned->success || implausible != VoFailure::None) {
-        r.failure = aligned->success ? implausible : aligned->failure;
-        if (!params_.depthAlignment) return fail(r.failure);
-        // The features failed; the depth may still hold walls, a floor, a door frame.
-        const DepthCloud& points = cloud();
-        const auto td = std::chrono::steady_clock::now();
-        ++totals_.depthTried;
-        const DepthAlignment d = alignDepth(points, frame.timestamp, prior, rotation);
-        r.timing.depth += msSince(td);
+    return *aligned;
+}
+
+bool RgbdVisualOdometry::alignByDepthAlone(const DepthCloud& points, double timestamp,
+                                           const MotionPrior* prior, const RotationPrior* rotation,
+                                           RigidEstimate& est, VoResult& r) {
+    const auto td = std::chrono::steady_clock::now();
+    ++totals_.depthTried;
+    const DepthAlignment d = alignDepth(points, timestamp, prior, rotation);
+    r.timing.depth += msSince(td);
+    r.depthObserved = d.observed;
+    est.transform = d.T_ref_cur;
+    est.covariance = d.covariance;
+    ++totals_.depthObserved[static_cast<std::size_t>(std::clamp(d.observed, 0, 6))];
+    if (!d.success || plausibility(est, timestamp) != VoFailure::None) {
+        ++totals_.depthFailures[static_cast<std::size_t>(d.failure)];
+        return false;
+    }
+    r.depthAligned = true;
+    return true;
+}
+
+void RgbdVisualOdometry::joinDepth(const DepthCloud& points, double timestamp, RigidEstimate& est,
+                                   VoResult& r) {
+    // Both measured the motion: one solve, the features' covariance as a measurement.
+    const auto td = std::chrono::steady_clock::now();
+    MotionPrior measured;
+    measured.T_ref_cur = est.transform;
+    measured.covariance = est.covariance;
+    const DepthAlignment d = icp_.align(depth_model_, points, est.transform, &measured);
+    r.timing.depth += msSince(td);
+    if (d.success && replaceIfPlausible(est, d.T_ref_cur, d.covariance, timestamp)) {
+        r.depthJoined = true;
         r.depthObserved = d.observed;
-        est.transform = d.T_ref_cur;
-        est.covariance = d.covariance;
-        ++totals_.depthObserved[static_cast<std::size_t>(std::clamp(d.observed, 0, 6))];
-        if (!d.success || plausibility(est, frame.timestamp) != VoFailure::None) {
-            ++totals_.depthFailures[static_cast<std::size_t>(d.failure)];
-            return fail(r.failure);
-        }
-        r.depthAligned = true;
-    } else if (params_.depthAlignment && params_.depthWithFeatures) {
-        // Both measured the motion: one solve, the features' covariance as a measurement.
-        const DepthCloud& points = cloud();
-        const auto td = std::chrono::steady_clock::now();
-        MotionPrior measured;
-        measured.T_ref_cur = est.transform;
-        measured.covariance = est.covariance;
-        const DepthAlignment d = icp_.align(depth_model_, points, est.transform, &measured);
-        r.timing.depth += msSince(td);
-        if (d.success && replaceIfPlausible(est, d.T_ref_cur, d.covariance, frame.timestamp)) {
-            r.depthJoined = true;
-            r.depthObserved = d.observed;
-            r.depthDisagreed = d.disagreed;
-        }
+        r.depthDisagreed = d.disagreed;
     }
-    r.T_ref_cur_camera = est.transform;
-    r.covariance_camera = est.covariance;
+}
+
+void RgbdVisualOdometry::joinGyro(const RotationPrior* rotation, double timestamp,
+                                  RigidEstimate& est, VoResult& r) const {
     const bool tilt = params_.gyroWithFeatures == Params::GyroJoin::Tilt;
-    if (rotation && params_.gyroWithFeatures != Params::GyroJoin::Off && !r.depthAligned &&
-        (!tilt || rotation->vertical.norm() > 0)) {
-        // (where the depth alone aligned, the rotation already started and measured it)
-        const MotionPrior joined =
-            joinRotation({est.transform, est.covariance}, rotation->R_ref_cur, rotation->sigma,
-                         tilt ? rotation->vertical : Eigen::Vector3d::Zero());
-        r.gyroJoined = replaceIfPlausible(est, joined.T_ref_cur, joined.covariance, frame.timestamp);
-    }
-    const bool keyframe = isKeyframe(est.transform, prior, rotation);
-    r.success = true;
-    r.T_ref_cur = est.transform;
-    r.covariance = est.covariance;
-    failures_ = 0;
-    state_ = VoState::Tracking;
-    r.state = state_;
-    trackedAt(est.transform, frame.timestamp, keyframe, !r.depthAligned,
-              rotation ? rotation->velocitySeconds : 1.0);
-    if (keyframe) becomeReference(est.transform, !r.depthAligned || r.depthObserved == 6);
-    return r;
+    if (!rotation || params_.gyroWithFeatures == Params::GyroJoin::Off || r.depthAligned ||
+        (tilt && !(rotation->vertical.norm() > 0)))
+        return;
+    // (where the depth alone aligned, the rotation already started and measured it)
+    const MotionPrior joined =
+        joinRotation({est.transform, est.covariance}, rotation->R_ref_cur, rotation->sigma,
+                     tilt ? rotation->vertical : Eigen::Vector3d::Zero());
+    r.gyroJoined = replaceIfPlausible(est, joined.T_ref_cur, joined.covariance, timestamp);
 }
 
 }  // namespace lodestone::vision

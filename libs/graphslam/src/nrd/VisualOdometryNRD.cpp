@@ -1,4 +1,3 @@
-#include <lodestone/config/IniSection.h>
 #include <lodestone/graphslam/Se3Pose.h>
 #include <lodestone/graphslam/gso/PoseGraphSolver.h>
 #include <lodestone/graphslam/nrd/KeyframeCloud.h>
@@ -46,95 +45,7 @@ VisualOdometryNRD::VisualOdometryNRD() : vo_(params_.visual) { setClassName("Vis
 
 void VisualOdometryNRD::configure(const mrpt::config::CConfigFileBase& ini) {
     Params p = params_;  // all or nothing
-    p.visual.loadFromConfigFile(ini, "visual_odometry");
-    config::IniSection s(ini, "VisualOdometryNRD", config::sourceName(ini));
-    p.read(s);  // NodeSpacing: node and keyframe intervals, map clouds
-    p.lostEdgeSigma = s.getDouble("lost_edge_sigma", p.lostEdgeSigma);
-    p.edgeCrossCovariance = s.getBool("edge_cross_covariance", p.edgeCrossCovariance);
-    p.relocalizeKeyframes = s.getInt("relocalize_keyframes", p.relocalizeKeyframes);
-    if (p.relocalizeKeyframes < 0) s.fail("relocalize_keyframes", "must be >= 0");
-    p.bridgeMaxSeconds = s.getDouble("bridge_max_seconds", p.bridgeMaxSeconds);
-    p.bridgeAccelSigma = s.getDouble("bridge_accel_sigma", p.bridgeAccelSigma);
-    p.bridgeAngularAccelSigma =
-        s.getDouble("bridge_angular_accel_sigma", p.bridgeAngularAccelSigma);
-    if (!(p.bridgeMaxSeconds >= 0)) s.fail("bridge_max_seconds", "must be >= 0");
-    if (!(p.bridgeAccelSigma > 0) || !(p.bridgeAngularAccelSigma > 0))
-        s.fail("bridge_accel_sigma", "acceleration sigmas must be > 0");
-    p.cameraLabel = s.getString("camera_label", p.cameraLabel);
-    p.useGyro = s.getBool("use_gyro", p.useGyro);
-    p.gyroLabel = s.getString("gyro_label", p.gyroLabel);
-    p.gyro.noiseStd = s.getDouble("gyro_noise_deg", p.gyro.noiseStd * 180 / M_PI) * M_PI / 180;
-    p.gyro.biasStd = s.getDouble("gyro_bias_deg", p.gyro.biasStd * 180 / M_PI) * M_PI / 180;
-    if (!(p.gyro.noiseStd >= 0)) s.fail("gyro_noise_deg", "must be >= 0");
-    if (!(p.gyro.biasStd >= 0)) s.fail("gyro_bias_deg", "must be >= 0");
-    p.gyroBridgeMaxSeconds = s.getDouble("gyro_bridge_max_seconds", p.gyroBridgeMaxSeconds);
-    auto& fading = p.bridgeVelocity;
-    fading.speedSigma = s.getDouble("bridge_speed_sigma", fading.speedSigma);
-    fading.correlationSeconds = s.getDouble("bridge_velocity_seconds", fading.correlationSeconds);
-    if (!(p.gyroBridgeMaxSeconds >= 0)) s.fail("gyro_bridge_max_seconds", "must be >= 0");
-    if (!(fading.speedSigma > 0)) s.fail("bridge_speed_sigma", "must be > 0");
-    if (!(fading.correlationSeconds > 0)) s.fail("bridge_velocity_seconds", "must be > 0");
-    p.bridgeCruiseSeconds = s.getDouble("bridge_cruise_seconds", p.bridgeCruiseSeconds);
-    if (!(p.bridgeCruiseSeconds >= 0)) s.fail("bridge_cruise_seconds", "must be >= 0");
-    p.bridgeByDepth = s.getBool("bridge_by_depth", p.bridgeByDepth);
-    p.bridgeHeightSigma = s.getDouble("bridge_height_sigma", p.bridgeHeightSigma);
-    if (!(p.bridgeHeightSigma >= 0)) s.fail("bridge_height_sigma", "must be >= 0");
-    p.stepHeightSigma = s.getDouble("step_height_sigma", p.stepHeightSigma);
-    if (!(p.stepHeightSigma >= 0)) s.fail("step_height_sigma", "must be >= 0");
-    p.stepMotionPrior = s.getBool("step_motion_prior", p.stepMotionPrior);
-    p.bridgeTurnByDepth = s.getBool("bridge_turn_by_depth", p.bridgeTurnByDepth);
-    auto& turn = p.bridgeTurn;
-    turn.rate.speedSigma =
-        s.getDouble("bridge_turn_rate_sigma_deg", turn.rate.speedSigma * 180 / M_PI) * M_PI / 180;
-    turn.rate.correlationSeconds = fading.correlationSeconds;
-    turn.tiltSigma = s.getDouble("bridge_tilt_sigma_deg", turn.tiltSigma * 180 / M_PI) * M_PI / 180;
-    p.bridgeTurnMaxSigma =
-        s.getDouble("bridge_turn_max_sigma_deg", p.bridgeTurnMaxSigma * 180 / M_PI) * M_PI / 180;
-    if (!(turn.rate.speedSigma > 0)) s.fail("bridge_turn_rate_sigma_deg", "must be > 0");
-    if (!(turn.tiltSigma >= 0)) s.fail("bridge_tilt_sigma_deg", "must be >= 0");
-    if (!(p.bridgeTurnMaxSigma > 0)) s.fail("bridge_turn_max_sigma_deg", "must be > 0");
-    if (p.bridgeByDepth && !p.useGyro && !p.bridgeTurnByDepth)
-        s.fail("bridge_by_depth",
-               "needs use_gyro = true or bridge_turn_by_depth = true (the depth corrects the "
-               "gyro's bridge, or measures the turn too)");
-    if (p.bridgeTurnByDepth && !p.bridgeByDepth)
-        s.fail("bridge_turn_by_depth", "needs bridge_by_depth = true (the same frames' depth)");
-    p.useGravity = s.getBool("use_gravity", p.useGravity);
-    auto& g = p.gravity;
-    g.biasStd = s.getDouble("accel_bias", g.biasStd);
-    g.windowSeconds = s.getDouble("gravity_window_seconds", g.windowSeconds);
-    g.motionSeconds = s.getDouble("gravity_motion_seconds", g.motionSeconds);
-    if (!(g.biasStd > 0)) s.fail("accel_bias", "must be > 0");
-    if (!(g.windowSeconds > 0)) s.fail("gravity_window_seconds", "must be > 0");
-    if (!(g.motionSeconds > 0)) s.fail("gravity_motion_seconds", "must be > 0");
-    turn.tiltSeconds = g.motionSeconds;  // (the same carrier's motion: a gait's half period)
-    fading.acrossSeconds = g.motionSeconds;  // (its sway and bob turn back as often)
-    p.gravityVelocitySigma = s.getDouble("gravity_velocity_sigma", p.gravityVelocitySigma);
-    if (!(p.gravityVelocitySigma > 0)) s.fail("gravity_velocity_sigma", "must be > 0");
-    p.carrierTiltSigma =
-        s.getDouble("carrier_tilt_sigma_deg", p.carrierTiltSigma * 180 / M_PI) * M_PI / 180;
-    if (!(p.carrierTiltSigma >= 0)) s.fail("carrier_tilt_sigma_deg", "must be >= 0");
-    p.carrierHeightSigma = s.getDouble("carrier_height_sigma", p.carrierHeightSigma);
-    if (!(p.carrierHeightSigma >= 0)) s.fail("carrier_height_sigma", "must be >= 0");
-    if (p.carrierHeightSigma > 0 && !(p.useGravity || p.carrierTiltSigma > 0))
-        s.fail("carrier_height_sigma",
-               "needs use_gravity = true or carrier_tilt_sigma_deg > 0 (a height is along an up: "
-               "with none, the nodes' own plane could stand on its edge)");
-    p.floorLevel = s.getBool("floor_level", p.floorLevel);
-    auto& fit = p.floor.fit;
-    fit.minUpSigma = s.getDouble("floor_min_sigma_deg", fit.minUpSigma * 180 / M_PI) * M_PI / 180;
-    fit.minHeightSigma = s.getDouble("floor_min_height_sigma", fit.minHeightSigma);
-    if (!(fit.minUpSigma > 0)) s.fail("floor_min_sigma_deg", "must be > 0");
-    if (!(fit.minHeightSigma > 0)) s.fail("floor_min_height_sigma", "must be > 0");
-    if (p.floorLevel && p.carrierHeightSigma > 0)
-        s.fail("floor_level",
-               "not with carrier_height_sigma > 0 (one level per graph: the floor's or the "
-               "carrier's common height)");
-    if (p.useGravity && !p.useGyro)
-        s.fail("use_gravity",
-               "needs use_gyro = true (the gyro turns the window's samples into one frame)");
-    if (!(p.lostEdgeSigma > 0)) s.fail("lost_edge_sigma", "must be > 0");
-    s.finish();
+    p.loadFrom(ini);
     params_ = p;
     vo_ = vision::RgbdVisualOdometry(params_.visual);
     prepared_.onlyCamera(params_.cameraLabel);
@@ -226,84 +137,13 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
         frame_cloud_ = prepared.cloud;
     }
     const auto r = vo_.process(std::move(prepared), nullptr, rotation ? &*rotation : nullptr);
-    if (params_.useGyro) {
-        // Keep what the next frame's rotation needs: from VO's reference (or this frame) on,
-        // and from the last tracked frame (a bridge across a gap, this frame's restart
-        // included), for as long as a gap may be bridged.
-        const auto since = vo_.referenceTimestamp();
-        double keep = since ? std::min(*since, t) : t;
-        if (std::isfinite(last_tracked_.t) && t - last_tracked_.t <= params_.gyroBridgeMaxSeconds)
-            keep = std::min(keep, last_tracked_.t);
-        if (params_.useGravity) {  // (and the window before this frame, for its up)
-            keep = std::min(keep, t - params_.gravity.windowSeconds - 0.1);
-            gravity_.dropBefore(t - params_.gravityVelocitySeconds);
-        }
-        gyro_.dropBefore(keep);
-    }
+    if (params_.useGyro) dropGyroBefore(t);
     // (from the features' steps only: where the depth alone aligned, the gyro started it)
     if (params_.useGyro && r.success && !r.depthAligned && vo_.referenceTimestamp() == t)
         learnGyroBias(r, t, T_robot_optical);
     const mrpt::poses::CPose3DPDFGaussian here;  // a frame at the new node: identity, certain
     if (r.failure == vision::VoFailure::NoReference) {
-        // VO (re)starts on this frame: the root, or after a loss a new segment.
-        const bool first = m_prev_registered_nodeID == mrpt::graphs::INVALID_NODEID;
-        const double gap = first ? 0.0 : t - last_tracked_.t;
-        if (!first) {
-            ++gaps_;
-            gap_seconds_.push_back(gap);
-        }
-        std::optional<mrpt::poses::CPose3DPDFGaussian> found, byGyro, expected;
-        bool byDepthTurn = false;
-        if (!first && (params_.useGyro || params_.bridgeTurnByDepth) &&
-            gap <= params_.gyroBridgeMaxSeconds) {
-            followGap(frame, t, T_robot_optical);
-            if (params_.useGyro) byGyro = bridgeByGyro(t);
-            if (!byGyro && params_.bridgeTurnByDepth) {
-                byGyro = bridgeByDepthTurn(t);
-                byDepthTurn = byGyro.has_value();
-            }
-        }
-        // Where the carrier can have gone meanwhile, as far as a motion model knows: what a
-        // view found again must agree with (features along one edge - a door frame, a corner -
-        // align at any turn about it).
-        if (byGyro)
-            expected = byGyro;
-        else if (!first && last_step_seconds_ > 0)
-            expected = bridge(gap);
-        if (!first && r.frameFeatures)
-            found = relocalize(*r.frameFeatures, T_robot_optical, expected ? &*expected : nullptr);
-        if (!first) carryAcrossGap(t);  // (before this frame becomes the last tracked one)
-        if (found) {
-            // The view came back: the graph goes on from where it was seen before.
-            ++relocalized_;
-            registerAt(*scan, t, r.frameFeatures, *found, false);
-        } else if (byGyro) {
-            // The gyro (or the depth) saw every turn of the gap: the segment goes on, loose
-            // where it must.
-            if (byDepthTurn) {
-                ++bridged_by_depth_turn_;
-            } else {
-                ++bridged_by_gyro_;
-                if (depth_bridge_.active() && depth_bridge_.aligned() > 0) ++bridged_by_depth_;
-            }
-            registerAt(*scan, t, r.frameFeatures, *byGyro, false);
-        } else if (!first && gap <= params_.bridgeMaxSeconds && last_step_seconds_ > 0) {
-            // A short gap: where the last velocity carries the camera, as sure as a
-            // constant-velocity model is over that long.
-            ++bridged_;
-            registerAt(*scan, t, r.frameFeatures, bridge(gap), false);
-        } else {
-            if (!first) unbridged_gap_seconds_.push_back(gap);
-            registerAt(*scan, t, r.frameFeatures, here, !first);
-        }
-        reference_ = {t, here};
-        last_tracked_ = {t, here};
-        last_tracked_features_ = r.frameFeatures;
-        trackedFrame(frame, T_robot_optical);
-        chained_.clear();  // (VO starts again: its velocity is unknown until it has tracked)
-        chained_.emplace_back(t, mrpt::poses::CPose3D());
-        chained_covariance_.assign(1, Eigen::Matrix3d::Zero());
-        chained_rotation_covariance_.assign(1, Eigen::Matrix3d::Zero());
+        restartAt(*scan, t, r, frame, T_robot_optical);
         return;
     }
     if (!r.success) {
@@ -321,31 +161,7 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
     cur += motion;
     last_step_ = cur.mean - last_tracked_.pdf.mean;  // (both relative to the same node)
     last_step_seconds_ = t - last_tracked_.t;
-    if (!chained_.empty()) {
-        chained_.emplace_back(t, chained_.back().second + last_step_);
-        // VO's own uncertainty of this frame against its reference, in the chain's axes (turned
-        // by this frame's rotation: the reference's differs by a keyframe's turn at most).
-        const Eigen::Matrix3d R = chained_.back().second.getRotationMatrix().asEigen();
-        const Eigen::Matrix3d C = motion.cov.asEigen().topLeftCorner<3, 3>();
-        chained_covariance_.push_back(R * C * R.transpose());
-        // (its rotation block: MRPT's yaw, pitch, roll are w_z, w_y, w_x to first order)
-        Eigen::Matrix3d Cr;
-        for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j) Cr(i, j) = motion.cov(5 - i, 5 - j);
-        chained_rotation_covariance_.push_back(R * Cr * R.transpose());
-        // (the carrier's pace against its turn rate, VO's over the last frames)
-        cruise_.add(Eigen::Vector3d(last_step_.x(), last_step_.y(), last_step_.z()), last_step_seconds_,
-                    turnRateAtLastTracked().mean.norm());
-        // (kept: VO's velocity before a gap; with the accelerometer, the window before a node)
-        double old = t - std::max(2 * params_.gravityVelocitySeconds,
-                                  params_.bridgeVelocity.correlationSeconds);
-        if (params_.useGravity) old -= params_.gravity.windowSeconds;
-        while (chained_.size() > 1 && chained_[1].first < old) {
-            chained_.pop_front();
-            chained_covariance_.pop_front();
-            chained_rotation_covariance_.pop_front();
-        }
-    }
+    if (!chained_.empty()) extendChain(t, motion);
     last_tracked_ = {t, cur};
     last_tracked_features_ = r.frameFeatures;
     trackedFrame(frame, T_robot_optical);
@@ -362,6 +178,112 @@ void VisualOdometryNRD::consume(const mrpt::obs::CObservation3DRangeScan::Ptr& s
     motion.inverse(back);
     reference_.pdf = back;
     last_tracked_.pdf = here;
+}
+
+void VisualOdometryNRD::dropGyroBefore(double t) {
+    // Keep what the next frame's rotation needs: from VO's reference (or this frame) on,
+    // and from the last tracked frame (a bridge across a gap, this frame's restart
+    // included), for as long as a gap may be bridged.
+    const auto since = vo_.referenceTimestamp();
+    double keep = since ? std::min(*since, t) : t;
+    if (std::isfinite(last_tracked_.t) && t - last_tracked_.t <= params_.gyroBridgeMaxSeconds)
+        keep = std::min(keep, last_tracked_.t);
+    if (params_.useGravity) {  // (and the window before this frame, for its up)
+        keep = std::min(keep, t - params_.gravity.windowSeconds - 0.1);
+        gravity_.dropBefore(t - params_.gravityVelocitySeconds);
+    }
+    gyro_.dropBefore(keep);
+}
+
+void VisualOdometryNRD::restartAt(const mrpt::obs::CObservation3DRangeScan& scan, double t,
+                                  const vision::VoResult& r, const vision::RgbdFrame& frame,
+                                  const Eigen::Isometry3d& T_robot_optical) {
+    const mrpt::poses::CPose3DPDFGaussian here;  // a frame at the new node: identity, certain
+    // VO (re)starts on this frame: the root, or after a loss a new segment.
+    const bool first = m_prev_registered_nodeID == mrpt::graphs::INVALID_NODEID;
+    const double gap = first ? 0.0 : t - last_tracked_.t;
+    if (!first) {
+        ++gaps_;
+        gap_seconds_.push_back(gap);
+    }
+    std::optional<mrpt::poses::CPose3DPDFGaussian> found, byGyro, expected;
+    bool byDepthTurn = false;
+    if (!first && (params_.useGyro || params_.bridgeTurnByDepth) &&
+        gap <= params_.gyroBridgeMaxSeconds) {
+        followGap(frame, t, T_robot_optical);
+        if (params_.useGyro) byGyro = bridgeByGyro(t);
+        if (!byGyro && params_.bridgeTurnByDepth) {
+            byGyro = bridgeByDepthTurn(t);
+            byDepthTurn = byGyro.has_value();
+        }
+    }
+    // Where the carrier can have gone meanwhile, as far as a motion model knows: what a
+    // view found again must agree with (features along one edge - a door frame, a corner -
+    // align at any turn about it).
+    if (byGyro)
+        expected = byGyro;
+    else if (!first && last_step_seconds_ > 0)
+        expected = bridge(gap);
+    if (!first && r.frameFeatures)
+        found = relocalize(*r.frameFeatures, T_robot_optical, expected ? &*expected : nullptr);
+    if (!first) carryAcrossGap(t);  // (before this frame becomes the last tracked one)
+    if (found) {
+        // The view came back: the graph goes on from where it was seen before.
+        ++relocalized_;
+        registerAt(scan, t, r.frameFeatures, *found, false);
+    } else if (byGyro) {
+        // The gyro (or the depth) saw every turn of the gap: the segment goes on, loose
+        // where it must.
+        if (byDepthTurn) {
+            ++bridged_by_depth_turn_;
+        } else {
+            ++bridged_by_gyro_;
+            if (depth_bridge_.active() && depth_bridge_.aligned() > 0) ++bridged_by_depth_;
+        }
+        registerAt(scan, t, r.frameFeatures, *byGyro, false);
+    } else if (!first && gap <= params_.bridgeMaxSeconds && last_step_seconds_ > 0) {
+        // A short gap: where the last velocity carries the camera, as sure as a
+        // constant-velocity model is over that long.
+        ++bridged_;
+        registerAt(scan, t, r.frameFeatures, bridge(gap), false);
+    } else {
+        if (!first) unbridged_gap_seconds_.push_back(gap);
+        registerAt(scan, t, r.frameFeatures, here, !first);
+    }
+    reference_ = {t, here};
+    last_tracked_ = {t, here};
+    last_tracked_features_ = r.frameFeatures;
+    trackedFrame(frame, T_robot_optical);
+    chained_.clear();  // (VO starts again: its velocity is unknown until it has tracked)
+    chained_.emplace_back(t, mrpt::poses::CPose3D());
+    chained_covariance_.assign(1, Eigen::Matrix3d::Zero());
+    chained_rotation_covariance_.assign(1, Eigen::Matrix3d::Zero());
+}
+
+void VisualOdometryNRD::extendChain(double t, const mrpt::poses::CPose3DPDFGaussian& motion) {
+    chained_.emplace_back(t, chained_.back().second + last_step_);
+    // VO's own uncertainty of this frame against its reference, in the chain's axes (turned
+    // by this frame's rotation: the reference's differs by a keyframe's turn at most).
+    const Eigen::Matrix3d R = chained_.back().second.getRotationMatrix().asEigen();
+    const Eigen::Matrix3d C = motion.cov.asEigen().topLeftCorner<3, 3>();
+    chained_covariance_.push_back(R * C * R.transpose());
+    // (its rotation block: MRPT's yaw, pitch, roll are w_z, w_y, w_x to first order)
+    Eigen::Matrix3d Cr;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) Cr(i, j) = motion.cov(5 - i, 5 - j);
+    chained_rotation_covariance_.push_back(R * Cr * R.transpose());
+    // (the carrier's pace against its turn rate, VO's over the last frames)
+    cruise_.add(Eigen::Vector3d(last_step_.x(), last_step_.y(), last_step_.z()), last_step_seconds_,
+                turnRateAtLastTracked().mean.norm());
+    // (kept: VO's velocity before a gap; with the accelerometer, the window before a node)
+    double old = t - std::max(2 * params_.gravityVelocitySeconds,
+                              params_.bridgeVelocity.correlationSeconds);
+    if (params_.useGravity) old -= params_.gravity.windowSeconds;
+    while (chained_.size() > 1 && chained_[1].first < old) {
+        chained_.pop_front();
+        chained_covariance_.pop_front();
+        chained_rotation_covariance_.pop_front();
+    }
 }
 
 void VisualOdometryNRD::learnGyroBias(const vision::VoResult& r, double t,
@@ -501,54 +423,7 @@ std::function<void(const mrpt::obs::CObservation::Ptr&)> VisualOdometryNRD::prep
 
 JsonObject VisualOdometryNRD::describe() const {
     JsonObject params;
-    params_.describe(params);
-    params.set("lost_edge_sigma", params_.lostEdgeSigma)
-        .set("relocalize_keyframes", params_.relocalizeKeyframes)
-        .set("edge_cross_covariance", params_.edgeCrossCovariance)
-        .set("bridge_max_seconds", params_.bridgeMaxSeconds)
-        .set("step_height_sigma", params_.stepHeightSigma)
-        .set("step_motion_prior", params_.stepMotionPrior)
-        .set("camera_label", params_.cameraLabel);
-    if (params_.useGyro) {
-        params.set("gyro_label", params_.gyroLabel)
-            .set("gyro_bridge_max_seconds", params_.gyroBridgeMaxSeconds)
-            .set("bridge_by_depth", params_.bridgeByDepth)
-            .set("bridge_height_sigma", params_.bridgeHeightSigma)
-            .set("bridge_speed_sigma", params_.bridgeVelocity.speedSigma)
-            .set("bridge_velocity_seconds", params_.bridgeVelocity.correlationSeconds)
-            .set("bridge_across_seconds", params_.bridgeVelocity.acrossSeconds)
-            .set("bridge_cruise_seconds", params_.bridgeCruiseSeconds)
-            .set("use_gravity", params_.useGravity);
-    }
-    if (params_.bridgeTurnByDepth) {
-        if (!params_.useGyro) {
-            params.set("gyro_bridge_max_seconds", params_.gyroBridgeMaxSeconds)
-                .set("bridge_by_depth", params_.bridgeByDepth)
-                .set("bridge_height_sigma", params_.bridgeHeightSigma)
-                .set("bridge_speed_sigma", params_.bridgeVelocity.speedSigma)
-                .set("bridge_velocity_seconds", params_.bridgeVelocity.correlationSeconds)
-                .set("bridge_across_seconds", params_.bridgeVelocity.acrossSeconds)
-                .set("bridge_cruise_seconds", params_.bridgeCruiseSeconds);
-        }
-        params.set("bridge_turn_by_depth", true)
-            .set("bridge_turn_rate_sigma_deg", params_.bridgeTurn.rate.speedSigma * 180 / M_PI)
-            .set("bridge_tilt_sigma_deg", params_.bridgeTurn.tiltSigma * 180 / M_PI)
-            .set("bridge_turn_max_sigma_deg", params_.bridgeTurnMaxSigma * 180 / M_PI);
-    }
-    if (params_.carrierTiltSigma > 0)
-        params.set("carrier_tilt_sigma_deg", params_.carrierTiltSigma * 180 / M_PI);
-    if (params_.carrierHeightSigma > 0) params.set("carrier_height_sigma", params_.carrierHeightSigma);
-    if (params_.floorLevel) {
-        params.set("floor_level", true)
-            .set("floor_min_sigma_deg", params_.floor.fit.minUpSigma * 180 / M_PI)
-            .set("floor_min_height_sigma", params_.floor.fit.minHeightSigma);
-    }
-    if (params_.useGravity) {
-        params.set("accel_bias", params_.gravity.biasStd)
-            .set("gravity_window_seconds", params_.gravity.windowSeconds)
-            .set("gravity_motion_seconds", params_.gravity.motionSeconds)
-            .set("gravity_velocity_sigma", params_.gravityVelocitySigma);
-    }
+    params_.describeAll(params);
     JsonObject stats;
     stats.set("rgbd_frames", frames_)
         .set("failed_frames", failed_frames_)

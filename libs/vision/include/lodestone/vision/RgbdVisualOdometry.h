@@ -12,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <memory>
+#include <functional>
 #include <optional>
 
 namespace lodestone::vision {
@@ -232,8 +233,33 @@ class RgbdVisualOdometry {
     const Params& params() const { return params_; }
 
   private:
+    /** The frame's depth points, sampled once when first asked for. */
+    using DepthCloudSource = std::function<DepthCloud&()>;
+
+    /** VO's frame pipeline: a start, or the features matched, the depth where they fail (or
+     * joined with them), the gyro joined, the keyframe decided. */
     VoResult processFrame(PreparedFrame& prepared, const MotionPrior* prior,
                           const RotationPrior* rotation);
+    /** Starts (again) from this frame if it holds enough features, or depth to align by
+     * (`depthStart`): false if neither. */
+    bool startFrom(FrameFeatures& features, double timestamp, const DepthCloudSource& cloud);
+    /** The frame (its features, its depth points into the depth model) as the new reference,
+     * at `T_ref_new` in the old one. */
+    void becomeReference(FrameFeatures& features, double timestamp,
+                         const Eigen::Isometry3d& T_ref_new, bool pinned,
+                         const DepthCloudSource& cloud);
+    /** The features matched with the reference's, guided by the prior where one is given and
+     * it holds, else by brute force; the time taken into `r`. */
+    Alignment matchFeatures(const FrameFeatures& current, const RgbdFrame& frame,
+                            const MotionPrior* prior, std::uint64_t seed, VoResult& r);
+    /** Where the features failed: `est` from the depth alone, if it aligned plausibly. */
+    bool alignByDepthAlone(const DepthCloud& points, double timestamp, const MotionPrior* prior,
+                           const RotationPrior* rotation, RigidEstimate& est, VoResult& r);
+    /** Where the features aligned: the depth solved with them, `est` replaced if plausible. */
+    void joinDepth(const DepthCloud& points, double timestamp, RigidEstimate& est, VoResult& r);
+    /** The gyro's rotation joined with `est` (`gyroWithFeatures`), where it applies. */
+    void joinGyro(const RotationPrior* rotation, double timestamp, RigidEstimate& est,
+                  VoResult& r) const;
     /** Depth alignment where the features failed, started from the prior, else the rotation
      * (or constant turn rate) and the carrier's fading velocity. */
     DepthAlignment alignDepth(const DepthCloud& cloud, double timestamp, const MotionPrior* prior,

@@ -157,6 +157,13 @@ class VisualOdometryNRD : public NodeDecider {
         double gravityVelocitySeconds{0.3};
         double gravityVelocitySigma{0.03};
         vision::RgbdVisualOdometry::Params visual;  ///< [visual_odometry]
+
+        /** [VisualOdometryNRD] and [visual_odometry] of `ini` over these values, strictly: a
+         * bad value, a key unknown or keys that do not go together fail naming the key. */
+        void loadFrom(const mrpt::config::CConfigFileBase& ini);
+        /** Every key of the section that applies (the gyro's, the depth's where used) into
+         * report.json's params. */
+        void describeAll(JsonObject& params) const;
     };
 
     VisualOdometryNRD();
@@ -186,6 +193,16 @@ class VisualOdometryNRD : public NodeDecider {
   private:
     void consume(const mrpt::obs::CObservation3DRangeScan::Ptr& scan);
     void consumeGyro(const mrpt::obs::CObservationIMU& imu);
+    /** The gyro's (and accelerometer's) samples no frame after `t` can need dropped. */
+    void dropGyroBefore(double t);
+    /** VO (re)started on this frame: the root, or a gap's end - relocalized, bridged (the
+     * gyro, the depth's turn, the last velocity) or a new segment. */
+    void restartAt(const mrpt::obs::CObservation3DRangeScan& scan, double t,
+                   const vision::VoResult& r, const vision::RgbdFrame& frame,
+                   const Eigen::Isometry3d& T_robot_optical);
+    /** A tracked frame's step onto the chain of recent frames (the velocity a gap starts
+     * from, the window before a node). */
+    void extendChain(double t, const mrpt::poses::CPose3DPDFGaussian& motion);
     /** The gyro's rotation from VO's reference frame to time t, in the optical frame. */
     std::optional<vision::RotationPrior> gyroSinceReference(double t,
                                                             const Eigen::Isometry3d& T_robot_optical) const;
