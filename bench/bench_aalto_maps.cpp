@@ -66,13 +66,21 @@ std::optional<Eigen::Vector2d> mapPlace(const std::vector<io::TumPose>& runTruth
     return Eigen::Vector2d(node->pose.x(), node->pose.y());
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-    std::vector<std::string> args(argv + 1, argv + argc);
-    int seeds = 3;
+/** The arguments left once --seeds N and --trials 2,3,... are taken out. */
+struct CommandLine {
+    std::vector<std::string> args;
+    int seeds{3};
     std::vector<int> trials{2, 3, 4, 5, 6, 7, 8, 9};
-    bool usable = true;
+    bool usable{true};  ///< false: a number that is none
+};
+
+CommandLine parseCommandLine(int argc, char** argv) {
+    CommandLine cl;
+    auto& args = cl.args;
+    args.assign(argv + 1, argv + argc);
+    int& seeds = cl.seeds;
+    std::vector<int>& trials = cl.trials;
+    bool& usable = cl.usable;
     for (std::size_t i = 0; usable && i + 1 < args.size();) {
         if (args[i] == "--seeds") {
             try {
@@ -96,6 +104,17 @@ int main(int argc, char** argv) {
         }
         args.erase(args.begin() + static_cast<long>(i), args.begin() + static_cast<long>(i) + 2);
     }
+    return cl;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const CommandLine cl = parseCommandLine(argc, argv);
+    const auto& args = cl.args;
+    const int seeds = cl.seeds;
+    const std::vector<int>& trials = cl.trials;
+    const bool usable = cl.usable;
     if (!usable || args.size() < 2 || seeds < 1 || trials.empty()) {
         std::cerr
             << "usage: bench_aalto_maps DATA OUT_DIR [SLAM.ini] [--seeds N] [--trials 2,3,...]\n";

@@ -60,6 +60,69 @@ Eigen::Isometry3d toIsometry(const mrpt::poses::CPose3D& p) {
     T.matrix() = p.getHomogeneousMatrixVal<mrpt::math::CMatrixDouble44>().asEigen();
     return T;
 }
+
+/** The error split along the covariance's eigen-directions: pinned (under 10 cm: their NEES
+ * too) and loose (the initial guess's). */
+void addPinnedAndLoose(Group& gr, const Eigen::Matrix<double, 6, 1>& e,
+                       const Eigen::Matrix<double, 6, 6>& covariance) {
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eig(covariance);
+    for (int k = 0; k < 6; ++k) {
+        const Eigen::Matrix<double, 6, 1> v = eig.eigenvectors().col(k);
+        const double along = v.dot(e);
+        const double translationShare = v.tail<3>().squaredNorm();
+        if (eig.eigenvalues()(k) < 0.01) {
+            gr.nees += along * along / eig.eigenvalues()(k);
+            gr.pinnedT2 += translationShare * along * along;
+            ++gr.pinnedDims;
+        } else {
+            gr.looseT2 += translationShare * along * along;
+            ++gr.looseDims;
+        }
+    }
+}
+
+/** The table's rows: every frame, each group, the keyframe chain's length, each failure. */
+void printRows(const std::string& name, std::size_t frames,
+               const std::map<std::string, Group>& groups, const std::set<double>& references,
+               const std::map<double, std::pair<double, double>>& stepAt,
+               const std::map<std::string, std::size_t>& failed) {
+    std::printf("| %s | all frames | %zu |  |  |  |  |  |  |\n", name.c_str(), frames);
+    for (const auto& [key, g] : groups) {
+        const double n = static_cast<double>(g.frames);
+        // The length error's standard error: the steps' differences as independent draws
+        // (about their zero, not their mean: conservative where the bias is large).
+        const double lengthError = g.trueLength > 0 ? g.estAlong / g.trueLength - 1 : NAN;
+        const double lengthSe = g.trueLength > 0 ? std::sqrt(g.lengthDiff2) / g.trueLength : NAN;
+        std::printf("| %s | %s | %zu | %.1f / %.1f | %.2f | %+.2f +- %.2f | %.1f | %s | %.2f |\n", name.c_str(),
+                    key.c_str(), g.frames, 1000 * median(g.translationErrors),
+                    1000 * std::sqrt(g.sumT2 / n),
+                    std::sqrt(g.sumR2 / n) * 180 / M_PI, 100 * lengthError, 100 * lengthSe,
+                    1000 * std::sqrt(g.pinnedT2 / n),
+                    g.looseDims > 0 ? std::to_string(static_cast<int>(1000 * std::sqrt(g.looseT2 / n))).c_str() : "-",
+                    g.pinnedDims > 0 ? g.nees / static_cast<double>(g.pinnedDims) : 0.0);
+    }
+    {
+        // (a reference that was not a tracked frame - a start - has no step)
+        double chainLength = 0, chainAlong = 0, chainDiff2 = 0;
+        std::size_t chainSteps = 0;
+        for (const double ref : references) {
+            const auto it = stepAt.find(ref);
+            if (it == stepAt.end()) continue;
+            ++chainSteps;
+            chainLength += it->second.first;
+            chainAlong += it->second.second;
+            chainDiff2 += (it->second.second - it->second.first) * (it->second.second - it->second.first);
+        }
+        if (chainLength > 0) {
+            std::printf("| %s | keyframe chain (steps that became references) | %zu |  |  | %+.2f +- %.2f |  |  |  |\n",
+                        name.c_str(), chainSteps, 100 * (chainAlong / chainLength - 1),
+                        100 * std::sqrt(chainDiff2) / chainLength);
+        }
+    }
+    for (const auto& [why, count] : failed) {
+        std::printf("| %s | failed: %s | %zu |  |  |  |  |  |  |\n", name.c_str(), why.c_str(), count);
+    }
+}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -147,58 +210,9 @@ int main(int argc, char** argv) {
                 gr.estAlong += along;
                 gr.lengthDiff2 += (along - length) * (along - length);
             }
-            // Pinned: the covariance's eigen-directions (translation block) under 10 cm.
-            const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eig(r.covariance);
-            for (int k = 0; k < 6; ++k) {
-                const Eigen::Matrix<double, 6, 1> v = eig.eigenvectors().col(k);
-                const double along = v.dot(e);
-                const double translationShare = v.tail<3>().squaredNorm();
-                if (eig.eigenvalues()(k) < 0.01) {
-                    gr.nees += along * along / eig.eigenvalues()(k);
-                    gr.pinnedT2 += translationShare * along * along;
-                    ++gr.pinnedDims;
-                } else {
-                    gr.looseT2 += translationShare * along * along;
-                    ++gr.looseDims;
-                }
-            }
+            addPinnedAndLoose(gr, e, r.covariance);
         }
-        std::printf("| %s | all frames | %zu |  |  |  |  |  |  |\n", name.c_str(), frames);
-        for (const auto& [key, g] : groups) {
-            const double n = static_cast<double>(g.frames);
-            // The length error's standard error: the steps' differences as independent draws
-            // (about their zero, not their mean: conservative where the bias is large).
-            const double lengthError = g.trueLength > 0 ? g.estAlong / g.trueLength - 1 : NAN;
-            const double lengthSe = g.trueLength > 0 ? std::sqrt(g.lengthDiff2) / g.trueLength : NAN;
-            std::printf("| %s | %s | %zu | %.1f / %.1f | %.2f | %+.2f +- %.2f | %.1f | %s | %.2f |\n", name.c_str(),
-                        key.c_str(), g.frames, 1000 * median(g.translationErrors),
-                        1000 * std::sqrt(g.sumT2 / n),
-                        std::sqrt(g.sumR2 / n) * 180 / M_PI, 100 * lengthError, 100 * lengthSe,
-                        1000 * std::sqrt(g.pinnedT2 / n),
-                        g.looseDims > 0 ? std::to_string(static_cast<int>(1000 * std::sqrt(g.looseT2 / n))).c_str() : "-",
-                        g.pinnedDims > 0 ? g.nees / static_cast<double>(g.pinnedDims) : 0.0);
-        }
-        {
-            // (a reference that was not a tracked frame - a start - has no step)
-            double chainLength = 0, chainAlong = 0, chainDiff2 = 0;
-            std::size_t chainSteps = 0;
-            for (const double ref : references) {
-                const auto it = stepAt.find(ref);
-                if (it == stepAt.end()) continue;
-                ++chainSteps;
-                chainLength += it->second.first;
-                chainAlong += it->second.second;
-                chainDiff2 += (it->second.second - it->second.first) * (it->second.second - it->second.first);
-            }
-            if (chainLength > 0) {
-                std::printf("| %s | keyframe chain (steps that became references) | %zu |  |  | %+.2f +- %.2f |  |  |  |\n",
-                            name.c_str(), chainSteps, 100 * (chainAlong / chainLength - 1),
-                            100 * std::sqrt(chainDiff2) / chainLength);
-            }
-        }
-        for (const auto& [why, count] : failed) {
-            std::printf("| %s | failed: %s | %zu |  |  |  |  |  |  |\n", name.c_str(), why.c_str(), count);
-        }
+        printRows(name, frames, groups, references, stepAt, failed);
         const auto& tot = vo.totals();
         std::fprintf(stderr, "%s: depth tried %zu, aligned %zu, %.2f ms a frame on depth\n",
                      name.c_str(), tot.depthTried, tot.depthAligned,

@@ -19,6 +19,35 @@
 
 using namespace lodestone;
 
+namespace {
+/** VO's error over each 1 m of travel whose frames all tracked (and, into `texturedErrs`,
+ * whose frames all looked at textured walls too). */
+void trackedMetreErrors(const std::vector<io::TumPose>& vo, const std::vector<io::TumPose>& gt,
+                        const std::vector<char>& tracked, const std::vector<char>& texturedView,
+                        std::vector<double>& errs, std::vector<double>& texturedErrs) {
+    std::vector<double> travelled(gt.size(), 0);
+    for (std::size_t k = 1; k < gt.size(); ++k) {
+        travelled[k] = travelled[k - 1] + std::hypot(gt[k].pose.x() - gt[k - 1].pose.x(),
+                                                     gt[k].pose.y() - gt[k - 1].pose.y());
+    }
+    std::size_t j = 0;
+    for (std::size_t i = 0; i < gt.size(); ++i) {
+        j = std::max(j, i);
+        while (j < gt.size() && travelled[j] - travelled[i] < 1.0) ++j;
+        if (j >= gt.size()) break;
+        bool all = true, textured = texturedView[i];
+        for (std::size_t k = i + 1; k <= j && all; ++k) {
+            all = tracked[k];
+            textured = textured && texturedView[k];
+        }
+        if (!all) continue;
+        const auto dE = vo[j].pose - vo[i].pose, dG = gt[j].pose - gt[i].pose;
+        errs.push_back(std::hypot(dE.x() - dG.x(), dE.y() - dG.y()));
+        if (textured) texturedErrs.push_back(errs.back());
+    }
+}
+}  // namespace
+
 int main(int argc, char** argv) {
     if (argc < 2) {
         std::cerr
@@ -100,28 +129,7 @@ int main(int argc, char** argv) {
         // VO alone where it tracked: RPE per metre over 1 m pairs with every frame between tracked
         // (and, second figure, every frame between also looking at textured walls).
         std::vector<double> errs, texturedErrs;
-        {
-            std::vector<double> travelled(gt.size(), 0);
-            for (std::size_t k = 1; k < gt.size(); ++k) {
-                travelled[k] = travelled[k - 1] + std::hypot(gt[k].pose.x() - gt[k - 1].pose.x(),
-                                                             gt[k].pose.y() - gt[k - 1].pose.y());
-            }
-            std::size_t j = 0;
-            for (std::size_t i = 0; i < gt.size(); ++i) {
-                j = std::max(j, i);
-                while (j < gt.size() && travelled[j] - travelled[i] < 1.0) ++j;
-                if (j >= gt.size()) break;
-                bool all = true, textured = texturedView[i];
-                for (std::size_t k = i + 1; k <= j && all; ++k) {
-                    all = tracked[k];
-                    textured = textured && texturedView[k];
-                }
-                if (!all) continue;
-                const auto dE = est[1][j].pose - est[1][i].pose, dG = gt[j].pose - gt[i].pose;
-                errs.push_back(std::hypot(dE.x() - dG.x(), dE.y() - dG.y()));
-                if (textured) texturedErrs.push_back(errs.back());
-            }
-        }
+        trackedMetreErrors(est[1], gt, tracked, texturedView, errs, texturedErrs);
         const auto rmsOf = [](const std::vector<double>& v) {
             double sq = 0;
             for (double e : v) sq += e * e;

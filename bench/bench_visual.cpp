@@ -23,6 +23,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <regex>
 #include <sstream>
@@ -40,6 +41,58 @@ double median(std::vector<double> v) {
     if (v.empty()) return NAN;
     std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
     return v[v.size() / 2];
+}
+
+/** Maximal runs of textured keyframes after the first lap, and how many of them got a
+ * closure. */
+std::pair<std::size_t, std::size_t> closedRevisits(
+    const graphslam::NodeStore& nodes, const std::function<int(graphslam::TNodeID)>& lapOf,
+    const std::function<bool(graphslam::TNodeID)>& textured, const std::vector<char>& closedAt) {
+    std::size_t runs = 0, runsClosed = 0;
+    bool inRun = false, runClosed = false;
+    for (graphslam::TNodeID id = 0; id < nodes.size(); ++id) {
+        if (!nodes.at(id).keyframe || lapOf(id) == 0) continue;
+        const bool tex = textured(id);
+        if (tex && !inRun) {
+            inRun = true;
+            runClosed = false;
+            ++runs;
+        }
+        if (tex && closedAt[id] && !runClosed) {
+            runClosed = true;
+            ++runsClosed;
+        }
+        if (!tex) inRun = false;
+    }
+    return {runs, runsClosed};
+}
+
+/** PLAIN: what matching achieves from a keyframe that sees mostly plain wall; TIME: the
+ * matching's and retrieval's cost. */
+void printPlainViewsAndTime(const graphslam::OrbSubmapERD& erd,
+                            const std::function<bool(graphslam::TNodeID)>& textured,
+                            const std::string& scenario, const std::string& kindText) {
+    const auto& st = erd.stats();
+    std::size_t plainQueries = 0, plainClosures = 0;
+    double plainMatches = 0, plainInliers = 0;
+    double matchMax = 0, retrievalMax = 0, retrievalSum = 0;
+    for (const auto& q : erd.queries()) {
+        matchMax = std::max(matchMax, q.slowestMatchMs);
+        retrievalMax = std::max(retrievalMax, q.retrievalMs);
+        retrievalSum += q.retrievalMs;
+        if (q.candidates == 0 || textured(q.node)) continue;
+        ++plainQueries;
+        plainMatches += q.bestMatches;
+        plainInliers += q.bestInliers;
+        plainClosures += q.accepted;
+    }
+    std::printf("PLAIN | %s | %s | %zu | %.1f | %.1f | %zu |\n", scenario.c_str(), kindText.c_str(),
+                plainQueries, plainQueries ? plainMatches / plainQueries : 0.0,
+                plainQueries ? plainInliers / plainQueries : 0.0, plainClosures);
+    std::printf("TIME | %s | %s | %zu | %.2f / %.2f | %.3f / %.3f |\n", scenario.c_str(),
+                kindText.c_str(), st.candidatesTried,
+                st.candidatesTried ? st.matchMs / st.candidatesTried : 0.0, matchMax,
+                erd.queries().empty() ? 0.0 : retrievalSum / erd.queries().size(), retrievalMax);
 }
 }  // namespace
 
@@ -125,22 +178,7 @@ int main(int argc, char** argv) {
         }
         // Textured revisits: maximal runs of textured keyframes after the first lap; how many
         // got at least one closure.
-        std::size_t runs = 0, runsClosed = 0;
-        bool inRun = false, runClosed = false;
-        for (graphslam::TNodeID id = 0; id < nodes.size(); ++id) {
-            if (!nodes.at(id).keyframe || lapOf(id) == 0) continue;
-            const bool tex = textured(id);
-            if (tex && !inRun) {
-                inRun = true;
-                runClosed = false;
-                ++runs;
-            }
-            if (tex && closedAt[id] && !runClosed) {
-                runClosed = true;
-                ++runsClosed;
-            }
-            if (!tex) inRun = false;
-        }
+        const auto [runs, runsClosed] = closedRevisits(nodes, lapOf, textured, closedAt);
         std::string lapText;
         for (int l = 0; l < laps; ++l) lapText += (l ? " / " : "") + std::to_string(perLap[static_cast<std::size_t>(l)]);
         const auto ate = eval::absoluteTrajectoryError(est, gt);
@@ -151,27 +189,7 @@ int main(int argc, char** argv) {
                     falseClosures, phase2, median(errCm), median(errDeg), lapText.c_str(),
                     runsClosed, runs, ate.rmse);
 
-        // Plain views: what matching achieves from a keyframe that sees mostly plain wall.
-        std::size_t plainQueries = 0, plainClosures = 0;
-        double plainMatches = 0, plainInliers = 0;
-        double matchMax = 0, retrievalMax = 0, retrievalSum = 0;
-        for (const auto& q : erd->queries()) {
-            matchMax = std::max(matchMax, q.slowestMatchMs);
-            retrievalMax = std::max(retrievalMax, q.retrievalMs);
-            retrievalSum += q.retrievalMs;
-            if (q.candidates == 0 || textured(q.node)) continue;
-            ++plainQueries;
-            plainMatches += q.bestMatches;
-            plainInliers += q.bestInliers;
-            plainClosures += q.accepted;
-        }
-        std::printf("PLAIN | %s | %s | %zu | %.1f | %.1f | %zu |\n", sc.name.c_str(), kindText.c_str(),
-                    plainQueries, plainQueries ? plainMatches / plainQueries : 0.0,
-                    plainQueries ? plainInliers / plainQueries : 0.0, plainClosures);
-        std::printf("TIME | %s | %s | %zu | %.2f / %.2f | %.3f / %.3f |\n", sc.name.c_str(),
-                    kindText.c_str(), st.candidatesTried,
-                    st.candidatesTried ? st.matchMs / st.candidatesTried : 0.0, matchMax,
-                    erd->queries().empty() ? 0.0 : retrievalSum / erd->queries().size(), retrievalMax);
+        printPlainViewsAndTime(*erd, textured, sc.name, kindText);
     } catch (const std::exception& e) {
         std::cerr << "bench_visual: " << e.what() << "\n";
         return 1;

@@ -1,5 +1,5 @@
-#include <lodestone/config/CommandLine.h>
 #include <SlamApp.h>
+#include <lodestone/config/CommandLine.h>
 #include <lodestone/obs/MagneticUnit.h>
 #include <lodestone/slamapp/SlamRun.h>
 
@@ -7,69 +7,82 @@
 
 namespace lodestone::slamapp {
 
-int runSlamApp(int argc, const char* const* argv, std::ostream& out, std::ostream& err,
-               bool terminal) {
-    TCLAP::CmdLine cmd(
-        "Offline graph SLAM (RGB-D + wheel odometry + magnetometers) on a rawlog or a simulated "
-        "scenario",
-        ' ', "");
-    TCLAP::ValueArg<std::string> rawlog("r", "rawlog", "input rawlog (.rawlog or .rawlog.gz)", false,
-                                        "", "FILE", cmd);
-    TCLAP::ValueArg<std::string> sim("s", "sim", "run the simulator on this scenario instead",
-                                     false, "", "SCENARIO.ini", cmd);
-    TCLAP::ValueArg<std::string> config("c", "config", "SLAM configuration (config_ini/*.ini)",
-                                        true, "", "INI", cmd);
-    TCLAP::ValueArg<std::string> outDir("o", "out", "output directory (created)", true, "", "DIR",
-                                        cmd);
-    TCLAP::ValueArg<std::string> gt("g", "ground-truth", "TUM ground truth for the ATE", false, "",
-                                    "GT.tum", cmd);
-    TCLAP::ValueArg<std::string> mapOut("", "map-out",
-                                        "save the map at the end in this folder (replaced whole; "
-                                        "lodestone-inspect map DIR describes it)",
-                                        false, "", "DIR", cmd);
-    TCLAP::ValueArg<double> mapEvery("", "map-every",
-                                     "with --map-out: also save the map every S seconds of data "
-                                     "(each time whole, so a crash leaves the last one)",
-                                     false, 0, "S", cmd);
-    TCLAP::ValueArg<std::string> mapIn("", "map-in",
-                                       "start in this saved map (lodestone-slam --map-out): "
-                                       "relocalize in it, then track against it",
-                                       false, "", "DIR", cmd);
-    TCLAP::ValueArg<std::string> mode("", "mode",
-                                      "with --map-in: localize (the map is held fixed) or "
-                                      "extend (the run's new places join the map, which later "
-                                      "closures may correct; written back with --map-out)",
-                                      false, "localize", "MODE", cmd);
-    TCLAP::ValueArg<double> maxSeconds("", "max-seconds", "process only this much data [s]", false,
-                                       0, "S", cmd);
-    TCLAP::ValueArg<int> decodeAhead("", "decode-ahead",
-                                     "frames (observations with images or range data) read and "
-                                     "decoded ahead on other threads (0: in the frame loop; "
-                                     "results are the same)",
-                                     false, 8, "N", cmd);
-    TCLAP::ValueArg<int> decodeThreads("", "decode-threads",
-                                       "threads that read and decode ahead (0: one per core this process may use)",
-                                       false, 0, "N", cmd);
-    TCLAP::ValueArg<std::string> magneticUnit(
-        "", "magnetic-unit",
-        "the unit the rawlog's magnetometer numbers are in, if not microtesla (a rawlog written "
-        "by another tool): gauss|uT|T|normalized:<field strength in uT>",
-        false, "", "UNIT", cmd);
-    TCLAP::SwitchArg quiet("q", "quiet", "no progress output", cmd);
-    TCLAP::SwitchArg viewArg("", "view",
-                             "MRPT's 3D window with the run as it goes (graph by segment, closures by "
-                             "closer, the field, the current pose; keys: space pauses, s steps, v "
-                             "follows, q closes); at a terminal it stays open at the end until closed",
-                             cmd);
-    TCLAP::SwitchArg meshArg("", "mesh",
-                             "the dense model: every keyframe's frame fused at its optimized pose "
-                             "(TSDF, [dense] keys of the INI) and meshed into mesh.ply - after the run, "
-                             "or as it goes with [dense] fusion = while_running (and live)",
-                             cmd);
-    const auto outcome = config::parseCommandLine(cmd, std::vector<std::string>(argv, argv + argc));
-    if (outcome.kind == config::ParseOutcome::Kind::HelpShown) return 0;
-    std::string usage = outcome.error;
-    if (usage.empty() && rawlog.isSet() == sim.isSet()) usage = "give exactly one of --rawlog and --sim";
+namespace {
+/** lodestone-slam's command line: its arguments, what goes together, the run's options. */
+struct SlamArguments {
+    explicit SlamArguments(TCLAP::CmdLine& cmd);
+    /** Why these arguments do not make a run ("" if they do). */
+    std::string usageError();
+    SlamRunOptions options(bool terminal);
+
+    TCLAP::ValueArg<std::string> rawlog;
+    TCLAP::ValueArg<std::string> sim;
+    TCLAP::ValueArg<std::string> config;
+    TCLAP::ValueArg<std::string> outDir;
+    TCLAP::ValueArg<std::string> gt;
+    TCLAP::ValueArg<std::string> mapOut;
+    TCLAP::ValueArg<double> mapEvery;
+    TCLAP::ValueArg<std::string> mapIn;
+    TCLAP::ValueArg<std::string> mode;
+    TCLAP::ValueArg<double> maxSeconds;
+    TCLAP::ValueArg<int> decodeAhead;
+    TCLAP::ValueArg<int> decodeThreads;
+    TCLAP::ValueArg<std::string> magneticUnit;
+    TCLAP::SwitchArg quiet;
+    TCLAP::SwitchArg viewArg;
+    TCLAP::SwitchArg meshArg;
+};
+
+SlamArguments::SlamArguments(TCLAP::CmdLine& cmd)
+    : rawlog("r", "rawlog", "input rawlog (.rawlog or .rawlog.gz)", false, "", "FILE", cmd),
+      sim("s", "sim", "run the simulator on this scenario instead", false, "", "SCENARIO.ini", cmd),
+      config("c", "config", "SLAM configuration (config_ini/*.ini)", true, "", "INI", cmd),
+      outDir("o", "out", "output directory (created)", true, "", "DIR", cmd),
+      gt("g", "ground-truth", "TUM ground truth for the ATE", false, "", "GT.tum", cmd),
+      mapOut("", "map-out",
+             "save the map at the end in this folder (replaced whole; lodestone-inspect map DIR "
+             "describes it)",
+             false, "", "DIR", cmd),
+      mapEvery("", "map-every",
+               "with --map-out: also save the map every S seconds of data (each time whole, so a "
+               "crash leaves the last one)",
+               false, 0, "S", cmd),
+      mapIn("", "map-in",
+            "start in this saved map (lodestone-slam --map-out): relocalize in it, then track "
+            "against it",
+            false, "", "DIR", cmd),
+      mode("", "mode",
+           "with --map-in: localize (the map is held fixed) or extend (the run's new places join "
+           "the map, which later closures may correct; written back with --map-out)",
+           false, "localize", "MODE", cmd),
+      maxSeconds("", "max-seconds", "process only this much data [s]", false, 0, "S", cmd),
+      decodeAhead("", "decode-ahead",
+                  "frames (observations with images or range data) read and decoded ahead on other "
+                  "threads (0: in the frame loop; results are the same)",
+                  false, 8, "N", cmd),
+      decodeThreads("", "decode-threads",
+                    "threads that read and decode ahead (0: one per core this process may use)",
+                    false, 0, "N", cmd),
+      magneticUnit("", "magnetic-unit",
+                   "the unit the rawlog's magnetometer numbers are in, if not microtesla (a rawlog "
+                   "written by another tool): gauss|uT|T|normalized:<field strength in uT>",
+                   false, "", "UNIT", cmd),
+      quiet("q", "quiet", "no progress output", cmd),
+      viewArg("", "view",
+              "MRPT's 3D window with the run as it goes (graph by segment, closures by closer, the "
+              "field, the current pose; keys: space pauses, s steps, v follows, q closes); at a "
+              "terminal it stays open at the end until closed",
+              cmd),
+      meshArg("", "mesh",
+              "the dense model: every keyframe's frame fused at its optimized pose (TSDF, [dense] "
+              "keys of the INI) and meshed into mesh.ply - after the run, or as it goes with "
+              "[dense] fusion = while_running (and live)",
+              cmd) {}
+
+std::string SlamArguments::usageError() {
+    std::string usage;
+    if (usage.empty() && rawlog.isSet() == sim.isSet())
+        usage = "give exactly one of --rawlog and --sim";
     if (usage.empty() && sim.isSet() && gt.isSet()) {
         usage = "--ground-truth is for --rawlog; --sim uses the simulator's own ground truth";
     }
@@ -110,10 +123,10 @@ int runSlamApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
             usage = std::string("--magnetic-unit: ") + e.what();
         }
     }
-    if (!usage.empty()) {
-        err << "lodestone-slam: " << usage << " (see lodestone-slam --help)\n";
-        return 2;
-    }
+    return usage;
+}
+
+SlamRunOptions SlamArguments::options(bool terminal) {
     SlamRunOptions o;
     o.rawlog = rawlog.getValue();
     o.scenario = sim.getValue();
@@ -133,7 +146,26 @@ int runSlamApp(int argc, const char* const* argv, std::ostream& out, std::ostrea
     o.mesh = meshArg.getValue();
     o.viewKeepOpen = terminal;
     o.magneticUnit = magneticUnit.getValue();
-    return runSlam(o, out, err).exitCode;
+    return o;
+}
+}  // namespace
+
+int runSlamApp(int argc, const char* const* argv, std::ostream& out, std::ostream& err,
+               bool terminal) {
+    TCLAP::CmdLine cmd(
+        "Offline graph SLAM (RGB-D + wheel odometry + magnetometers) on a rawlog or a simulated "
+        "scenario",
+        ' ', "");
+    SlamArguments args(cmd);  // (TCLAP reads its values through non-const getters)
+    const auto outcome = config::parseCommandLine(cmd, std::vector<std::string>(argv, argv + argc));
+    if (outcome.kind == config::ParseOutcome::Kind::HelpShown) return 0;
+    std::string usage = outcome.error;
+    if (usage.empty()) usage = args.usageError();
+    if (!usage.empty()) {
+        err << "lodestone-slam: " << usage << " (see lodestone-slam --help)\n";
+        return 2;
+    }
+    return runSlam(args.options(terminal), out, err).exitCode;
 }
 
 }  // namespace lodestone::slamapp

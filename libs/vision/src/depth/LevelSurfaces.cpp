@@ -24,18 +24,20 @@ struct Candidate {
     int surface;        // -1: none
 };
 
-}  // namespace
 
-std::optional<LevelSurfaces> fitLevelSurfaces(const DepthCloud& cloud,
-                                              const Eigen::Vector3d& expectedUp,
-                                              const LevelSurfaceParams& params) {
-    if (cloud.size() == 0 || !(expectedUp.norm() > 0)) return std::nullopt;
-    Eigen::Vector3d up = expectedUp.normalized();
-    const double cosGate = std::cos(params.normalGate);
-    // Candidates: normals (unit, facing the camera) along the up - a floor's face up, a
-    // ceiling's down. Their mean starts the up, to within the grazing normals' degree or two.
+/** A candidate's sigma along the up: the depth noise along the ray projected on it (a grazing
+ * floor's points err mostly along the floor) and the surface's roughness. */
+double pointSigma(const Candidate& c, const Eigen::Vector3d& up, double roughness) {
+    const double along = c.depthSigma * std::abs(up.dot(c.p)) / c.p.z();
+    return std::hypot(along, roughness);
+}
+
+/** Candidates: normals (unit, facing the camera) along the up within the gate - a floor's face
+ * up, a ceiling's down; their mean normal (turned to the up) into `meanNormal`. */
+std::vector<Candidate> levelCandidates(const DepthCloud& cloud, const Eigen::Vector3d& up,
+                                       double cosGate, Eigen::Vector3d& meanNormal) {
     std::vector<Candidate> pts;
-    Eigen::Vector3d meanNormal = Eigen::Vector3d::Zero();
+    meanNormal.setZero();
     for (std::size_t k = 0; k < cloud.size(); ++k) {
         const Eigen::Vector3d n = cloud.normals.col(static_cast<Eigen::Index>(k)).cast<double>();
         const double c = n.dot(up);
@@ -45,35 +47,69 @@ std::optional<LevelSurfaces> fitLevelSurfaces(const DepthCloud& cloud,
         pts.push_back({p, static_cast<double>(cloud.sigma(static_cast<Eigen::Index>(k))), -1});
         meanNormal += c > 0 ? n : Eigen::Vector3d(-n);
     }
-    if (pts.size() < params.minPoints) return std::nullopt;
-    up = meanNormal.normalized();
+    return pts;
+}
 
-    // Surfaces: the candidates' heights below the camera, sorted, split where they jump.
+/** Surfaces: the candidates' heights below the camera, sorted, split where they jump by more
+ * than `separation`; a run of minPoints whose mean height is minHeight at least is a surface
+ * (its candidates marked). Each surface's height. */
+std::vector<double> splitByHeight(std::vector<Candidate>& pts, const Eigen::Vector3d& up,
+                                  const LevelSurfaceParams& params) {
     std::vector<std::size_t> order(pts.size());
     std::iota(order.begin(), order.end(), std::size_t{0});
     const auto heightOf = [&](const Candidate& c) { return -up.dot(c.p); };
     std::sort(order.begin(), order.end(),
               [&](std::size_t a, std::size_t b) { return heightOf(pts[a]) < heightOf(pts[b]); });
     std::vector<double> heights;  // each surface's start height (camera above it)
-    {
-        std::size_t begin = 0;
-        for (std::size_t i = 1; i <= order.size(); ++i) {
-            if (i < order.size() &&
-                heightOf(pts[order[i]]) - heightOf(pts[order[i - 1]]) <= params.separation)
-                continue;
-            if (i - begin >= params.minPoints) {
-                double mean = 0;
-                for (std::size_t j = begin; j < i; ++j) mean += heightOf(pts[order[j]]);
-                mean /= static_cast<double>(i - begin);
-                if (std::abs(mean) >= params.minHeight) {
-                    for (std::size_t j = begin; j < i; ++j)
-                        pts[order[j]].surface = static_cast<int>(heights.size());
-                    heights.push_back(mean);
-                }
+    std::size_t begin = 0;
+    for (std::size_t i = 1; i <= order.size(); ++i) {
+        if (i < order.size() &&
+            heightOf(pts[order[i]]) - heightOf(pts[order[i - 1]]) <= params.separation)
+            continue;
+        if (i - begin >= params.minPoints) {
+            double mean = 0;
+            for (std::size_t j = begin; j < i; ++j) mean += heightOf(pts[order[j]]);
+            mean /= static_cast<double>(i - begin);
+            if (std::abs(mean) >= params.minHeight) {
+                for (std::size_t j = begin; j < i; ++j)
+                    pts[order[j]].surface = static_cast<int>(heights.size());
+                heights.push_back(mean);
             }
-            begin = i;
+        }
+        begin = i;
+    }
+    return heights;
+}
+
+/** Each candidate to the surface it lies on within 3 sigma, if any (a floor's point the first
+ * split left with a table, or a wall's foot among the floor's). */
+void regate(std::vector<Candidate>& pts, const Eigen::Vector3d& up,
+            const std::vector<double>& heights, double roughness) {
+    for (Candidate& c : pts) {
+        c.surface = -1;
+        double best = 3;
+        for (std::size_t s = 0; s < heights.size(); ++s) {
+            const double z = std::abs(up.dot(c.p) + heights[s]) / pointSigma(c, up, roughness);
+            if (z <= best) {
+                best = z;
+                c.surface = static_cast<int>(s);
+            }
         }
     }
+}
+}  // namespace
+
+std::optional<LevelSurfaces> fitLevelSurfaces(const DepthCloud& cloud,
+                                              const Eigen::Vector3d& expectedUp,
+                                              const LevelSurfaceParams& params) {
+    if (cloud.size() == 0 || !(expectedUp.norm() > 0)) return std::nullopt;
+    Eigen::Vector3d up = expectedUp.normalized();
+    Eigen::Vector3d meanNormal = Eigen::Vector3d::Zero();
+    std::vector<Candidate> pts = levelCandidates(cloud, up, std::cos(params.normalGate), meanNormal);
+    if (pts.size() < params.minPoints) return std::nullopt;
+    up = meanNormal.normalized();
+
+    std::vector<double> heights = splitByHeight(pts, up, params);
     if (heights.empty()) return std::nullopt;
 
     // One weighted least-squares fit: residual r = up . p + h_s for a point of surface s, its
@@ -81,10 +117,6 @@ std::optional<LevelSurfaces> fitLevelSurfaces(const DepthCloud& cloud,
     // mostly along the floor) and the surface's roughness. Unknowns: the up's two tilts, each h.
     const int m = static_cast<int>(heights.size());
     const int dof = 2 + m;
-    const auto pointSigma = [&](const Candidate& c) {
-        const double along = c.depthSigma * std::abs(up.dot(c.p)) / c.p.z();
-        return std::hypot(along, params.roughness);
-    };
     Eigen::MatrixXd H(dof, dof);
     double chi2 = 0;
     std::size_t used = 0;
@@ -98,7 +130,7 @@ std::optional<LevelSurfaces> fitLevelSurfaces(const DepthCloud& cloud,
             used = 0;
             for (const Candidate& c : pts) {
                 if (c.surface < 0) continue;
-                const double w = 1 / std::pow(pointSigma(c), 2);
+                const double w = 1 / std::pow(pointSigma(c, up, params.roughness), 2);
                 const double r = up.dot(c.p) + heights[static_cast<std::size_t>(c.surface)];
                 Eigen::VectorXd J = Eigen::VectorXd::Zero(dof);
                 J(0) = e1.dot(c.p);
@@ -119,20 +151,7 @@ std::optional<LevelSurfaces> fitLevelSurfaces(const DepthCloud& cloud,
             for (int s = 0; s < m; ++s) heights[static_cast<std::size_t>(s)] += step(2 + s);
         }
         if (round == 1) break;
-        // Re-gated: each candidate to the surface it lies on within 3 sigma, if any (a floor's
-        // point the first split left with a table, or a wall's foot among the floor's).
-        for (Candidate& c : pts) {
-            c.surface = -1;
-            double best = 3;
-            for (int s = 0; s < m; ++s) {
-                const double z =
-                    std::abs(up.dot(c.p) + heights[static_cast<std::size_t>(s)]) / pointSigma(c);
-                if (z <= best) {
-                    best = z;
-                    c.surface = s;
-                }
-            }
-        }
+        regate(pts, up, heights, params.roughness);
     }
     // Surfaces left with too few points are dropped from the result (their points still
     // helped the up); their counts:

@@ -135,6 +135,74 @@ Vector6d leftDifference(const Eigen::Isometry3d& T, const Eigen::Isometry3d& T0)
     d << aa.angle() * aa.axis(), D.translation();
     return d;
 }
+
+/** One pass of correspondences at T: each current point's nearest model point within `gate`
+ * whose normal agrees, weighed by both points' depth noise and Huber's loss (`huber` sigmas);
+ * the normal equations of the point-to-plane residuals. */
+Pass correspondencesAt(const DepthModel& model, const DepthCloud& current,
+                       const Eigen::Isometry3d& T, double gate, float cosNormal, double huber,
+                       std::vector<std::int64_t>& lastNearest) {
+    Pass e;
+    const Eigen::Matrix3f R = T.linear().cast<float>();
+    const Eigen::Vector3f t = T.translation().cast<float>();
+    const auto gate2 = static_cast<float>(gate * gate);
+    DepthModel::Nearest nn;
+    e.points.reserve(static_cast<std::size_t>(current.points.cols()));
+    e.normals.reserve(static_cast<std::size_t>(current.points.cols()));
+    for (Eigen::Index i = 0; i < current.points.cols(); ++i) {
+        const Eigen::Vector3f p = R * current.points.col(i) + t;
+        auto& near = lastNearest[static_cast<std::size_t>(i)];
+        if (!model.nearest(p, gate2, nn, near)) {
+            near = -1;
+            continue;
+        }
+        near = nn.index;
+        if ((R * current.normals.col(i)).dot(nn.normal) < cosNormal) continue;
+        const double r = nn.normal.dot(p - nn.point);
+        const double sigma2 =
+            double(current.sigma(i)) * current.sigma(i) + double(nn.sigma) * nn.sigma;
+        const double e1 = std::abs(r) / std::sqrt(sigma2);
+        const double w = (e1 <= huber ? 1.0 : huber / e1) / sigma2;
+        Vector6d J;
+        J.head<3>() = p.cast<double>().cross(nn.normal.cast<double>());
+        J.tail<3>() = nn.normal.cast<double>();
+        e.H.noalias() += w * J * J.transpose();
+        e.g.noalias() += w * r * J;
+        e.chi2 += w * r * r;
+        e.sumSquares += r * r;
+        e.points.push_back(p.cast<double>());
+        e.normals.push_back(nn.normal.cast<double>());
+        e.normalVariance += nn.normalVariance;
+        ++e.n;
+    }
+    if (e.n > 0) e.normalVariance /= static_cast<double>(e.n);
+    return e;
+}
+
+/** Where the depth's and a measured motion disagree beyond chance in the directions the depth
+ * pins (chi-square over those directions, 99 %), one of the covariances is too tight - which,
+ * neither says - so the joint one is scaled to cover the disagreement (the adjustment's
+ * a-posteriori variance factor). `varianceFactor`: the last pass's, as its Hessian was scaled. */
+void scaleByDisagreement(const Pass& e, const Geometry& geo, double varianceFactor,
+                         const Eigen::Isometry3d& T, const MotionPrior& measured,
+                         const Matrix6d& measuredInformation, Matrix6d& jointInverse,
+                         DepthAlignment& a) {
+    const auto& U = geo.observed;
+    const int k = static_cast<int>(U.cols());
+    if (k > 0) {
+        const double vf = varianceFactor;
+        const Eigen::MatrixXd Hu =
+            U.transpose() * (geo.Ainv.transpose() * e.H * geo.Ainv / vf) * U;
+        const Eigen::VectorXd offset =
+            Hu.ldlt().solve(U.transpose() * (geo.Ainv.transpose() * e.g / vf));
+        const Vector6d ds = geo.A * leftDifference(T, measured.T_ref_cur);
+        const Matrix6d Ls = geo.Ainv.transpose() * measuredInformation * geo.Ainv;
+        a.disagreement = offset.dot(Hu * offset) + ds.dot(Ls * ds);
+        constexpr double kChi2Quantile99[7] = {0, 6.63, 9.21, 11.34, 13.28, 15.09, 16.81};
+        a.disagreed = a.disagreement > kChi2Quantile99[k];
+        if (a.disagreed) jointInverse *= a.disagreement / k;
+    }
+}
 }  // namespace
 
 DepthAlignment PointToPlaneIcp::align(const DepthModel& model, const DepthCloud& current,
@@ -151,43 +219,6 @@ DepthAlignment PointToPlaneIcp::align(const DepthModel& model, const DepthCloud&
     // Each point's nearest model point in the last pass: it bounds the next pass's search (the
     // motion between passes is small).
     std::vector<std::int64_t> lastNearest(static_cast<std::size_t>(current.points.cols()), -1);
-    const auto pass = [&](const Eigen::Isometry3d& T, double gate) {
-        Pass e;
-        const Eigen::Matrix3f R = T.linear().cast<float>();
-        const Eigen::Vector3f t = T.translation().cast<float>();
-        const auto gate2 = static_cast<float>(gate * gate);
-        DepthModel::Nearest nn;
-        e.points.reserve(static_cast<std::size_t>(current.points.cols()));
-        e.normals.reserve(static_cast<std::size_t>(current.points.cols()));
-        for (Eigen::Index i = 0; i < current.points.cols(); ++i) {
-            const Eigen::Vector3f p = R * current.points.col(i) + t;
-            auto& near = lastNearest[static_cast<std::size_t>(i)];
-            if (!model.nearest(p, gate2, nn, near)) {
-                near = -1;
-                continue;
-            }
-            near = nn.index;
-            if ((R * current.normals.col(i)).dot(nn.normal) < cosNormal) continue;
-            const double r = nn.normal.dot(p - nn.point);
-            const double sigma2 =
-                double(current.sigma(i)) * current.sigma(i) + double(nn.sigma) * nn.sigma;
-            const double e1 = std::abs(r) / std::sqrt(sigma2);
-            const double w = (e1 <= params_.huber ? 1.0 : params_.huber / e1) / sigma2;
-            Vector6d J;
-            J.head<3>() = p.cast<double>().cross(nn.normal.cast<double>());
-            J.tail<3>() = nn.normal.cast<double>();
-            e.H.noalias() += w * J * J.transpose();
-            e.g.noalias() += w * r * J;
-            e.chi2 += w * r * r;
-            e.sumSquares += r * r;
-            e.points.push_back(p.cast<double>());
-            e.normals.push_back(nn.normal.cast<double>());
-            e.normalVariance += nn.normalVariance;
-            ++e.n;
-        }
-        if (e.n > 0) e.normalVariance /= static_cast<double>(e.n);
-        return e;
-    };
 
     Eigen::Isometry3d T = initial;
     Pass e;
@@ -202,7 +233,7 @@ DepthAlignment PointToPlaneIcp::align(const DepthModel& model, const DepthCloud&
     }
     for (int it = 0; it < params_.iterations; ++it) {
         const double gate = std::max(params_.minDistance, params_.maxDistance * std::pow(0.6, it));
-        e = pass(T, gate);
+        e = correspondencesAt(model, current, T, gate, cosNormal, params_.huber, lastNearest);
         a.iterations = it + 1;
         if (e.n < params_.minCorrespondences) break;
         geo = geometryOf(e, params_.normalNoiseChi2, params_.minStructure);
@@ -241,25 +272,8 @@ DepthAlignment PointToPlaneIcp::align(const DepthModel& model, const DepthCloud&
     a.observed = static_cast<int>(geo.observed.cols());
     a.T_ref_cur = T;
     if (measured) {
-        // The two measurements overlap in the directions the depth pins: where they disagree
-        // beyond chance (chi-square over those directions, 99 %), one of the covariances is
-        // too tight - which, neither says - so the joint one is scaled to cover the
-        // disagreement (the adjustment's a-posteriori variance factor).
-        const auto& U = geo.observed;
-        const int k = static_cast<int>(U.cols());
-        if (k > 0) {
-            const double vf = varianceFactor;  // (the last pass's, as its Hessian was scaled)
-            const Eigen::MatrixXd Hu =
-                U.transpose() * (geo.Ainv.transpose() * e.H * geo.Ainv / vf) * U;
-            const Eigen::VectorXd offset =
-                Hu.ldlt().solve(U.transpose() * (geo.Ainv.transpose() * e.g / vf));
-            const Vector6d ds = geo.A * leftDifference(T, measured->T_ref_cur);
-            const Matrix6d Ls = geo.Ainv.transpose() * measuredInformation * geo.Ainv;
-            a.disagreement = offset.dot(Hu * offset) + ds.dot(Ls * ds);
-            constexpr double kChi2Quantile99[7] = {0, 6.63, 9.21, 11.34, 13.28, 15.09, 16.81};
-            a.disagreed = a.disagreement > kChi2Quantile99[k];
-            if (a.disagreed) jointInverse *= a.disagreement / k;
-        }
+        // The two measurements overlap in the directions the depth pins.
+        scaleByDisagreement(e, geo, varianceFactor, T, *measured, measuredInformation, jointInverse, a);
         a.covariance = geo.Ainv * jointInverse * geo.Ainv.transpose();
         a.success = true;
         return a;

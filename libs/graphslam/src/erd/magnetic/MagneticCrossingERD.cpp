@@ -118,11 +118,24 @@ void MagneticCrossingERD::query(TNodeID id) {
     const int segment = path_.segment[id];
     const auto& anchorNode = m_graph->nodes.at(id);
     const Eigen::Vector3d anchor(anchorNode.x(), anchorNode.y(), anchorNode.yaw());
+    std::size_t first = readings_.size();
+    const auto stretch = recentStretch(segment, anchor, first);
+    const Passes passes = earlierPasses(first, segment, anchor, stretch);
+    const auto matches = matchPasses(id, anchor, stretch, passes);
+    if (matches.empty()) {
+        ++stats_.offMap;
+        return;
+    }
+    decide(id, matches, passes);
+}
+
+std::vector<magnetic::StretchSample> MagneticCrossingERD::recentStretch(
+    int segment, const Eigen::Vector3d& anchor, std::size_t& first) const {
     const mrpt::poses::CPose2D anchorPose(anchor.x(), anchor.y(), anchor.z());
     const double l = h_->lengthScale;
     // The stretch: this segment's readings of the last stretch_length, relative to the anchor.
     std::vector<magnetic::StretchSample> stretch;
-    std::size_t first = readings_.size();
+    first = readings_.size();
     while (first > 0 && readings_[first - 1].segment == segment &&
            readings_[first - 1].travel >= total_travel_ - params_.stretchLength)
         --first;
@@ -133,6 +146,13 @@ void MagneticCrossingERD::query(TNodeID id) {
         stretch.push_back(
             {{rel.x(), rel.y(), rel.phi()}, r.field, std::min(1.0, params_.grid.cell / l)});
     }
+    return stretch;
+}
+
+MagneticCrossingERD::Passes MagneticCrossingERD::earlierPasses(
+    std::size_t first, int segment, const Eigen::Vector3d& anchor,
+    const std::vector<magnetic::StretchSample>& stretch) const {
+    const double l = h_->lengthScale;
     // The map: earlier readings in this frame, at least min_loop before the stretch, within
     // the search's reach of one of its readings (where the graph has them).
     const double near = params_.match.maxOffset + params_.grid.reachScales * l;
@@ -140,10 +160,8 @@ void MagneticCrossingERD::query(TNodeID id) {
     std::vector<Eigen::Vector2d> placed;
     for (const auto& k : stretch)
         placed.push_back(anchor.head<2>() + Eigen::Rotation2Dd(anchor.z()) * k.pose.head<2>());
-    std::vector<Eigen::Vector2d> points;
-    std::vector<Eigen::Vector3d> fields;
-    std::vector<TNodeID> nodeOf;
-    std::vector<std::size_t> passStart{0};  // each earlier pass through the reach: its first
+    Passes passes;
+    auto& points = passes.points;
     for (std::size_t i = 0, last = 0; i < first; ++i) {
         const auto& r = readings_[i];
         if (!sameFrame(r.segment, segment)) continue;
@@ -156,22 +174,28 @@ void MagneticCrossingERD::query(TNodeID id) {
                 return (q - p.head<2>()).squaredNorm() <= near * near;
             }))
             continue;
-        if (!points.empty() && i != last + 1) passStart.push_back(points.size());
+        if (!points.empty() && i != last + 1) passes.start.push_back(points.size());
         last = i;
         const double c = std::cos(p.z()), s = std::sin(p.z());
         points.push_back(p.head<2>());
-        fields.emplace_back(c * r.field.x() - s * r.field.y(), s * r.field.x() + c * r.field.y(),
-                            r.field.z());
-        nodeOf.push_back(r.node);
+        passes.fields.emplace_back(c * r.field.x() - s * r.field.y(),
+                                   s * r.field.x() + c * r.field.y(), r.field.z());
+        passes.nodeOf.push_back(r.node);
     }
-    passStart.push_back(points.size());
+    passes.start.push_back(points.size());
+    return passes;
+}
+
+std::vector<MagneticCrossingERD::PassMatch> MagneticCrossingERD::matchPasses(
+    TNodeID id, const Eigen::Vector3d& anchor, const std::vector<magnetic::StretchSample>& stretch,
+    const Passes& passes) const {
+    const double l = h_->lengthScale;
+    const auto& points = passes.points;
+    const auto& nodeOf = passes.nodeOf;
+    const auto& passStart = passes.start;
     // Each earlier pass is a map of its own: within one pass the odometry is consistent, while
     // passes placed by a drifting graph disagree by their drift, and a field map of several
     // would be a field that is nowhere.
-    struct PassMatch {
-        magnetic::StretchMatch m;
-        std::size_t begin, end;
-    };
     std::vector<PassMatch> matches;
     // The maps' cells: a sixth of the length scale where the field is smoother than grid_cell's
     // (a field of 0.8 m, as on Kok's walks, needs no 5 cm raster).
@@ -187,7 +211,7 @@ void MagneticCrossingERD::query(TNodeID id) {
         Eigen::MatrixX3d F(static_cast<Eigen::Index>(end - begin), 3);
         for (std::size_t i = begin; i < end; ++i) {
             P.row(static_cast<Eigen::Index>(i - begin)) = points[i].transpose();
-            F.row(static_cast<Eigen::Index>(i - begin)) = fields[i].transpose();
+            F.row(static_cast<Eigen::Index>(i - begin)) = passes.fields[i].transpose();
         }
         std::unique_ptr<magnetic::PlanarFieldGrid> map;
         try {
@@ -212,10 +236,13 @@ void MagneticCrossingERD::query(TNodeID id) {
         matches.push_back(
             {magnetic::matchStretch(*map, stretch, anchor, prior, match), begin, end});
     }
-    if (matches.empty()) {
-        ++stats_.offMap;
-        return;
-    }
+    return matches;
+}
+
+void MagneticCrossingERD::decide(TNodeID id, const std::vector<PassMatch>& matches,
+                                 const Passes& passes) {
+    const double l = h_->lengthScale;
+    const auto& points = passes.points;
     const auto best = std::max_element(
         matches.begin(), matches.end(),
         [](const auto& a, const auto& b) { return a.m.logEvidence < b.m.logEvidence; });
@@ -246,7 +273,7 @@ void MagneticCrossingERD::query(TNodeID id) {
         if ((points[i] - m.pose.head<2>()).squaredNorm() <
             (points[target] - m.pose.head<2>()).squaredNorm())
             target = i;
-    const TNodeID from = nodeOf[target];
+    const TNodeID from = passes.nodeOf[target];
     const auto& t = m_graph->nodes.at(from);
     const auto z = closureFrom({t.x(), t.y(), t.yaw()}, m.pose, m.covariance, params_.sigmaFloor);
     const Eigen::Matrix3d cov = z.cov.asEigen();

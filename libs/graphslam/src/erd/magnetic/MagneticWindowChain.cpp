@@ -22,6 +22,27 @@ namespace {
 constexpr double kChainMargin = 25.0;
 }  // namespace
 
+/** The query's earlier window being followed back, and what every candidate's search of it
+ * shares. */
+struct MagneticWindowERD::ChainWindow {
+    std::size_t first;  ///< the window's first sample in the query's track
+    long tolerance;     ///< [samples] the realignment a window may need, either way
+    const Eigen::MatrixX3d& projected;  ///< the window in the noise's eigenbasis
+    const magnetic::WindowDisplacementModel& model;
+    double logNull;      ///< the building's null of the window (NaN: none)
+    double queryTravel;  ///< the query's newest reading's travel (what is left behind)
+    /** A target window's evidence, once per window: neighbouring candidates' searches
+     * overlap (their relative headings, the fits' priors, differ by little). */
+    std::unordered_map<std::uint64_t, magnetic::WindowDisplacementModel::Evidence> seen;
+};
+
+/** A candidate followed one window back: its mean evidence near and far over the realigned
+ * positions, and the likeliest position (-1: the path ends or leaves its segment). */
+struct MagneticWindowERD::ChainStep {
+    double meanNear, meanFar;
+    long start;
+};
+
 bool MagneticWindowERD::chainEvidence(std::vector<Candidate>& all, std::size_t first,
                                       const std::function<bool()>& decided,
                                       double firstNull) const {
@@ -30,7 +51,6 @@ bool MagneticWindowERD::chainEvidence(std::vector<Candidate>& all, std::size_t f
     double bestLog = -INFINITY;
     for (const auto& k : all) bestLog = std::max(bestLog, k.logWeight);
     if (!std::isfinite(bestLog)) return false;
-    const double turnFloor = params_.turnFloorDeg * M_PI / 180;
     // Each followed candidate's place on its path, window by window back; the rest are
     // granted the most any followed candidate gained: the posterior of the best is not raised
     // by what was not looked at.
@@ -78,60 +98,15 @@ bool MagneticWindowERD::chainEvidence(std::vector<Candidate>& all, std::size_t f
         // the turn: the realignment a window may need, at least a sample.
         const double slack = params_.sigmaCross * std::abs(windowTurn(queried(), f)) + params_.step;
         const auto tolerance = static_cast<long>(std::ceil(slack / params_.step));
+        ChainWindow window{f, tolerance, projected, model, logNull, query[newest].s, {}};
         double gainNear = 0, gainFar = 0;
         bool any = false;
-        // A target window's evidence, once per window: neighbouring candidates' searches
-        // overlap (their relative headings, the fits' priors, differ by little).
-        std::unordered_map<std::uint64_t, magnetic::WindowDisplacementModel::Evidence> seen;
         for (std::size_t i = 0; i < all.size(); ++i) {
             if (start[i] < 0) continue;
             auto& k = all[i];
-            const auto& stored = k.track->samples();
-            const bool forward = k.direction == WindowDirection::Forward;
-            const int segment = stored[k.sample].segment;
-            // The relative heading of the passes holds along them: this window's fit is the
-            // prior. The target a window further back along the path (forward), or further on
-            // (walked back).
-            const double turnVariance = k.fit.turnVariance + turnFloor * turnFloor;
-            const long predicted = forward ? start[i] - long(n_) : start[i] + long(n_);
-            // The realignment is a nuisance: its positions weighed alike (their likelihoods
-            // averaged, an Occam factor), the window followed on from the likeliest.
-            double bestNear = -INFINITY, sumNear = -INFINITY, sumFar = -INFINITY;
-            long bestStart = -1, positions = 0;
-            const auto logAdd = [](double a, double b) {
-                if (a == -INFINITY) return b;
-                if (b == -INFINITY) return a;
-                return std::max(a, b) + std::log1p(std::exp(-std::abs(a - b)));
-            };
-            for (long s = predicted - tolerance; s <= predicted + tolerance; ++s) {
-                if (s < 0 || std::size_t(s) + n_ > stored.size()) continue;
-                const auto t = static_cast<std::size_t>(s);
-                if (stored[t].segment != segment || stored[t + n_ - 1].segment != segment ||
-                    !leftBehind(stored[t + n_ - 1], query[newest].s))
-                    continue;
-                const std::uint64_t key = projectionKey(*k.track, t, !forward);
-                auto it = seen.find(key);
-                if (it == seen.end()) {
-                    Candidate c = k;
-                    c.fit = magnetic::compareWindows(query, f, stored, t, n_, k.direction,
-                                                     params_.noise, k.fit.turn, turnVariance);
-                    it = seen.emplace(key, model.evidenceProjected(
-                                               projectedResiduals(c, t, projected),
-                                               nearRadius(windowTurn(*k.track, t))))
-                             .first;
-                }
-                const auto& e = it->second;
-                const double null = building ? e.logUnrelated - logNull : 0.0;
-                ++positions;
-                sumNear = logAdd(sumNear, e.logNear + null);
-                sumFar = logAdd(sumFar, e.logFar + null);
-                if (e.logNear + null > bestNear) {
-                    bestNear = e.logNear + null;
-                    bestStart = s;
-                }
-            }
-            const double meanNear = sumNear - std::log(double(std::max(positions, 1L)));
-            const double meanFar = sumFar - std::log(double(std::max(positions, 1L)));
+            const ChainStep step = followBack(k, start[i], window);
+            const double meanNear = step.meanNear, meanFar = step.meanFar;
+            const long bestStart = step.start;
             start[i] = bestStart;  // (the path ends, or leaves the segment: followed no further)
             if (bestStart < 0) continue;
             any = true;
@@ -154,6 +129,59 @@ bool MagneticWindowERD::chainEvidence(std::vector<Candidate>& all, std::size_t f
     // window by window until it crosses the bar crosses it by chance more often.
     if (chained) decided();
     return chained;
+}
+
+MagneticWindowERD::ChainStep MagneticWindowERD::followBack(const Candidate& k, long from,
+                                                          ChainWindow& w) const {
+    const auto& query = queried().samples();
+    const auto& stored = k.track->samples();
+    const bool forward = k.direction == WindowDirection::Forward;
+    const int segment = stored[k.sample].segment;
+    const double turnFloor = params_.turnFloorDeg * M_PI / 180;
+    // The relative heading of the passes holds along them: this window's fit is the
+    // prior. The target a window further back along the path (forward), or further on
+    // (walked back).
+    const double turnVariance = k.fit.turnVariance + turnFloor * turnFloor;
+    const long predicted = forward ? from - long(n_) : from + long(n_);
+    // The realignment is a nuisance: its positions weighed alike (their likelihoods
+    // averaged, an Occam factor), the window followed on from the likeliest.
+    double bestNear = -INFINITY, sumNear = -INFINITY, sumFar = -INFINITY;
+    long bestStart = -1, positions = 0;
+    const auto logAdd = [](double a, double b) {
+        if (a == -INFINITY) return b;
+        if (b == -INFINITY) return a;
+        return std::max(a, b) + std::log1p(std::exp(-std::abs(a - b)));
+    };
+    for (long s = predicted - w.tolerance; s <= predicted + w.tolerance; ++s) {
+        if (s < 0 || std::size_t(s) + n_ > stored.size()) continue;
+        const auto t = static_cast<std::size_t>(s);
+        if (stored[t].segment != segment || stored[t + n_ - 1].segment != segment ||
+            !leftBehind(stored[t + n_ - 1], w.queryTravel))
+            continue;
+        const std::uint64_t key = projectionKey(*k.track, t, !forward);
+        auto it = w.seen.find(key);
+        if (it == w.seen.end()) {
+            Candidate c = k;
+            c.fit = magnetic::compareWindows(query, w.first, stored, t, n_, k.direction,
+                                             params_.noise, k.fit.turn, turnVariance);
+            it = w.seen.emplace(key, w.model.evidenceProjected(
+                                       projectedResiduals(c, t, w.projected),
+                                       nearRadius(windowTurn(*k.track, t))))
+                     .first;
+        }
+        const auto& e = it->second;
+        const double null = std::isfinite(w.logNull) ? e.logUnrelated - w.logNull : 0.0;
+        ++positions;
+        sumNear = logAdd(sumNear, e.logNear + null);
+        sumFar = logAdd(sumFar, e.logFar + null);
+        if (e.logNear + null > bestNear) {
+            bestNear = e.logNear + null;
+            bestStart = s;
+        }
+    }
+    const double meanNear = sumNear - std::log(double(std::max(positions, 1L)));
+    const double meanFar = sumFar - std::log(double(std::max(positions, 1L)));
+    return {meanNear, meanFar, bestStart};
 }
 
 }  // namespace lodestone::graphslam

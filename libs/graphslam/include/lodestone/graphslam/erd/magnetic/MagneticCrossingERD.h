@@ -78,9 +78,38 @@ class MagneticCrossingERD : public EdgeDecider {
         Eigen::Vector3d field{Eigen::Vector3d::Zero()};
         int count{0};
     };
+    /** Earlier readings within reach of a stretch, in the map's frame, pass by pass. */
+    struct Passes {
+        std::vector<Eigen::Vector2d> points;
+        std::vector<Eigen::Vector3d> fields;
+        std::vector<TNodeID> nodeOf;
+        std::vector<std::size_t> start{0};  ///< each pass's first reading, then the end
+    };
+    /** A stretch matched against one pass's field map. */
+    struct PassMatch {
+        magnetic::StretchMatch m;
+        std::size_t begin, end;
+    };
     void onNode(TNodeID id);
     void fit();
+    /** The stretch ending at node `id` matched against each earlier pass; a closure where one
+     * place is decisive. */
     void query(TNodeID id);
+    /** The readings of the last stretch_length in `segment`, relative to the anchor (x, y,
+     * yaw); `first` set to the first of them. */
+    std::vector<magnetic::StretchSample> recentStretch(int segment, const Eigen::Vector3d& anchor,
+                                                       std::size_t& first) const;
+    /** Readings before `first`, in the stretch's frame, min_loop behind it and within the
+     * search's reach of one of its readings. */
+    Passes earlierPasses(std::size_t first, int segment, const Eigen::Vector3d& anchor,
+                         const std::vector<magnetic::StretchSample>& stretch) const;
+    /** The stretch matched against each pass long enough (its field map, the path's gate). */
+    std::vector<PassMatch> matchPasses(TNodeID id, const Eigen::Vector3d& anchor,
+                                       const std::vector<magnetic::StretchSample>& stretch,
+                                       const Passes& passes) const;
+    /** The best pass's match as a closure if decisive, one place and no other pass as
+     * decisive elsewhere (each loss counted). */
+    void decide(TNodeID id, const std::vector<PassMatch>& matches, const Passes& passes);
 
     Params params_;
     Stats stats_;

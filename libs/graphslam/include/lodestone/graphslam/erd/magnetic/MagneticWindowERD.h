@@ -224,6 +224,11 @@ class MagneticWindowERD : public EdgeDecider {
      * (its own buildingNull), as if its place were drawn afresh. */
     bool chainEvidence(std::vector<Candidate>& all, std::size_t first,
                        const std::function<bool()>& decided, double firstNull) const;
+    struct ChainWindow;
+    struct ChainStep;
+    /** Candidate `k`, whose window started at `from` in its track, followed one window back:
+     * the earlier window realigned within the tolerance (MagneticWindowChain.cpp). */
+    ChainStep followBack(const Candidate& k, long from, ChainWindow& window) const;
     /** (learn_noise) A closed window's differences into the pass noise estimate; the tests
      * take the estimate once it moved by a tenth (MagneticWindowNoise.cpp). */
     void learnNoise(const Candidate& best, std::size_t first);
