@@ -1,4 +1,4 @@
-// Is depth alignment's covariance honest, and where not, which error does it miss? (issue #30)
+// Is depth alignment's covariance honest, and where not, which error does it miss?
 // Pairs of frames along a scenario's robot path (the camera level, as the robot's) are rendered
 // by the simulator again and again, each time with a different noise draw, and aligned with
 // PointToPlaneIcp exactly as VO does (a grid-sampled cloud against the reference's), started

@@ -1,4 +1,4 @@
-// Descriptor matching (issue #15): the packed XOR-popcount kernel against OpenCV's BFMatcher
+// Descriptor matching: the packed XOR-popcount kernel against OpenCV's BFMatcher
 // with the same gates, at VO's size (600 x 600 ORB descriptors) and submap phase 1's (1000
 // submap features x 600 of a keyframe). Google Benchmark; scripts/bench/matching.sh prints the
 // table.

@@ -1,4 +1,4 @@
-// Storage of RGB-D frames (issue #15): what each choice costs per frame on disk and to decode,
+// Storage of RGB-D frames: what each choice costs per frame on disk and to decode,
 // on frames of a simulated scenario (every 10th of its first 400): colour as PNG (level 1, what
 // lodestone-sim writes by default) or JPEG at several qualities; depth raw in the rawlog or
 // deflated (a .rawlog.gz: zlib level 1, as RawlogWriter writes it). Prints a markdown table.

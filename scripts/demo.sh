@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
-# Set-up command 1: installs what is missing, builds Release and runs the main job,
-# lodestone-slam, on embedded defaults:
+# Set-up command 1: installs what is missing, builds Release - the apps and the MRPT plugin only,
+# not the tests and benchmarks (scripts/test.sh builds those into the same tree) - and runs the
+# main job, lodestone-slam, on embedded defaults:
 #   1. the bundled rawlog rawlogs/office_qvga.rawlog.gz, against its ground truth;
 #   2. the office scenario simulated on the fly (640x480 at 30 Hz), against the simulator's truth.
 # Prints the ATE of each and where the outputs are (out/demo/).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 "$root/scripts/install-deps.sh"
-"$root/scripts/build.sh"
+"$root/scripts/build.sh" --apps
 
 out="$root/out/demo"
 rm -rf "$out"

@@ -18,7 +18,7 @@ packages=(
     libgtest-dev libgmock-dev
     libbenchmark-dev               # micro-benchmarks (bench/bench_matching)
     time                           # /usr/bin/time: wall time and peak RSS in scripts/bench/throughput.sh
-    # GUI tests (issue #17): stock RawLogViewer with our plugin on a virtual X display, and the
+    # GUI tests: stock RawLogViewer with our plugin on a virtual X display, and the
     # HTML report in headless Chromium.
     xvfb xauth x11-apps x11-utils xdotool  # Xvfb, xvfb-run; xwd screenshots; xwininfo; a click
     chromium fonts-dejavu-core             # the report page: images load, no console error

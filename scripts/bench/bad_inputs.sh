@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
-# Damaged rawlogs through the apps a user points at them (issue #16): every input of the fuzz
-# regression corpora (tests/fuzz/regression: issue #16's table rebuilt, and every input the fuzz
+# Damaged rawlogs through the apps a user points at them: every input of the fuzz
+# regression corpora (tests/fuzz/regression: the first fuzzing's findings rebuilt, and every input the fuzz
 # targets found) plus damaged copies of the bundled sample made here, each through
 # lodestone-inspect summary, lodestone-slam and lodestone-magfit, timed as whole processes
 # (/usr/bin/time: wall, peak RSS). Prints a markdown table: exit code, wall time, peak RSS and
-# the error line; then the worst time and RSS. Target (issue #16): a clean error (exit 1, the
+# the error line; then the worst time and RSS. Target: a clean error (exit 1, the
 # file named) in < 1 s and < 200 MB.
 # Usage: scripts/bench/bad_inputs.sh [--build DIR]
 set -euo pipefail

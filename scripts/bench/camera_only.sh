@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Camera-only SLAM (issues #14, #30): simulated scenarios recorded to disk with the RGB-D camera
+# Camera-only SLAM: simulated scenarios recorded to disk with the RGB-D camera
 # carried by the robot with its wheels, by the robot alone (lodestone-sim --camera-only: no
 # encoders, wheel drop or magnetometers) and by hand (--handheld: 6-DoF, shaking, at 1.35 m) -
 # colour as PNG files beside the rawlog, read back as a dataset's are. The camera-only
@@ -7,7 +7,7 @@
 # it), and each is run four times with rgbd_only.ini: without the IMU (use_gyro, use_gravity
 # false: the gaps' turns then measured by their frames' depth) and with it (the INI as it
 # ships), each also with VO's edges alone (floor_level, step_motion_prior false: no floor as a
-# landmark, no carrier's motion holding what VO left unmeasured - the INI before session 62).
+# landmark, no carrier's motion holding what VO left unmeasured - the earlier shipped INI).
 # Beside them the robot with its wheels and visual_only.ini. One row per run: ATE, VO's gaps
 # and how they were bridged, closures, the real-time factor; then median and worst over the
 # seeds.

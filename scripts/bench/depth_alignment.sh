@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Depth alignment where VO's features fail (issue #30): a simulated scenario recorded to disk
+# Depth alignment where VO's features fail: a simulated scenario recorded to disk
 # carried by hand (--handheld) and on the robot with the camera alone (--camera-only), each
 # without and with a simulated gyro (--gyro: its own noise stream, the camera's frames the
 # same). Without: run five ways from rgbd_only.ini - features only; depth alignment where the

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Depth alignment's covariance against the simulated Kinect's noise (issue #30): pairs of
+# Depth alignment's covariance against the simulated Kinect's noise: pairs of
 # frames along the robot's path of a scenario, each rendered DRAWS times with fresh noise and
 # aligned as VO aligns them, alone and joined with a simulated feature measurement; NEES per
 # pinned direction, and how much of the error repeats every draw (bench/bench_depth_honesty.cpp).

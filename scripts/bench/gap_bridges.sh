@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# VO's gaps bridged by the gyro (issue #30): a simulated scenario recorded to disk with an IMU
+# VO's gaps bridged by the gyro: a simulated scenario recorded to disk with an IMU
 # (--gyro), on the robot with the camera alone and carried by hand, for each seed; run from
 # rgbd_only.ini two ways - the gyro's rotation with the fading velocity's translation (fading),
 # and the same corrected by the gap frames' depth (bridge_by_depth: odometry::DepthBridge). One

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# What a stopped grab keeps (issue #18): lodestone-grab streams CSimulatedRobot (paper_loop,
+# What a stopped grab keeps: lodestone-grab streams CSimulatedRobot (paper_loop,
 # 640x480 @ 30 Hz, real time) and is stopped after 20 s by SIGINT, then by SIGKILL. SIGINT: the
 # observations the driver produced (its summary) against those read back from the rawlog.
 # SIGKILL: the seconds between the driver's last ground-truth line (written as each

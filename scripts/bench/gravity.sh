@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The accelerometer's up as a prior on each node's roll and pitch (issue #30): a simulated
+# The accelerometer's up as a prior on each node's roll and pitch: a simulated
 # scenario recorded to disk with an IMU (--gyro: its rate gyro and accelerometer), on the robot
 # with the camera alone and carried by hand, for each seed; run from rgbd_only.ini four ways -
 # VO's edges with and without their translation-rotation correlations (edge_cross_covariance),

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# What chooses VO's keyframes (issue #30): corridor_floor.ini carried by hand (lodestone-sim
+# What chooses VO's keyframes: corridor_floor.ini carried by hand (lodestone-sim
 # --handheld --gyro, 640x480 at 30 Hz, recorded to disk), its texture only on the floor 3-5 m
 # ahead, where VO's steps are noisiest. rgbd_only.ini run frame by frame against the truth
 # (bench/bench_depth_alignment.cpp) four ways: features only or features and depth as one

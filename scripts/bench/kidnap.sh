@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Kidnap recovery benchmark (issue #12), printed as markdown: each kidnap scenario is run
+# Kidnap recovery benchmark, printed as markdown: each kidnap scenario is run
 # through lodestone-slam with slam.ini on the simulator, then judged against the simulator's
 # ground truth and kidnap events:
 #  - `lodestone-eval relocation`: per kidnap relocated or not, time and odometry travel from the

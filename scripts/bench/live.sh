@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Live grabbing with live SLAM (issue #18): lodestone-grab streams a simulated robot
+# Live grabbing with live SLAM: lodestone-grab streams a simulated robot
 # (CSimulatedRobot) in real time with --slam config_ini/slam/slam.ini; then lodestone-slam runs
 # offline on the grabbed rawlog. Prints a markdown table: the live run's lag behind the newest
 # observation (p50 / p99 / max), RGB-D frames skipped, ATE of the live and of the offline run

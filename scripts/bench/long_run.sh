@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# A one-hour run (issue #15): paper_kidnap.ini driven for LAPS laps (default 28: about 3 600 s
+# A one-hour run: paper_kidnap.ini driven for LAPS laps (default 28: about 3 600 s
 # of data; its five kidnaps stay in laps 4-5), simulated at 640x480 / 30 Hz into lodestone-slam
 # with slam.ini. Prints a markdown table: data and wall time, peak RSS (/usr/bin/time), nodes,
 # ATE, and the engine's mean time per node in each tenth of the run (flat: no growth with the

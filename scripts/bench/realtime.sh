@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Real time from disk (issue 30: camera-only at 640x480 >= 2x on 2 cores): recordings that
+# Real time from disk (the target: camera-only at 640x480 >= 2x real time on 2 cores): recordings that
 # exist (REC.rawlog with REC.gt.tum beside it, e.g. camera_only.sh's REC_DIR, or lodestone-sim
 # -c config_ini/scenarios/paper_loop.ini -o REC.rawlog -s SEED --handheld --gyro), each run
 # alone as a user runs it - the whole process, start to outputs written - one after another,

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# lodestone-inspect report as a user runs it (issue #17): the bundled office sample and the
+# lodestone-inspect report as a user runs it: the bundled office sample and the
 # simulated paper_loop_qvga (about 1 GB of rawlog and images, made by
 # scripts/make_benchmark_rawlogs.sh if missing), each alone and with --slam on a lodestone-slam
 # run of it (made here if missing, slam.ini; with the ground truth beside the rawlog). Timed

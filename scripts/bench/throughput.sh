@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Offline SLAM throughput from a rawlog on disk (issue #15): each scenario recorded by
+# Offline SLAM throughput from a rawlog on disk: each scenario recorded by
 # lodestone-sim at its INI's camera (640x480 @ 30 Hz; colour as PNG files beside the rawlog,
 # as a user's recording is), then `lodestone-slam --rawlog ... --config CONFIG` timed as a user
 # runs it - the whole process, start to outputs written - on both cores and pinned to one

@@ -1,4 +1,4 @@
-// Issue #16's bad-input matrix across every app (the cases the first matrix file does not
+// The bad-input matrix across every app (the cases the first matrix file does not
 // cover): every rawlog-reading app and command against a missing file, an empty file, a
 // folder, a truncated rawlog, a rawlog with garbage after it (plain and gzip) and a
 // zero-length gzip; INI typos, NaN and negative values in each app that takes an INI; output

@@ -1,4 +1,4 @@
-// Issue #16's bad-input matrix, as a user meets it through the apps: every case ends with exit
+// The bad-input matrix, as a user meets it through the apps: every case ends with exit
 // 1 (or 2 for usage) and a short message naming the file, key or line - no MRPT call stack,
 // no crash - and a rawlog-reading app says so for a missing file, an empty one, a directory, a
 // truncated rawlog and a zero-length gzip alike.

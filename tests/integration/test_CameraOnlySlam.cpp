@@ -1,4 +1,4 @@
-// A camera-only recording as a user meets one (issue #14): the simulated office rendered at
+// A camera-only recording as a user meets one: the simulated office rendered at
 // 320x240 / 15 Hz with its wheel odometry taken out - what a handheld or dataset sequence
 // looks like to lodestone-slam. With rgbd_only.ini it runs on VO alone in 6-DoF and tracks
 // the truth; with slam.ini it is refused with a message that names rgbd_only.ini.

@@ -1,5 +1,5 @@
 // Lodestone's MRPT plugin inside stock MRPT tools: rawlog-edit and RawLogViewer read our
-// rawlogs once the plugin is loaded (issue #17).
+// rawlogs once the plugin is loaded.
 #include <gtest/gtest.h>
 #include <lodestone/inspect/RawlogSummary.h>
 #include <lodestone/obs/registerAllClasses.h>

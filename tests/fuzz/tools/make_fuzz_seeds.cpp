@@ -1,5 +1,5 @@
 // Writes the fuzz targets' seed corpora (tests/fuzz/corpus) and the regression inputs built
-// from the issue #16 findings (tests/fuzz/regression): small, and reproducible from this file.
+// from the first fuzzing's findings (tests/fuzz/regression): small, and reproducible from this file.
 //   make_fuzz_seeds <tests/fuzz> <repository root>
 // The committed files are this tool's output; rerun it when a format changes.
 #include <lodestone/obs/CObservationWheelDrop.h>
@@ -97,7 +97,7 @@ void rawlogSeeds() {
 }
 
 void regressionRawlogs() {
-    // Issue #16's table, rebuilt: each crashed or ran away before the guards.
+    // The first fuzzing's findings, rebuilt: each crashed or ran away before the guards.
     const std::string nullPdf =
         framedObject("CActionCollection", 0,
                rawBytes<std::uint32_t>(1) +

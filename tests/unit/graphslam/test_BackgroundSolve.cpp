@@ -1,4 +1,4 @@
-// Full solves off the frame loop (issue #15): a solve of a snapshot merged later gives exactly
+// Full solves off the frame loop: a solve of a snapshot merged later gives exactly
 // what the same solve in the frame loop gives (nodes added since carried along rigidly, its
 // rejections applied), and the engine with background solves is deterministic and as accurate.
 #include "ScriptedDeciders.h"

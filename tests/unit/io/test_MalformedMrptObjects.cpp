@@ -1,4 +1,4 @@
-// Stock MRPT objects whose deserializers trust what they read (issue #16): a version-0/1
+// Stock MRPT objects whose deserializers trust what they read: a version-0/1
 // CActionRobotMovement2D whose pose PDF is stored as "nullptr" made MRPT dereference a null
 // pointer (SIGSEGV in lodestone-inspect, -slam, -magfit and MRPT's own rawlog-edit); a null
 // element inside a sensory frame or action collection crashed whoever walked it next. Each

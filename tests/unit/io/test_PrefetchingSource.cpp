@@ -1,4 +1,4 @@
-// Decode-ahead (issue #15): a rawlog read through io::PrefetchingSource gives byte for byte
+// Decode-ahead: a rawlog read through io::PrefetchingSource gives byte for byte
 // what the rawlog gives read in the caller's thread - the same entries, the same decoded
 // pixels, the same fault at the same place - with at most `depth` observations ahead. (A colour
 // PNG it decoded with its own reader is held in memory rather than as its file's name.)

@@ -1,4 +1,4 @@
-// A damaged size field in a rawlog entry (issue #16): MRPT's deserializers allocate what the
+// A damaged size field in a rawlog entry: MRPT's deserializers allocate what the
 // field says before reading, so a label length of 0xF0000000, a 100 000 x 100 000 range image
 // or an action count of 0xFFFFFFFF took gigabytes (or crashed). Each must end in a read error
 // naming the entry, after the entries before it, in well under a second and 200 MB.

@@ -33,7 +33,7 @@ struct KidnapDetectorParams {
     double latency{1.5};
 };
 
-/** Kidnap detection for bases without a wheel-drop sensor (issue #12): the robot is lifted
+/** Kidnap detection for bases without a wheel-drop sensor: the robot is lifted
  * when
  *  - motion: over the last `window` seconds, visual odometry (chained through its reference
  *    frames) moved and the encoders did not (carried), or the encoders moved and VO did not

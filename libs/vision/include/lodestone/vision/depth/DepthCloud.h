@@ -38,7 +38,7 @@ struct DepthSampling {
      * rotation error from 0.084 to 0.013 deg (bench_depth_honesty). Off: end to end it moved
      * the hand-held seeds by centimetres both ways, the worst seed worse with the gyro and
      * without, and the robot's camera on one floor went 1.1 m off
-     * (docs/results/camera-only.md, session 60). The noise a point carries is one pixel's
+     * (docs/results/camera-only.md). The noise a point carries is one pixel's
      * either way. */
     bool pointsFromCellMean{false};
 };
